@@ -1,0 +1,86 @@
+// camdyn — cam geometry and kinematics (METHOD.md §2).
+//
+//   Cam frame (x, y) turns with angle θ; a cam point sits at
+//     X = x cos θ − y sin θ,   Y = x sin θ + y cos θ.
+//   A flat-faced follower translating along X touches the cam at C, the point of the
+//   rotated profile with the largest X (eq. 2). Its support function
+//     h(θ) = max_α X(α, θ)  gives  X_C = h,  Ẋ_C = h′ω,  Ẍ_C = h″ω² + h′ω̇,
+//   and for a convex profile h + h″ = ρ (radius of curvature at C, > 0).
+//   The paper's form (eqs. 8, 9, A7), with β, r the polar angle and radius of C in the
+//   fixed frame:
+//     Ẋ_C = −r ω sin β
+//     Ẍ_C = −r ω² cos β − r ω̇ sin β − 2ω²/x_yy + (ω/(y_α x_yy))² x_αα.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "camdyn/scene.hpp"
+
+namespace camdyn {
+
+/// Geometry of the contact point at one cam angle (support-function form).
+struct CamPoint {
+  double theta = 0;        ///< cam angle θ [rad]
+  double X_C = 0;          ///< h(θ): X of the contact point [length]
+  double dX_dtheta = 0;    ///< h′(θ) [length/rad]
+  double d2X_dtheta2 = 0;  ///< h″(θ) [length/rad²]
+  double beta = 0;         ///< polar angle of C in the fixed frame [rad], in (−π, π]
+  double r = 0;            ///< distance of C from O [length]
+  double rho = 0;          ///< radius of curvature of the profile at C [length], > 0
+};
+
+/// Position, velocity and acceleration of C along X.
+struct CamMotion {
+  double X = 0, Xdot = 0, Xddot = 0;
+};
+
+/// A convex cam profile. Construction validates it; evaluation tracks the contact point
+/// from the previous call (O(1) per call, no dense scan). Not thread-safe: use one Cam
+/// per thread (copies are cheap and independent).
+class Cam {
+ public:
+  /// @throws SceneError (file "<cam>") with the offending key, value and rule: too few
+  /// knots, non-increasing/duplicate angles, non-positive radii, NaN/inf, a
+  /// self-intersecting or non-convex profile (naming the cam angles where ρ ≤ 0).
+  explicit Cam(const CamSpec& spec);
+  Cam(const Cam&);
+  Cam& operator=(const Cam&);
+  Cam(Cam&&) noexcept;
+  Cam& operator=(Cam&&) noexcept;
+  ~Cam();
+
+  /// Support-function geometry at cam angle θ [rad] (any real θ).
+  CamPoint evaluate(double theta) const;
+  /// X_C, Ẋ_C, Ẍ_C by the support-function form.
+  CamMotion motion(double theta, double omega, double omega_dot) const;
+  /// X_C, Ẋ_C, Ẍ_C by the paper's form (eqs. 8, 9, A7), computed from the profile's own
+  /// derivatives at C (an independent path, used to cross-check motion()).
+  CamMotion motion_paper(double theta, double omega, double omega_dot) const;
+
+  /// max_θ h − min_θ h (the follower's total lift) [length].
+  double lift() const;
+  /// Smallest radius of curvature over the profile [length].
+  double min_radius_of_curvature() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Cam drive θ(t), ω(t), ω̇(t): constant speed, or a piecewise-linear speed table
+/// (θ integrated exactly, ω̇ piecewise constant).
+class CamDrive {
+ public:
+  explicit CamDrive(const CamSpec& spec);
+  double theta(double t) const;      ///< [rad]
+  double omega(double t) const;      ///< [rad/s]
+  double omega_dot(double t) const;  ///< [rad/s²]
+  bool constant_speed() const { return table_t_.empty(); }
+
+ private:
+  double theta0_ = 0, omega0_ = 0;
+  std::vector<double> table_t_, table_w_, table_theta_;  // knots, ω [rad/s], θ at knots
+};
+
+}  // namespace camdyn

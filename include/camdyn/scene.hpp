@@ -1,0 +1,200 @@
+// camdyn — scene description (what the user asks to simulate).
+//
+// A Scene is the resolved, validated content of a TOML scene file (INTERFACE.md): every
+// field has a default and a comment with units and valid range. The model builder
+// (model.hpp) turns a Scene into the smallest model with exactly the effects it asks for.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace camdyn {
+
+// ---- enumerations, each with a to_string / parse pair so the CLI and reports need no
+// ---- extra code. parse_enum returns false on an unknown spelling.
+enum class CamProfileKind { Points, Lift, Circle };
+enum class FollowerKind { Rigid, ElasticBar };
+enum class MassMatrixKind { Consistent, Lumped };
+enum class ContactModel { Lee, Penalty, Holonomic, Event };
+enum class ErrorVariant { Eq12, Eq17 };
+enum class PenaltyLaw { Linear, HuntCrossley };
+enum class Integrator { ArkodeErk, ArkodeDirk, CvodeBdf };
+enum class LinearSolverKind { Auto, Dense, Klu };
+
+const char* to_string(CamProfileKind v);    // "points" | "lift" | "circle"
+const char* to_string(FollowerKind v);      // "rigid" | "elastic_bar"
+const char* to_string(MassMatrixKind v);    // "consistent" | "lumped"
+const char* to_string(ContactModel v);      // "lee" | "penalty" | "holonomic" | "event"
+const char* to_string(ErrorVariant v);      // "eq12" | "eq17"
+const char* to_string(PenaltyLaw v);        // "linear" | "hunt_crossley"
+const char* to_string(Integrator v);        // "arkode-erk" | "arkode-dirk" | "cvode-bdf"
+const char* to_string(LinearSolverKind v);  // "auto" | "dense" | "klu"
+
+bool parse_enum(std::string_view s, CamProfileKind* out);
+bool parse_enum(std::string_view s, FollowerKind* out);
+bool parse_enum(std::string_view s, MassMatrixKind* out);
+bool parse_enum(std::string_view s, ContactModel* out);
+bool parse_enum(std::string_view s, ErrorVariant* out);
+bool parse_enum(std::string_view s, PenaltyLaw* out);
+bool parse_enum(std::string_view s, Integrator* out);
+bool parse_enum(std::string_view s, LinearSolverKind* out);
+
+/// The cam: profile and drive.
+struct CamSpec {
+  /// Profile representation.
+  CamProfileKind profile = CamProfileKind::Points;
+  /// points: polar angles of the spline knots [deg], strictly increasing, span < 360, ≥ 4.
+  std::vector<double> angles_deg{0, 45, 90, 135, 180, 225, 270, 315};
+  /// points: radii of the knots [length], > 0, same count as angles_deg.
+  std::vector<double> radii{2.0, 2.0, 2.0, 2.1, 3.0, 2.1, 2.0, 2.0};
+  /// lift: base-circle radius r_b [length], > 0.
+  double base_radius = 2.0;
+  /// lift: cam angles of the lift table [deg], strictly increasing, span < 360, ≥ 4.
+  std::vector<double> lift_angles_deg;
+  /// lift: follower lift L(θ) [length] at lift_angles_deg; r_b + L > 0; periodic spline.
+  std::vector<double> lift;
+  /// circle: radius R [length], > 0.
+  double radius = 2.0;
+  /// circle: eccentricity e [length], 0 ≤ e < R (centre at (e, 0) in the cam frame).
+  double eccentricity = 0.5;
+  /// Constant cam speed [rev/s], finite (any sign). Ignored when a speed table is given.
+  double speed_rev_s = 1.75;
+  /// Optional speed table: times [s] (strictly increasing, first = 0) and speeds [rev/s];
+  /// ω(t) is piecewise linear between entries and constant after the last one.
+  std::vector<double> speed_table_t;
+  std::vector<double> speed_table_rev_s;
+  /// Cam angle at t = 0 [deg], finite.
+  double theta0_deg = 0.0;
+};
+
+/// The follower: rigid mass or elastic bar.
+struct FollowerSpec {
+  FollowerKind kind = FollowerKind::Rigid;
+  /// Total mass [mass], > 0.
+  double mass = 1.0;
+  /// Viscous damper on the rigid mass (to ground) [force·time/length], ≥ 0. rigid only.
+  double damping = 0.0;
+  /// elastic_bar: Young's modulus E [force/length²], > 0.
+  double youngs_modulus = 1e7;
+  /// elastic_bar: cross-section area A [length²], > 0.
+  double area = 3.0;
+  /// elastic_bar: bar length L [length], > 0.
+  double length = 24.0;
+  /// elastic_bar: number of 2-node linear elements N, 1 ≤ N ≤ 10⁷.
+  int elements = 40;
+  /// elastic_bar: consistent or lumped mass matrix.
+  MassMatrixKind mass_matrix = MassMatrixKind::Consistent;
+  /// elastic_bar: Rayleigh damping C = α M + β K; α [1/time] ≥ 0, β [time] ≥ 0.
+  double rayleigh_alpha = 0.0;
+  double rayleigh_beta = 0.0;
+};
+
+/// The return spring on the follower's far end.
+struct SpringSpec {
+  /// Stiffness k [force/length], ≥ 0.
+  double stiffness = 500.0;
+  /// Pre-compression δ₀ [length], finite (k·δ₀ is the preload).
+  double precompression = 7.0;
+};
+
+/// The contact law and its method.
+struct ContactSpec {
+  ContactModel model = ContactModel::Lee;
+  ErrorVariant error_variant = ErrorVariant::Eq12;
+  /// Displacement-level tolerance [length], > 0. 0 in a scene file means "paper default":
+  /// 1e-8 for a rigid follower, 1e-7 for an elastic one (resolved by resolve_defaults()).
+  double tol_u = 0.0;
+  /// Velocity / acceleration tolerances; 0 means tol_u/Δt and tol_u/Δt² (per step).
+  double tol_v = 0.0;
+  double tol_a = 0.0;
+  /// Maximum iterations per level before the step is retried with Δt/2, 1 ≤ n ≤ 10⁴.
+  int max_iterations = 60;
+  /// false: the follower never leaves the cam (holonomic constraint).
+  bool separation = true;
+  /// Newton restitution coefficient at impact, 0 ≤ e ≤ 1 (0 = plastic, as in the paper).
+  double restitution = 0.0;
+  /// Clearance between cam and follower at t = 0 [length], ≥ 0 (valve lash).
+  double initial_gap = 0.0;
+  PenaltyLaw penalty_law = PenaltyLaw::Linear;
+  /// Penalty stiffness k_p [force/length] (linear) or [force/lengthⁿ] (Hunt–Crossley), > 0.
+  double penalty_stiffness = 1e6;
+  /// Penalty damping c_p [force·time/length] (linear), or Hunt–Crossley's α [time/length], ≥ 0.
+  double penalty_damping = 0.0;
+  /// Hunt–Crossley exponent n, 1 ≤ n ≤ 3.
+  double penalty_exponent = 1.5;
+};
+
+/// The time integrator.
+struct SolverSpec {
+  Integrator integrator = Integrator::ArkodeErk;
+  /// Relative and absolute local error tolerances, 1e-14 ≤ rtol ≤ 1e-1, 0 < atol ≤ 1.
+  double rtol = 1e-7;
+  double atol = 1e-10;
+  LinearSolverKind linear_solver = LinearSolverKind::Auto;
+  /// Largest step [time], ≥ 0; 0 = no limit beyond output times.
+  double max_step = 0.0;
+  /// First step [time], ≥ 0; 0 = automatic.
+  double initial_step = 0.0;
+};
+
+/// What to run and what to write.
+struct RunSpec {
+  /// Final time [time], > 0.
+  double t_end = 1.0;
+  /// Output spacing [time], ≥ 0; 0 = one row per accepted step.
+  double output_dt = 1e-4;
+  /// Safety bound on accepted + rejected steps, ≥ 1.
+  long max_steps = 50'000'000;
+};
+
+struct Scene {
+  std::string title = "camdyn scene";
+  CamSpec cam;
+  FollowerSpec follower;
+  SpringSpec spring;
+  ContactSpec contact;
+  SolverSpec solver;
+  RunSpec run;
+  /// Where the scene came from (file path or "<built-in>"), for error messages.
+  std::string source = "<built-in>";
+};
+
+/// Bad user input. what() is "FILE:LINE: key 'KEY' = VALUE: RULE" (line omitted if unknown).
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(std::string file, int line, std::string key, std::string value, std::string rule);
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }
+  const std::string& key() const { return key_; }
+  const std::string& value() const { return value_; }
+  const std::string& rule() const { return rule_; }
+
+ private:
+  std::string file_, key_, value_, rule_;
+  int line_;
+};
+
+/// The paper's case B2 (elastic follower, 5 rev/s), the built-in default scene.
+Scene default_scene();
+/// The paper's reference cases: "A", "B1", "B2" (METHOD.md §5). @throws std::invalid_argument
+Scene paper_case(const std::string& name);
+
+/// Parse TOML text. Keys missing from the text keep the defaults of Scene{}.
+/// @throws SceneError naming source, line, key, value and rule.
+Scene parse_scene(std::string_view toml_text, const std::string& source_name);
+/// Read and parse a file. @throws SceneError (also when the file cannot be read).
+Scene load_scene_file(const std::string& path);
+/// Apply "dotted.key=value" (value in TOML syntax; bare words are taken as strings).
+/// @throws SceneError with file "--set".
+void apply_override(Scene& scene, const std::string& assignment);
+/// Fill "0 = automatic" defaults (e.g. tol_u by follower kind). Idempotent.
+void resolve_defaults(Scene& scene);
+/// Check every rule. @throws SceneError.
+void validate(const Scene& scene);
+/// The scene as TOML with every key written (the resolved scene).
+std::string to_toml(const Scene& scene);
+
+}  // namespace camdyn

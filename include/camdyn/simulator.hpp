@@ -1,0 +1,108 @@
+// camdyn — the simulator: scene → model → engine + contact method → history/summary.
+//
+// One step loop (simulator.cpp) drives every contact method:
+//   lee        Lee (1997): augmented-multiplier iteration at displacement, velocity and
+//              acceleration level around each integrator step (METHOD.md §3–4).
+//   penalty    spring–damper contact force inside the right-hand side.
+//   holonomic  node 0 constrained to the cam at all times.
+//   event      exact event-driven: contact / free phases switched by rootfinding.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camdyn/model.hpp"
+#include "camdyn/scene.hpp"
+
+namespace camdyn {
+
+/// One output row (INTERFACE.md history.csv, then energy columns).
+struct HistoryRow {
+  double t = 0, theta = 0, u_c = 0, v_c = 0, a_c = 0;
+  double contact_force = 0;  ///< −p ≥ 0
+  double gap = 0;            ///< −s: ≥ 0 apart, < 0 penetration
+  int in_contact = 0;
+  double kinetic = 0;        ///< ½ vᵀ M v
+  double potential = 0;      ///< strain + spring energy change since t = 0
+  double work_cam = 0;       ///< ∫ F v₀ dt, work done by the cam on the follower
+  double dissipated = 0;     ///< ∫ vᵀ C v dt + energy lost in impacts
+};
+
+/// Names of the history columns, in order.
+const std::vector<std::string>& history_columns();
+
+/// A contact event.
+struct ContactEvent {
+  double t = 0;
+  std::string kind;             ///< "impact" | "separation" | "tensile" (holonomic)
+  double impact_velocity = 0;   ///< relative approach velocity (impacts), else 0
+};
+
+/// Iteration statistics of one level of Lee's method.
+struct LevelStats {
+  long total = 0;  ///< iterations summed over accepted steps
+  int max = 0;     ///< most iterations in one accepted step
+  long steps = 0;  ///< accepted steps counted
+  double mean() const { return steps ? double(total) / double(steps) : 0.0; }
+};
+
+struct Summary {
+  std::string scene;
+  bool finished = false;
+  std::string message;
+  double t_end = 0;  ///< time reached
+  long steps = 0, rejected_steps = 0, rhs_evals = 0;
+  long contact_iterations = 0;
+  LevelStats level_u, level_v, level_a;  ///< Lee's three levels
+  long iteration_failures = 0;           ///< steps retried because an iteration failed
+  long separations = 0, impacts = 0;
+  double max_contact_force = 0;
+  double min_gap = 0;          ///< smallest gap (−s) seen
+  double max_penetration = 0;  ///< max(0, −gap)
+  double first_tensile_time = -1;  ///< holonomic: first time the constraint force pulls
+  double energy_residual = 0;      ///< |W − ΔT − ΔV − D| at the end
+  double cpu_seconds = 0, wall_seconds = 0;
+  std::string integrator, contact_model;
+  ModelDescription model;
+  std::vector<ContactEvent> events;
+
+  std::string BriefReport() const;
+  std::string FullReport() const;
+};
+
+/// Receives output as it is computed (so a failing run keeps what it computed).
+struct Observer {
+  virtual ~Observer() = default;
+  virtual void on_row(const HistoryRow&) {}
+  virtual void on_event(const ContactEvent&) {}
+  /// Called about every 0.2 s of wall time.
+  virtual void on_progress(double /*t*/, double /*t_end*/, long /*steps*/) {}
+};
+
+class Simulator {
+ public:
+  /// @throws SceneError on an invalid scene.
+  explicit Simulator(Scene scene);
+  ~Simulator();
+  /// Run to t_end. Never throws for a simulation failure: the summary says
+  /// finished = false and why. `stop` (may be null) is polled each step (Ctrl-C).
+  Summary run(Observer* observer = nullptr, const std::atomic<bool>* stop = nullptr);
+  const Scene& scene() const { return scene_; }
+  const FollowerModel& model() const { return *model_; }
+
+ private:
+  Scene scene_;
+  std::shared_ptr<const FollowerModel> model_;
+};
+
+/// Convenience: run and collect all rows in memory.
+struct RunResult {
+  Summary summary;
+  std::vector<HistoryRow> rows;
+};
+RunResult simulate(const Scene& scene);
+
+}  // namespace camdyn

@@ -1,0 +1,117 @@
+// camdyn (private) — integrator engines on SUNDIALS behind one interface.
+//
+//   First-order form, y = [q; v] (2n unknowns):
+//     q̇ = v,   M v̇ = f₀ − K q − C v + e₀ F(t, q₀, v₀)
+//   F is the contact force law of the running method: a ramp F(t) linear over the step
+//   (Lee), a penalty law F(s, ŝ) (penalty), or zero (free flight).
+//
+// Two ways to drive an engine:
+//   * trial steps (Lee): step(t, y, h) takes exactly one step of size h from a saved
+//     state and returns the end state and the WRMS norm of the local error estimate;
+//     the same step can be retaken with another force ramp.
+//   * native stepping (penalty, event): reinit(t, y) then advance(tout) takes one
+//     internal, error-controlled step, never past tout (optionally stopping at a root).
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "camdyn/cam.hpp"
+#include "camdyn/model.hpp"
+#include "camdyn/scene.hpp"
+
+namespace camdyn {
+
+/// A negative SUNDIALS return flag, turned into an exception naming the call.
+class SundialsError : public std::runtime_error {
+ public:
+  SundialsError(const std::string& call, int flag)
+      : std::runtime_error(call + " failed with flag " + std::to_string(flag)), flag_(flag) {}
+  int flag() const { return flag_; }
+
+ private:
+  int flag_;
+};
+
+/// Throws SundialsError if flag < 0. Returns flag otherwise.
+int check_flag(int flag, const char* call);
+
+/// "auto" → dense for a handful of unknowns, KLU beyond.
+LinearSolverKind resolve_linear_solver(const Scene& scene, int nodes);
+
+/// The contact force on node 0 (F = −p ≥ 0 pushes the follower away from the cam).
+struct ContactLaw {
+  enum class Kind { None, Ramp, Penalty };
+  Kind kind = Kind::None;
+  // Ramp: F(t) = F0 + (F1 − F0)(t − t0)/h on the step [t0, t0 + h].
+  double t0 = 0, h = 1, F0 = 0, F1 = 0;
+  // Penalty: s = X_C − q₀ (penetration > 0), ŝ = Ẋ_C − v₀.
+  //   linear:        F = max(0, k_p s + c_p ŝ)               while s > 0
+  //   hunt_crossley: F = max(0, k_p sⁿ (1 + c_p ŝ))          while s > 0
+  const Cam* cam = nullptr;
+  const CamDrive* drive = nullptr;
+  PenaltyLaw law = PenaltyLaw::Linear;
+  double kp = 0, cp = 0, exponent = 1.5;
+
+  double force(double t, double q0, double v0) const;
+  /// dF/dq₀ and dF/dv₀ (for the Jacobian); zero except for an active penalty.
+  void derivatives(double t, double q0, double v0, double* dFdq, double* dFdv) const;
+};
+
+struct EngineStats {
+  long steps = 0;         ///< internal steps taken (accepted by the engine)
+  long rhs_evals = 0;     ///< right-hand-side evaluations
+  long lin_setups = 0;    ///< linear-solver setups (factorisations)
+  long reinits = 0;       ///< restarts (CVODE history lost)
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  virtual const char* name() const = 0;
+  /// Order of the embedded error estimate + 1 (the exponent of the step controller).
+  virtual int error_order() const = 0;
+  /// True if step() returns a meaningful local error estimate; false if the engine
+  /// controls its own error inside the step (CVODE) and step() never asks for rejection.
+  virtual bool estimates_error() const { return true; }
+
+  /// One step of exactly h from (t, y); y_out = state at t + h. Returns the WRMS norm of
+  /// the local error estimate (≤ 1: acceptable), 0 if !estimates_error().
+  virtual double step(double t, const Eigen::VectorXd& y, double h, Eigen::VectorXd& y_out) = 0;
+  /// Engine's own proposal for the next step after step() (0 = no opinion).
+  virtual double suggested_step() const { return 0.0; }
+
+  /// Native mode: restart from (t, y) with the solver's own error control.
+  virtual void reinit(double t, const Eigen::VectorXd& y) = 0;
+  /// One internal step toward tout (never past it). Returns the time reached; y_out holds
+  /// the state there.
+  virtual double advance(double tout, Eigen::VectorXd& y_out) = 0;
+
+  const EngineStats& stats() const { return stats_; }
+  ContactLaw& law() { return law_; }
+
+ protected:
+  /// ydot = f(t, y) with the current contact law. Counts evaluations.
+  void rhs(double t, const double* y, double* ydot);
+  /// The mass-matrix form (DIRK): fi = [v; f₀ − Kq − Cv + e₀F].
+  void rhs_unscaled(double t, const double* y, double* out);
+  double wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const;
+
+  Engine(std::shared_ptr<const FollowerModel> model, const SolverSpec& spec)
+      : model_(std::move(model)), spec_(spec), n_(model_->n()), work_(model_->n()) {}
+
+  std::shared_ptr<const FollowerModel> model_;
+  SolverSpec spec_;
+  int n_;
+  ContactLaw law_;
+  EngineStats stats_;
+  Eigen::VectorXd work_;
+};
+
+/// Make the engine a scene asks for. @throws SundialsError on a SUNDIALS failure.
+std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model,
+                                    const Scene& scene);
+
+}  // namespace camdyn

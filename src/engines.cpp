@@ -1,0 +1,681 @@
+// camdyn — integrator engines on SUNDIALS 6.4 (ARKODE ERKStep / ARKStep, CVODE).
+//
+//   y = [q; v],  q̇ = v,  M v̇ = r(q, v, t) = f₀ − K q − C v + e₀ F(t, q₀, v₀)
+//
+//   arkode-erk   Dormand–Prince 5(4), v̇ = M⁻¹ r (lumped: diagonal; consistent: LDLᵀ
+//                factor of M computed once).
+//   arkode-dirk  ARKStep, SDIRK 5-stage 4(3) (L-stable), mass matrix blockdiag(I, M)
+//                through ARKODE's mass-matrix support; the Newton matrix
+//                  A = M_full − γJ = [ I        −γI      ]
+//                                    [ γK̃      M + γC̃   ],  K̃ = K − e₀e₀ᵀ∂F/∂q₀, C̃ = C − e₀e₀ᵀ∂F/∂v₀
+//                is filled entry by entry by our linear-system function on a pattern
+//                fixed once (no O(n²) sparse add); KLU (or dense for tiny systems).
+//   cvode-bdf    CVODE BDF (orders 1–5) with v̇ = M⁻¹ r. Its Newton systems
+//                (I − γJ) x = b are solved by a matrix-embedded linear solver through the
+//                n × n Schur complement
+//                  (M + γC̃ + γ²K̃) x_v = M b_v − γ K̃ b_u,   x_u = b_u + γ x_v,
+//                which is sparse (tridiagonal for a bar) for consistent and lumped mass
+//                alike, so CVODE integrates the consistent-mass bar without a dense M⁻¹K.
+//
+// Every SUNDIALS flag is checked (negative → SundialsError naming the call); callbacks
+// catch every exception and return −1 so none crosses SUNDIALS.
+#include <arkode/arkode_arkstep.h>
+#include <arkode/arkode_erkstep.h>
+#include <cvode/cvode.h>
+#include <klu.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "engine.hpp"
+
+namespace camdyn {
+
+int check_flag(int flag, const char* call) {
+  if (flag < 0) throw SundialsError(call, flag);
+  return flag;
+}
+
+LinearSolverKind resolve_linear_solver(const Scene& scene, int nodes) {
+  LinearSolverKind k = scene.solver.linear_solver;
+  if (k == LinearSolverKind::Auto) k = (2 * nodes <= 16) ? LinearSolverKind::Dense : LinearSolverKind::Klu;
+  return k;
+}
+
+// ---------------------------------------------------------------- contact law ----
+double ContactLaw::force(double t, double q0, double v0) const {
+  switch (kind) {
+    case Kind::None:
+      return 0.0;
+    case Kind::Ramp:
+      return F0 + (F1 - F0) * (t - t0) / h;
+    case Kind::Penalty: {
+      const double th = drive->theta(t);
+      const CamMotion m = cam->motion(th, drive->omega(t), drive->omega_dot(t));
+      const double s = m.X - q0;  // penetration
+      if (s <= 0.0) return 0.0;
+      const double sd = m.Xdot - v0;
+      double F;
+      if (law == PenaltyLaw::Linear)
+        F = kp * s + cp * sd;
+      else
+        F = kp * std::pow(s, exponent) * (1.0 + cp * sd);
+      return F > 0.0 ? F : 0.0;
+    }
+  }
+  return 0.0;
+}
+
+void ContactLaw::derivatives(double t, double q0, double v0, double* dFdq, double* dFdv) const {
+  *dFdq = 0.0;
+  *dFdv = 0.0;
+  if (kind != Kind::Penalty) return;
+  const CamMotion m = cam->motion(drive->theta(t), drive->omega(t), drive->omega_dot(t));
+  const double s = m.X - q0;
+  if (s <= 0.0) return;
+  const double sd = m.Xdot - v0;
+  if (law == PenaltyLaw::Linear) {
+    if (kp * s + cp * sd <= 0.0) return;
+    *dFdq = -kp;
+    *dFdv = -cp;
+  } else {
+    const double sn = std::pow(s, exponent);
+    if (1.0 + cp * sd <= 0.0) return;
+    *dFdq = -kp * exponent * std::pow(s, exponent - 1.0) * (1.0 + cp * sd);
+    *dFdv = -kp * sn * cp;
+  }
+}
+
+// ---------------------------------------------------------------- engine base ----
+void Engine::rhs_unscaled(double t, const double* y, double* out) {
+  const double* q = y;
+  const double* v = y + n_;
+  std::copy(v, v + n_, out);
+  model_->internal_force(q, v, out + n_);
+  out[n_] += law_.force(t, q[0], v[0]);
+  ++stats_.rhs_evals;
+}
+
+void Engine::rhs(double t, const double* y, double* ydot) {
+  rhs_unscaled(t, y, ydot);
+  std::copy(ydot + n_, ydot + 2 * n_, work_.data());
+  model_->solve_mass(work_.data(), ydot + n_);
+}
+
+double Engine::wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const {
+  double s = 0.0;
+  for (Eigen::Index i = 0; i < err.size(); ++i) {
+    const double w = spec_.rtol * std::abs(y[i]) + spec_.atol;
+    s += (err[i] / w) * (err[i] / w);
+  }
+  return std::sqrt(s / double(err.size()));
+}
+
+namespace {
+
+// ---------------------------------------------------------------- RAII ----------
+struct ContextHolder {
+  SUNContext ctx = nullptr;
+  ContextHolder() { check_flag(SUNContext_Create(nullptr, &ctx), "SUNContext_Create"); }
+  ~ContextHolder() { SUNContext_Free(&ctx); }
+  ContextHolder(const ContextHolder&) = delete;
+  ContextHolder& operator=(const ContextHolder&) = delete;
+};
+struct NVecDel {
+  void operator()(_generic_N_Vector* v) const { N_VDestroy(v); }
+};
+struct MatDel {
+  void operator()(_generic_SUNMatrix* m) const { SUNMatDestroy(m); }
+};
+struct LSDel {
+  void operator()(_generic_SUNLinearSolver* s) const { SUNLinSolFree(s); }
+};
+using NVec = std::unique_ptr<_generic_N_Vector, NVecDel>;
+using Mat = std::unique_ptr<_generic_SUNMatrix, MatDel>;
+using LS = std::unique_ptr<_generic_SUNLinearSolver, LSDel>;
+struct ArkDel {
+  void operator()(void* m) const { ARKStepFree(&m); }
+};
+struct ErkDel {
+  void operator()(void* m) const { ERKStepFree(&m); }
+};
+struct CvDel {
+  void operator()(void* m) const { CVodeFree(&m); }
+};
+
+NVec make_nvec(long n, SUNContext ctx) {
+  N_Vector v = N_VNew_Serial(n, ctx);
+  if (!v) throw SundialsError("N_VNew_Serial", -1);
+  return NVec(v);
+}
+void* not_null(void* p, const char* call) {
+  if (!p) throw SundialsError(call, -1);
+  return p;
+}
+inline Eigen::Map<Eigen::VectorXd> map(N_Vector v) {
+  return Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(v), N_VGetLength(v));
+}
+
+constexpr double kHugeTol = 1e30;  // trial steps: our own error test, never ARKODE's
+
+// ---------------------------------------------------------------- ERK ------------
+class ErkEngine final : public Engine {
+ public:
+  ErkEngine(std::shared_ptr<const FollowerModel> model, const SolverSpec& spec, bool trial)
+      : Engine(std::move(model), spec), trial_(trial), y_(make_nvec(2 * n_, ctx_.ctx)),
+        ele_(make_nvec(2 * n_, ctx_.ctx)) {
+    N_VConst(0.0, y_.get());
+    mem_.reset(not_null(ERKStepCreate(&ErkEngine::f, 0.0, y_.get(), ctx_.ctx), "ERKStepCreate"));
+    check_flag(ERKStepSetTableNum(mem_.get(), ARKODE_DORMAND_PRINCE_7_4_5), "ERKStepSetTableNum");
+    check_flag(ERKStepSetUserData(mem_.get(), this), "ERKStepSetUserData");
+    check_flag(ERKStepSetMaxNumSteps(mem_.get(), -1), "ERKStepSetMaxNumSteps");
+    if (trial_)
+      check_flag(ERKStepSStolerances(mem_.get(), kHugeTol, kHugeTol), "ERKStepSStolerances");
+    else
+      check_flag(ERKStepSStolerances(mem_.get(), spec.rtol, spec.atol), "ERKStepSStolerances");
+    if (spec.max_step > 0) check_flag(ERKStepSetMaxStep(mem_.get(), spec.max_step), "ERKStepSetMaxStep");
+  }
+  const char* name() const override { return "arkode-erk"; }
+  int error_order() const override { return 5; }  // embedded 4th order
+
+  double step(double t, const Eigen::VectorXd& y, double h, Eigen::VectorXd& y_out) override {
+    map(y_.get()) = y;
+    check_flag(ERKStepReset(mem_.get(), t, y_.get()), "ERKStepReset");
+    check_flag(ERKStepSetInitStep(mem_.get(), h), "ERKStepSetInitStep");
+    check_flag(ERKStepSetStopTime(mem_.get(), t + h), "ERKStepSetStopTime");
+    double tret = t;
+    check_flag(ERKStepEvolve(mem_.get(), t + h, y_.get(), &tret, ARK_ONE_STEP), "ERKStepEvolve");
+    y_out = map(y_.get());
+    check_flag(ERKStepGetEstLocalErrors(mem_.get(), ele_.get()), "ERKStepGetEstLocalErrors");
+    ++stats_.steps;
+    return wrms(map(ele_.get()), y);
+  }
+  void reinit(double t, const Eigen::VectorXd& y) override {
+    map(y_.get()) = y;
+    check_flag(ERKStepReset(mem_.get(), t, y_.get()), "ERKStepReset");
+    check_flag(ERKStepSetInitStep(mem_.get(), spec_.initial_step), "ERKStepSetInitStep");
+  }
+  double advance(double tout, Eigen::VectorXd& y_out) override {
+    check_flag(ERKStepSetStopTime(mem_.get(), tout), "ERKStepSetStopTime");
+    double tret = 0;
+    check_flag(ERKStepEvolve(mem_.get(), tout, y_.get(), &tret, ARK_ONE_STEP), "ERKStepEvolve");
+    y_out = map(y_.get());
+    ++stats_.steps;
+    return tret;
+  }
+
+ private:
+  static int f(double t, N_Vector y, N_Vector ydot, void* ud) {
+    try {
+      static_cast<ErkEngine*>(ud)->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
+  bool trial_;
+  ContextHolder ctx_;
+  NVec y_, ele_;
+  std::unique_ptr<void, ErkDel> mem_;
+};
+
+// A fixed CSC pattern for A = M_full − γJ (2n × 2n) and M_full = blockdiag(I, M), filled
+// entry by entry. P is the shared pattern of K, M, C (all the same for a bar).
+struct BlockPattern {
+  long n = 0;
+  std::vector<long> Ap, Ai;  // pattern of A
+  std::vector<long> Mp, Mi;  // pattern of M_full
+};
+
+BlockPattern make_block_pattern(const FollowerModel& m) {
+  BlockPattern b;
+  const long n = m.n();
+  b.n = n;
+  b.Ap.assign(2 * n + 1, 0);
+  b.Mp.assign(2 * n + 1, 0);
+  auto pattern_col = [&](long j, std::vector<long>& rows) {
+    rows.clear();
+    if (m.rigid()) {
+      rows.push_back(0);
+      return;
+    }
+    const SparseMatrix& K = m.K();
+    for (long p = K.outerIndexPtr()[j]; p < K.outerIndexPtr()[j + 1]; ++p) rows.push_back(K.innerIndexPtr()[p]);
+  };
+  std::vector<long> rows;
+  for (long c = 0; c < 2 * n; ++c) {
+    const long j = c % n;
+    pattern_col(j, rows);
+    b.Ai.push_back(j);  // identity (u-column) or −γI (v-column) in the u rows
+    for (long r : rows) b.Ai.push_back(n + r);
+    b.Ap[c + 1] = long(b.Ai.size());
+    if (c < n) {
+      b.Mi.push_back(c);
+    } else {
+      for (long r : rows) b.Mi.push_back(n + r);
+    }
+    b.Mp[c + 1] = long(b.Mi.size());
+  }
+  return b;
+}
+
+// Values of K, M, C at pattern position p of column j (rigid: scalars).
+struct ModelEntries {
+  const FollowerModel& m;
+  double K(long p) const { return m.rigid() ? m.k_rigid() : m.K().valuePtr()[p]; }
+  double M(long p) const { return m.rigid() ? m.m_rigid() : m.M().valuePtr()[p]; }
+  double C(long p) const {
+    if (!m.damped()) return 0.0;
+    return m.rigid() ? m.c_rigid() : m.C().valuePtr()[p];
+  }
+  long begin(long j) const { return m.rigid() ? 0 : m.K().outerIndexPtr()[j]; }
+  long end(long j) const { return m.rigid() ? 1 : m.K().outerIndexPtr()[j + 1]; }
+  long row(long p) const { return m.rigid() ? 0 : m.K().innerIndexPtr()[p]; }
+};
+
+// ---------------------------------------------------------------- DIRK -----------
+class DirkEngine final : public Engine {
+ public:
+  DirkEngine(std::shared_ptr<const FollowerModel> model, const SolverSpec& spec, bool trial,
+             LinearSolverKind lsk)
+      : Engine(std::move(model), spec), trial_(trial), dense_(lsk == LinearSolverKind::Dense),
+        y_(make_nvec(2 * n_, ctx_.ctx)), ele_(make_nvec(2 * n_, ctx_.ctx)) {
+    N_VConst(0.0, y_.get());
+    const long N2 = 2L * n_;
+    mem_.reset(not_null(ARKStepCreate(nullptr, &DirkEngine::fi, 0.0, y_.get(), ctx_.ctx), "ARKStepCreate"));
+    void* mem = mem_.get();
+    check_flag(ARKStepSetTableNum(mem, ARKODE_SDIRK_5_3_4, ARKODE_ERK_NONE), "ARKStepSetTableNum");
+    check_flag(ARKStepSetUserData(mem, this), "ARKStepSetUserData");
+    check_flag(ARKStepSetMaxNumSteps(mem, -1), "ARKStepSetMaxNumSteps");
+    if (dense_) {
+      A_.reset(SUNDenseMatrix(N2, N2, ctx_.ctx));
+      Mm_.reset(SUNDenseMatrix(N2, N2, ctx_.ctx));
+      ls_.reset(SUNLinSol_Dense(y_.get(), A_.get(), ctx_.ctx));
+      mls_.reset(SUNLinSol_Dense(y_.get(), Mm_.get(), ctx_.ctx));
+    } else {
+      pat_ = make_block_pattern(*model_);
+      A_.reset(SUNSparseMatrix(N2, N2, long(pat_.Ai.size()), CSC_MAT, ctx_.ctx));
+      Mm_.reset(SUNSparseMatrix(N2, N2, long(pat_.Mi.size()), CSC_MAT, ctx_.ctx));
+      ls_.reset(SUNLinSol_KLU(y_.get(), A_.get(), ctx_.ctx));
+      mls_.reset(SUNLinSol_KLU(y_.get(), Mm_.get(), ctx_.ctx));
+    }
+    if (!A_ || !Mm_ || !ls_ || !mls_) throw SundialsError("SUNMatrix/SUNLinearSolver creation", -1);
+    check_flag(ARKStepSetLinearSolver(mem, ls_.get(), A_.get()), "ARKStepSetLinearSolver");
+    check_flag(ARKStepSetLinSysFn(mem, &DirkEngine::linsys), "ARKStepSetLinSysFn");
+    check_flag(ARKStepSetMassLinearSolver(mem, mls_.get(), Mm_.get(), SUNFALSE), "ARKStepSetMassLinearSolver");
+    check_flag(ARKStepSetMassFn(mem, &DirkEngine::massfn), "ARKStepSetMassFn");
+    if (trial_) {
+      // Lee's steps see a prescribed force ramp: the problem is linear in y, one Newton
+      // iteration with an exact matrix solves each stage exactly.
+      check_flag(ARKStepSetLinear(mem, 0), "ARKStepSetLinear");
+      check_flag(ARKStepSStolerances(mem, kHugeTol, kHugeTol), "ARKStepSStolerances");
+    } else {
+      check_flag(ARKStepSStolerances(mem, spec.rtol, spec.atol), "ARKStepSStolerances");
+    }
+    if (spec.max_step > 0) check_flag(ARKStepSetMaxStep(mem, spec.max_step), "ARKStepSetMaxStep");
+  }
+  const char* name() const override { return "arkode-dirk"; }
+  int error_order() const override { return 4; }  // embedded 3rd order
+
+  double step(double t, const Eigen::VectorXd& y, double h, Eigen::VectorXd& y_out) override {
+    map(y_.get()) = y;
+    check_flag(ARKStepReset(mem_.get(), t, y_.get()), "ARKStepReset");
+    check_flag(ARKStepSetInitStep(mem_.get(), h), "ARKStepSetInitStep");
+    check_flag(ARKStepSetStopTime(mem_.get(), t + h), "ARKStepSetStopTime");
+    double tret = t;
+    check_flag(ARKStepEvolve(mem_.get(), t + h, y_.get(), &tret, ARK_ONE_STEP), "ARKStepEvolve");
+    y_out = map(y_.get());
+    check_flag(ARKStepGetEstLocalErrors(mem_.get(), ele_.get()), "ARKStepGetEstLocalErrors");
+    ++stats_.steps;
+    return wrms(map(ele_.get()), y);
+  }
+  void reinit(double t, const Eigen::VectorXd& y) override {
+    map(y_.get()) = y;
+    check_flag(ARKStepReset(mem_.get(), t, y_.get()), "ARKStepReset");
+    check_flag(ARKStepSetInitStep(mem_.get(), spec_.initial_step), "ARKStepSetInitStep");
+  }
+  double advance(double tout, Eigen::VectorXd& y_out) override {
+    check_flag(ARKStepSetStopTime(mem_.get(), tout), "ARKStepSetStopTime");
+    double tret = 0;
+    check_flag(ARKStepEvolve(mem_.get(), tout, y_.get(), &tret, ARK_ONE_STEP), "ARKStepEvolve");
+    y_out = map(y_.get());
+    ++stats_.steps;
+    return tret;
+  }
+
+ private:
+  static int fi(double t, N_Vector y, N_Vector ydot, void* ud) {
+    try {
+      static_cast<DirkEngine*>(ud)->rhs_unscaled(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
+  static int massfn(double, SUNMatrix M, void* ud, N_Vector, N_Vector, N_Vector) {
+    try {
+      static_cast<DirkEngine*>(ud)->fill_mass(M);
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
+  static int linsys(double t, N_Vector y, N_Vector, SUNMatrix A, SUNMatrix, sunbooleantype,
+                    sunbooleantype* jcur, double gamma, void* ud, N_Vector, N_Vector, N_Vector) {
+    try {
+      auto* self = static_cast<DirkEngine*>(ud);
+      const double* yy = N_VGetArrayPointer(y);
+      double dFdq = 0, dFdv = 0;
+      self->law_.derivatives(t, yy[0], yy[self->n_], &dFdq, &dFdv);
+      self->fill_A(A, gamma, dFdq, dFdv);
+      *jcur = SUNTRUE;
+      ++self->stats_.lin_setups;
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
+  void fill_mass(SUNMatrix Mm) {
+    const ModelEntries e{*model_};
+    const long n = n_;
+    if (dense_) {
+      SUNMatZero(Mm);
+      for (long j = 0; j < n; ++j) SM_ELEMENT_D(Mm, j, j) = 1.0;
+      for (long j = 0; j < n; ++j)
+        for (long p = e.begin(j); p < e.end(j); ++p) SM_ELEMENT_D(Mm, n + e.row(p), n + j) = e.M(p);
+      return;
+    }
+    std::copy(pat_.Mp.begin(), pat_.Mp.end(), SM_INDEXPTRS_S(Mm));
+    std::copy(pat_.Mi.begin(), pat_.Mi.end(), SM_INDEXVALS_S(Mm));
+    double* x = SM_DATA_S(Mm);
+    long k = 0;
+    for (long j = 0; j < n; ++j) x[k++] = 1.0;
+    for (long j = 0; j < n; ++j)
+      for (long p = e.begin(j); p < e.end(j); ++p) x[k++] = e.M(p);
+  }
+  // A = M_full − γJ, J = [[0, I], [−K̃, −C̃]] (unscaled form, M on the left).
+  void fill_A(SUNMatrix A, double g, double dFdq, double dFdv) {
+    const ModelEntries e{*model_};
+    const long n = n_;
+    if (dense_) {
+      SUNMatZero(A);
+      for (long j = 0; j < n; ++j) {
+        SM_ELEMENT_D(A, j, j) = 1.0;
+        SM_ELEMENT_D(A, j, n + j) = -g;
+        for (long p = e.begin(j); p < e.end(j); ++p) {
+          SM_ELEMENT_D(A, n + e.row(p), j) = g * e.K(p);
+          SM_ELEMENT_D(A, n + e.row(p), n + j) = e.M(p) + g * e.C(p);
+        }
+      }
+      SM_ELEMENT_D(A, n, 0) -= g * dFdq;
+      SM_ELEMENT_D(A, n, n) -= g * dFdv;
+      return;
+    }
+    std::copy(pat_.Ap.begin(), pat_.Ap.end(), SM_INDEXPTRS_S(A));
+    std::copy(pat_.Ai.begin(), pat_.Ai.end(), SM_INDEXVALS_S(A));
+    double* x = SM_DATA_S(A);
+    long k = 0;
+    for (long j = 0; j < n; ++j) {  // u-columns
+      x[k++] = 1.0;
+      for (long p = e.begin(j); p < e.end(j); ++p) {
+        double v = g * e.K(p);
+        if (j == 0 && e.row(p) == 0) v -= g * dFdq;
+        x[k++] = v;
+      }
+    }
+    for (long j = 0; j < n; ++j) {  // v-columns
+      x[k++] = -g;
+      for (long p = e.begin(j); p < e.end(j); ++p) {
+        double v = e.M(p) + g * e.C(p);
+        if (j == 0 && e.row(p) == 0) v -= g * dFdv;
+        x[k++] = v;
+      }
+    }
+  }
+
+  bool trial_, dense_;
+  ContextHolder ctx_;
+  NVec y_, ele_;
+  BlockPattern pat_;
+  Mat A_, Mm_;
+  LS ls_, mls_;
+  std::unique_ptr<void, ArkDel> mem_;
+};
+
+// ---------------------------------------------------------------- CVODE ----------
+// Matrix-embedded linear solver for CVODE: (I − γJ) x = b through the n × n system
+// S x_v = M b_v − γ K̃ b_u with S = M + γC̃ + γ²K̃ (KLU, symbolic analysis once).
+class SchurSolver {
+ public:
+  SchurSolver(const FollowerModel& m, bool dense) : m_(m), dense_(dense), n_(m.n()) {
+    if (!m.rigid()) {
+      S_ = m.K();  // copy of the shared pattern
+      klu_l_defaults(&common_);
+    }
+  }
+  ~SchurSolver() {
+    if (numeric_) klu_l_free_numeric(&numeric_, &common_);
+    if (symbolic_) klu_l_free_symbolic(&symbolic_, &common_);
+  }
+  SchurSolver(const SchurSolver&) = delete;
+  SchurSolver& operator=(const SchurSolver&) = delete;
+
+  void setup(double g, double dFdq, double dFdv) {
+    g_ = g;
+    dFdq_ = dFdq;
+    if (m_.rigid()) {
+      s_rigid_ = m_.m_rigid() + g * (m_.c_rigid() - dFdv) + g * g * (m_.k_rigid() - dFdq);
+      return;
+    }
+    const ModelEntries e{m_};
+    double* x = S_.valuePtr();
+    for (long j = 0; j < n_; ++j)
+      for (long p = e.begin(j); p < e.end(j); ++p) {
+        double v = e.M(p) + g * e.C(p) + g * g * e.K(p);
+        if (j == 0 && e.row(p) == 0) v -= g * dFdv + g * g * dFdq;
+        x[p] = v;
+      }
+    if (dense_) {
+      lu_.compute(Eigen::MatrixXd(S_));
+      return;
+    }
+    long* Ap = S_.outerIndexPtr();
+    long* Ai = S_.innerIndexPtr();
+    if (!symbolic_) {
+      symbolic_ = klu_l_analyze(n_, Ap, Ai, &common_);
+      if (!symbolic_) throw SundialsError("klu_l_analyze", -1);
+    }
+    if (!numeric_) {
+      numeric_ = klu_l_factor(Ap, Ai, x, symbolic_, &common_);
+      if (!numeric_) throw SundialsError("klu_l_factor", -1);
+    } else if (!klu_l_refactor(Ap, Ai, x, symbolic_, numeric_, &common_)) {
+      throw SundialsError("klu_l_refactor", -1);
+    }
+  }
+  // x = (I − γJ)⁻¹ b, in place on b (length 2n).
+  void solve(double* b) {
+    const long n = n_;
+    double* bu = b;
+    double* bv = b + n;
+    if (m_.rigid()) {
+      const double rhs = m_.m_rigid() * bv[0] - g_ * (m_.k_rigid() - dFdq_) * bu[0];
+      bv[0] = rhs / s_rigid_;
+      bu[0] += g_ * bv[0];
+      return;
+    }
+    Eigen::Map<Eigen::VectorXd> U(bu, n), V(bv, n);
+    rhs_.noalias() = m_.M() * V;
+    rhs_.noalias() -= g_ * (m_.K() * U);
+    rhs_[0] += g_ * dFdq_ * U[0];
+    if (dense_) {
+      V = lu_.solve(rhs_);
+    } else {
+      if (!klu_l_solve(symbolic_, numeric_, n, 1, rhs_.data(), &common_)) throw SundialsError("klu_l_solve", -1);
+      V = rhs_;
+    }
+    U += g_ * V;
+  }
+
+ private:
+  const FollowerModel& m_;
+  bool dense_;
+  long n_;
+  double g_ = 0, dFdq_ = 0, s_rigid_ = 1;
+  SparseMatrix S_;
+  Eigen::VectorXd rhs_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  klu_l_common common_{};
+  klu_l_symbolic* symbolic_ = nullptr;
+  klu_l_numeric* numeric_ = nullptr;
+};
+
+class CvodeEngine final : public Engine {
+ public:
+  CvodeEngine(std::shared_ptr<const FollowerModel> model, const SolverSpec& spec, LinearSolverKind lsk)
+      : Engine(std::move(model), spec), schur_(*model_, lsk == LinearSolverKind::Dense),
+        y_(make_nvec(2 * n_, ctx_.ctx)), last_y_(2 * n_) {
+    N_VConst(0.0, y_.get());
+    mem_.reset(not_null(CVodeCreate(CV_BDF, ctx_.ctx), "CVodeCreate"));
+    void* mem = mem_.get();
+    check_flag(CVodeInit(mem, &CvodeEngine::f, 0.0, y_.get()), "CVodeInit");
+    check_flag(CVodeSetUserData(mem, this), "CVodeSetUserData");
+    check_flag(CVodeSStolerances(mem, spec.rtol, spec.atol), "CVodeSStolerances");
+    check_flag(CVodeSetMaxNumSteps(mem, -1), "CVodeSetMaxNumSteps");
+    if (spec.max_step > 0) check_flag(CVodeSetMaxStep(mem, spec.max_step), "CVodeSetMaxStep");
+    ls_.reset(SUNLinSolNewEmpty(ctx_.ctx));
+    if (!ls_) throw SundialsError("SUNLinSolNewEmpty", -1);
+    ls_->content = this;
+    ls_->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_MATRIX_EMBEDDED; };
+    ls_->ops->setup = &CvodeEngine::ls_setup;
+    ls_->ops->solve = &CvodeEngine::ls_solve;
+    ls_->ops->free = [](SUNLinearSolver S) {
+      SUNLinSolFreeEmpty(S);
+      return 0;
+    };
+    check_flag(CVodeSetLinearSolver(mem, ls_.get(), nullptr), "CVodeSetLinearSolver");
+  }
+  ~CvodeEngine() override {
+    mem_.reset();  // CVodeFree before the linear solver it references
+  }
+  const char* name() const override { return "cvode-bdf"; }
+  int error_order() const override { return 2; }
+  bool estimates_error() const override { return false; }
+  double suggested_step() const override { return hcur_; }
+
+  // A trial step of exactly h: CVODE integrates [t, t+h] under its own error control. It
+  // keeps its multistep history when (t, y) is the state it stopped at (within 1 % of
+  // the local error tolerance); otherwise — a retaken step, or a state changed by the
+  // contact iteration (impact, separation) — it restarts from (t, y) at order 1.
+  double step(double t, const Eigen::VectorXd& y, double h, Eigen::VectorXd& y_out) override {
+    const bool same = have_last_ && t == last_t_ && wrms(y - last_y_, y) <= 0.01;
+    if (!same) {
+      map(y_.get()) = y;
+      check_flag(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
+      check_flag(CVodeSetInitStep(mem_.get(), h), "CVodeSetInitStep");
+      ++stats_.reinits;
+    }
+    check_flag(CVodeSetStopTime(mem_.get(), t + h), "CVodeSetStopTime");
+    double tret = t;
+    long ns0 = 0, ns1 = 0;
+    CVodeGetNumSteps(mem_.get(), &ns0);
+    check_flag(CVode(mem_.get(), t + h, y_.get(), &tret, CV_NORMAL), "CVode");
+    CVodeGetNumSteps(mem_.get(), &ns1);
+    stats_.steps += ns1 - ns0;
+    y_out = map(y_.get());
+    last_t_ = t + h;
+    last_y_ = y_out;
+    have_last_ = true;
+    CVodeGetCurrentStep(mem_.get(), &hcur_);
+    return 0.0;
+  }
+  void reinit(double t, const Eigen::VectorXd& y) override {
+    map(y_.get()) = y;
+    check_flag(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
+    check_flag(CVodeSetInitStep(mem_.get(), spec_.initial_step), "CVodeSetInitStep");
+    ++stats_.reinits;
+    have_last_ = false;
+  }
+  double advance(double tout, Eigen::VectorXd& y_out) override {
+    check_flag(CVodeSetStopTime(mem_.get(), tout), "CVodeSetStopTime");
+    double tret = 0;
+    check_flag(CVode(mem_.get(), tout, y_.get(), &tret, CV_ONE_STEP), "CVode");
+    y_out = map(y_.get());
+    ++stats_.steps;
+    return tret;
+  }
+
+ private:
+  static int f(double t, N_Vector y, N_Vector ydot, void* ud) {
+    try {
+      auto* self = static_cast<CvodeEngine*>(ud);
+      const double* yy = N_VGetArrayPointer(y);
+      self->last_t_rhs_ = t;
+      self->last_q0_ = yy[0];
+      self->last_v0_ = yy[self->n_];
+      self->rhs(t, yy, N_VGetArrayPointer(ydot));
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
+  static int ls_setup(SUNLinearSolver S, SUNMatrix) {
+    try {
+      auto* self = static_cast<CvodeEngine*>(S->content);
+      double g = 0;
+      if (CVodeGetCurrentGamma(self->mem_.get(), &g) < 0) return -1;
+      double dFdq = 0, dFdv = 0;  // penalty Jacobian at the state of the last rhs call
+      self->law_.derivatives(self->last_t_rhs_, self->last_q0_, self->last_v0_, &dFdq, &dFdv);
+      self->schur_.setup(g, dFdq, dFdv);
+      ++self->stats_.lin_setups;
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
+  static int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, double) {
+    try {
+      auto* self = static_cast<CvodeEngine*>(S->content);
+      N_VScale(1.0, b, x);
+      self->schur_.solve(N_VGetArrayPointer(x));
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
+
+  SchurSolver schur_;
+  ContextHolder ctx_;
+  NVec y_;
+  LS ls_;
+  std::unique_ptr<void, CvDel> mem_;
+  Eigen::VectorXd last_y_;
+  double last_t_ = 0, hcur_ = 0, last_t_rhs_ = 0, last_q0_ = 0, last_v0_ = 0;
+  bool have_last_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, const Scene& scene) {
+  const bool trial = scene.contact.model == ContactModel::Lee;
+  const LinearSolverKind lsk = resolve_linear_solver(scene, model->n());
+  switch (scene.solver.integrator) {
+    case Integrator::ArkodeErk:
+      return std::make_unique<ErkEngine>(std::move(model), scene.solver, trial);
+    case Integrator::ArkodeDirk:
+      return std::make_unique<DirkEngine>(std::move(model), scene.solver, trial, lsk);
+    case Integrator::CvodeBdf:
+      return std::make_unique<CvodeEngine>(std::move(model), scene.solver, lsk);
+  }
+  throw std::invalid_argument("unknown integrator");
+}
+
+}  // namespace camdyn

@@ -1,0 +1,493 @@
+// camdyn — the simulator: one step loop, contact methods plugged in.
+//
+//   scene → FollowerModel (only the effects asked for) → Engine (SUNDIALS) + contact
+//   method → HistoryRow stream (Observer) + Summary.
+//
+// Lee's method (METHOD.md §3–4), one step t → t+Δt from the accepted state (q, v, F):
+//   F = −p ≥ 0 is the compressive contact force; within the step F is linear in time
+//   from the accepted Fᵗ to the trial end value.
+//   1. displacement level  p^m = min(0, p^{m−1} − b v^{m−1}),  b = 6/(M*Δt²)
+//        v = s if p < 0 or s > 0, else 0;   s = X_C(t+Δt) − q₀(t+Δt)
+//      (each iterate integrates the step again from the saved state) until |v| < tol_u.
+//   2. step control on the engine's local error estimate of the converged step.
+//   3. velocity level      p̂^m = min(0, p̂^{m−1} − b̂ v̂^{m−1}), b̂ = 2/(M*Δt)
+//        eq12: v̂ = ŝ if p < 0 and (ŝ > 0 or p̂ < 0)
+//        eq17: v̂ = ŝ if (p < 0 or p̃ᵗ < 0) and (ŝ > 0 or p̂ < 0)
+//   4. acceleration level  p̃^m = min(0, p̃^{m−1} − b̃ ṽ^{m−1}), b̃ = 1/M*
+//        eq13: ṽ = s̃ if p̂ < 0 and (s̃ > 0 or p̃ < 0)
+//        eq18: ṽ = s̃ if (p̂ < 0 or p̃ᵗ < 0) and (s̃ > 0 or p̃ < 0)
+//      (no integration: ü₀ is affine in p̃ through the equation of motion).
+//   The accepted state takes q from level 1, v from level 3, (a, F) from level 4.
+//   b, b̂, b̃ are the Newton constants for a force ramp acting on a mass M*: for a rigid
+//   follower each level converges in one correction; where an error does not fall
+//   (separation, clipping at 0) the constant is halved and the update retried; a level
+//   that does not converge in max_iterations is a recoverable step failure (Δt/2).
+//   Without separation (contact.separation = false, or model "holonomic") the same
+//   iteration runs without the clipping and with v = s, v̂ = ŝ, ṽ = s̃: a bilateral
+//   (holonomic) constraint; the first time its force turns tensile is reported.
+//   Restitution e > 0 (Lee): at an impact (contact closing in this step after a free
+//   phase) the velocity-level target becomes ŝ⁺ = −e ŝ⁻, i.e. v̂ = ŝ + e ŝ⁻.
+//
+// Penalty (Cardona–Géradin): F = max(0, k_p s + c_p ŝ) while s > 0 (or Hunt–Crossley
+// k_p sⁿ(1 + c_p ŝ)) inside the right-hand side; the engine steps natively.
+#include "camdyn/simulator.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <sstream>
+
+#include "camdyn/cam.hpp"
+#include "engine.hpp"
+
+namespace camdyn {
+
+const std::vector<std::string>& history_columns() {
+  static const std::vector<std::string> cols{"t",       "theta",     "u_c",      "v_c",
+                                             "a_c",     "contact_force", "gap", "in_contact",
+                                             "kinetic", "potential", "work_cam", "dissipated"};
+  return cols;
+}
+
+namespace {
+
+std::string fmt(double x) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.6g", x);
+  return b;
+}
+
+class StepFailure : public std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Clock {
+  std::clock_t c0 = std::clock();
+  std::chrono::steady_clock::time_point w0 = std::chrono::steady_clock::now();
+  double cpu() const { return double(std::clock() - c0) / CLOCKS_PER_SEC; }
+  double wall() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+  }
+};
+
+// The common run machinery: output times, statistics, energy bookkeeping, rows.
+class Runner {
+ public:
+  Runner(const Scene& sc, std::shared_ptr<const FollowerModel> model, Observer* obs,
+         const std::atomic<bool>* stop)
+      : sc_(sc), model_(std::move(model)), m_(*model_), cam_(sc.cam), drive_(sc.cam),
+        obs_(obs), stop_(stop), n_(m_.n()) {
+    engine_ = make_engine(model_, sc_);
+    sum_.scene = sc.title;
+    sum_.integrator = to_string(sc.solver.integrator);
+    sum_.contact_model = to_string(sc.contact.model);
+    sum_.model = m_.description();
+    sum_.min_gap = INFINITY;
+    bilateral_ = !sc.contact.separation || sc.contact.model == ContactModel::Holonomic;
+    tol_u_ = sc.contact.tol_u;
+  }
+
+  Summary run() {
+    Clock clock;
+    // Initial state: q(0) from the model; node 0 at the cam's velocity if touching.
+    const double th0 = drive_.theta(0.0);
+    const CamMotion cm0 = cam_.motion(th0, drive_.omega(0.0), drive_.omega_dot(0.0));
+    y_ = Eigen::VectorXd::Zero(2 * n_);
+    y_.head(n_) = m_.initial_displacement();
+    const bool touching = sc_.contact.initial_gap == 0.0;
+    if (touching) y_[n_] = cm0.Xdot;
+    t_ = 0.0;
+    contact_ = touching;
+    // Initial contact force from the acceleration level (eq. 16 at t = 0).
+    F_ = 0.0;
+    if (touching) {
+      const double a_free = m_.contact_acceleration(y_.data(), y_.data() + n_, 0.0);
+      F_ = (cm0.Xddot - a_free) / m_.mstar();
+      if (!bilateral_ && F_ < 0.0) F_ = 0.0;
+    }
+    V0_ = m_.potential_energy(y_.data());
+    E0_ = m_.kinetic_energy(y_.data() + n_) + V0_;
+    emit_row();
+    next_out_ = 1;
+    try {
+      if (sc_.contact.model == ContactModel::Penalty)
+        run_native();
+      else if (sc_.contact.model == ContactModel::Event)
+        throw StepFailure("contact.model = \"event\" is not implemented yet");
+      else
+        run_lee();
+      sum_.finished = true;
+      sum_.message = "finished";
+    } catch (const std::exception& e) {
+      sum_.finished = false;
+      sum_.message = "at t = " + fmt(t_) + ": " + e.what();
+      if (last_row_t_ < t_) emit_row();  // keep the last accepted state
+    }
+    sum_.t_end = t_;
+    sum_.rhs_evals = engine_->stats().rhs_evals;
+    sum_.cpu_seconds = clock.cpu();
+    sum_.wall_seconds = clock.wall();
+    if (!std::isfinite(sum_.min_gap)) sum_.min_gap = 0.0;
+    sum_.energy_residual = std::abs(energy_residual());
+    return sum_;
+  }
+
+ private:
+  double out_dt() const { return sc_.run.output_dt; }
+  double next_output_time() const {
+    return out_dt() > 0 ? std::min(sc_.run.t_end, double(next_out_) * out_dt()) : sc_.run.t_end;
+  }
+  CamMotion cam_at(double t) const {
+    return cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
+  }
+  double energy_residual() const {
+    const double E = m_.kinetic_energy(y_.data() + n_) + m_.potential_energy(y_.data());
+    return work_ - (E - E0_) - dissipated_;
+  }
+
+  void emit_row() {
+    HistoryRow r;
+    r.t = t_;
+    r.theta = drive_.theta(t_);
+    const CamMotion cm = cam_at(t_);
+    r.u_c = y_[0];
+    r.v_c = y_[n_];
+    r.a_c = m_.contact_acceleration(y_.data(), y_.data() + n_, F_);
+    r.contact_force = F_;
+    r.gap = y_[0] - cm.X;
+    r.in_contact = contact_ ? 1 : 0;
+    r.kinetic = m_.kinetic_energy(y_.data() + n_);
+    r.potential = m_.potential_energy(y_.data()) - V0_;
+    r.work_cam = work_;
+    r.dissipated = dissipated_;
+    last_row_t_ = t_;
+    if (obs_) obs_->on_row(r);
+  }
+
+  void record_event(const char* kind, double v) {
+    ContactEvent e{t_, kind, v};
+    sum_.events.push_back(e);
+    if (obs_) obs_->on_event(e);
+  }
+
+  // Statistics and output after an accepted step (state already updated).
+  void after_step(double h, double F_prev, double Xdot_prev, double P_prev) {
+    ++sum_.steps;
+    const CamMotion cm = cam_at(t_);
+    const double P = m_.damping_power(y_.data() + n_);
+    work_ += 0.5 * h * (F_prev * Xdot_prev + F_ * cm.Xdot);
+    dissipated_ += 0.5 * h * (P_prev + P);
+    const double gap = y_[0] - cm.X;
+    sum_.max_contact_force = std::max(sum_.max_contact_force, F_);
+    sum_.min_gap = std::min(sum_.min_gap, gap);
+    sum_.max_penetration = std::max(sum_.max_penetration, -gap);
+    if (bilateral_ && F_ < 0.0 && sum_.first_tensile_time < 0) {
+      sum_.first_tensile_time = t_;
+      record_event("tensile", 0.0);
+    }
+    if (out_dt() <= 0.0) {
+      emit_row();
+    } else {
+      while (next_out_ * out_dt() <= t_ * (1 + 1e-12) + 1e-300 && next_out_ * out_dt() <= sc_.run.t_end * (1 + 1e-12)) {
+        ++next_out_;
+        emit_row();
+      }
+      if (t_ >= sc_.run.t_end && last_row_t_ < t_) emit_row();
+    }
+    if (stop_ && stop_->load()) throw StepFailure("interrupted (SIGINT)");
+    if (sum_.steps + sum_.rejected_steps > sc_.run.max_steps)
+      throw StepFailure("run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
+    if (!y_.allFinite() || !std::isfinite(F_)) throw StepFailure("non-finite state");
+    if (obs_ && (sum_.steps & 255) == 0) {
+      const double w = progress_clock_.wall();
+      if (w - last_progress_ > 0.2) {
+        last_progress_ = w;
+        obs_->on_progress(t_, sc_.run.t_end, sum_.steps);
+      }
+    }
+  }
+
+  double initial_step() const {
+    if (sc_.solver.initial_step > 0) return sc_.solver.initial_step;
+    double h = std::min(1e-4, sc_.run.t_end / 100.0);
+    return h;
+  }
+
+  // ------------------------------------------------------------ Lee's method ------
+  // One level's fixed-point iteration with constant halving. `eval(F)` returns the
+  // error for the trial force F (integrating if needed); returns the converged F.
+  template <class Eval>
+  double iterate(double F_start, double b, double tol, LevelStats& st, Eval eval) {
+    const int max_it = sc_.contact.max_iterations;
+    double F_last = F_start;
+    double v_last = eval(F_last);
+    int it = 0;
+    double F = F_last;
+    while (std::abs(v_last) >= tol) {
+      if (++it > max_it) {
+        ++sum_.iteration_failures;
+        throw StepFailure("contact iteration did not converge");
+      }
+      // p = min(0, p − b v)  ⇔  F = max(0, F + b v)  (no clipping if bilateral)
+      F = F_last + b * v_last;
+      if (!bilateral_ && F < 0.0) F = 0.0;
+      const double v = eval(F);
+      ++sum_.contact_iterations;
+      if (std::abs(v) >= std::abs(v_last) && std::abs(v) >= tol) {
+        b *= 0.5;  // error did not fall: halve the constant, retry from the last iterate
+        eval(F_last);
+        continue;
+      }
+      F_last = F;
+      v_last = v;
+    }
+    st.total += it;
+    st.max = std::max(st.max, it);
+    ++st.steps;
+    return F_last;
+  }
+
+  void run_lee() {
+    ContactLaw& law = engine_->law();
+    law.kind = ContactLaw::Kind::Ramp;
+    const double Ms = m_.mstar();
+    const int q = engine_->error_order();
+    const bool eq17 = sc_.contact.error_variant == ErrorVariant::Eq17;
+    const double e_rest = sc_.contact.restitution;
+    double h = initial_step();
+    Eigen::VectorXd y1(2 * n_), yv(2 * n_);
+    const double hmin_rel = 1e-14;
+    while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+      // Land on output times and t_end exactly.
+      const double t_next = next_output_time();
+      const double h_planned = h;
+      double hs = std::min(h, t_next - t_);
+      if (sc_.solver.max_step > 0) hs = std::min(hs, sc_.solver.max_step);
+      if (t_next - t_ - hs < 1e-10 * hs) hs = t_next - t_;
+      if (hs <= hmin_rel * std::max(1.0, std::abs(t_)))
+        throw StepFailure("step size underflow (h = " + fmt(hs) + ")");
+      const double t1 = t_ + hs;
+      const CamMotion cm = cam_at(t1);
+      const double Ft = F_;
+      const bool pt_active = Ft > 0.0;  // p̃ᵗ < 0
+      law.t0 = t_;
+      law.h = hs;
+      law.F0 = Ft;
+      double err = 0.0;
+      double F1 = 0, Fv = 0, Fa = 0;
+      try {
+        // 1. displacement level
+        const double b = 6.0 / (Ms * hs * hs);
+        auto disp_err = [&](double F) {
+          law.F1 = F;
+          err = engine_->step(t_, y_, hs, y1);
+          const double s = cm.X - y1[0];
+          if (bilateral_) return s;
+          return (F > 0.0 || s > 0.0) ? s : 0.0;
+        };
+        F1 = iterate(Ft, b, tol_u_, sum_.level_u, disp_err);
+        // 2. step control
+        if (err > 1.0) {
+          ++sum_.rejected_steps;
+          h = hs * std::max(0.2, 0.9 * std::pow(err, -1.0 / q));
+          continue;
+        }
+        const double err_acc = err;
+        // 3. velocity level (re-integrates with the ramp ending at F̂)
+        const double sdot_minus = cm.Xdot - y1[n_];
+        const bool impact = !contact_ && F1 > 0.0;
+        const double target = (impact && e_rest > 0.0) ? -e_rest * sdot_minus : 0.0;
+        const double tol_v = sc_.contact.tol_v > 0 ? sc_.contact.tol_v : tol_u_ / hs;
+        yv = y1;
+        const bool p_active = F1 > 0.0;
+        auto vel_err = [&](double F) {
+          if (F != F1) {
+            law.F1 = F;
+            engine_->step(t_, y_, hs, yv);
+          } else {
+            yv = y1;
+          }
+          const double sd = cm.Xdot - yv[n_] - target;
+          if (bilateral_) return sd;
+          const bool gate = eq17 ? (p_active || pt_active) : p_active;
+          return (gate && (sd > 0.0 || F > 0.0)) ? sd : 0.0;
+        };
+        Fv = iterate(F1, 2.0 / (Ms * hs), tol_v, sum_.level_v, vel_err);
+        // 4. acceleration level (no integration)
+        const double tol_a = sc_.contact.tol_a > 0 ? sc_.contact.tol_a : tol_u_ / (hs * hs);
+        const bool pv_active = Fv > 0.0;
+        auto acc_err = [&](double F) {
+          const double a = m_.contact_acceleration(y1.data(), yv.data() + n_, F);
+          const double sdd = cm.Xddot - a;
+          if (bilateral_) return sdd;
+          const bool gate = eq17 ? (pv_active || pt_active) : pv_active;
+          return (gate && (sdd > 0.0 || F > 0.0)) ? sdd : 0.0;
+        };
+        Fa = iterate(Fv, 1.0 / Ms, tol_a, sum_.level_a, acc_err);
+        // accept
+        const double Xdot_prev = cam_at(t_).Xdot;
+        const double P_prev = m_.damping_power(y_.data() + n_);
+        y_.head(n_) = y1.head(n_);
+        y_.tail(n_) = yv.tail(n_);
+        t_ = t1;
+        F_ = Fa;
+        const bool now_contact = bilateral_ || F_ > 0.0 || Fv > 0.0;
+        if (!contact_ && now_contact && !bilateral_) {
+          ++sum_.impacts;
+          record_event("impact", sdot_minus);
+          dissipated_ += 0.5 * (1.0 - e_rest * e_rest) * sdot_minus * sdot_minus / Ms;
+        } else if (contact_ && !now_contact) {
+          ++sum_.separations;
+          record_event("separation", 0.0);
+        }
+        contact_ = now_contact;
+        after_step(hs, Ft, Xdot_prev, P_prev);
+        // next step size
+        if (engine_->estimates_error()) {
+          const double fac = err_acc > 0 ? 0.9 * std::pow(err_acc, -1.0 / q) : 5.0;
+          h = hs * std::min(5.0, std::max(0.2, fac));
+        } else {
+          const double hc = engine_->suggested_step();
+          h = hc > 0 ? std::min(5.0 * hs, std::max(0.2 * hs, hc)) : 2.0 * hs;
+        }
+        // A step shortened to land on an output time does not shrink the proposal.
+        if (hs < h_planned) h = std::max(h, h_planned);
+      } catch (const StepFailure& e) {
+        if (std::string(e.what()) != "contact iteration did not converge") throw;
+        ++sum_.rejected_steps;
+        h = 0.5 * hs;
+      }
+    }
+  }
+
+  // ------------------------------------------------------------ native stepping ----
+  void run_native() {
+    ContactLaw& law = engine_->law();
+    law.kind = ContactLaw::Kind::Penalty;
+    law.cam = &cam_;
+    law.drive = &drive_;
+    law.law = sc_.contact.penalty_law;
+    law.kp = sc_.contact.penalty_stiffness;
+    law.cp = sc_.contact.penalty_damping;
+    law.exponent = sc_.contact.penalty_exponent;
+    F_ = law.force(0.0, y_[0], y_[n_]);
+    engine_->reinit(t_, y_);
+    Eigen::VectorXd y1(2 * n_);
+    while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+      const double tout = next_output_time();
+      const double Ft = F_;
+      const double Xdot_prev = cam_at(t_).Xdot;
+      const double P_prev = m_.damping_power(y_.data() + n_);
+      const double t1 = engine_->advance(tout, y1);
+      const double h = t1 - t_;
+      t_ = t1;
+      y_ = y1;
+      F_ = law.force(t_, y_[0], y_[n_]);
+      const bool now_contact = F_ > 0.0;
+      if (!contact_ && now_contact) {
+        ++sum_.impacts;
+        record_event("impact", cam_at(t_).Xdot - y_[n_]);
+      } else if (contact_ && !now_contact) {
+        ++sum_.separations;
+        record_event("separation", 0.0);
+      }
+      contact_ = now_contact;
+      after_step(h, Ft, Xdot_prev, P_prev);
+    }
+  }
+
+  const Scene& sc_;
+  std::shared_ptr<const FollowerModel> model_;
+  const FollowerModel& m_;
+  Cam cam_;
+  CamDrive drive_;
+  Observer* obs_;
+  const std::atomic<bool>* stop_;
+  int n_;
+  std::unique_ptr<Engine> engine_;
+  Summary sum_;
+  bool bilateral_ = false, contact_ = false;
+  double tol_u_ = 1e-8;
+  double t_ = 0, F_ = 0, E0_ = 0, V0_ = 0, work_ = 0, dissipated_ = 0, last_row_t_ = -1;
+  long next_out_ = 1;
+  Eigen::VectorXd y_;
+  Clock progress_clock_;
+  double last_progress_ = 0;
+};
+
+}  // namespace
+
+Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
+  resolve_defaults(scene_);
+  validate(scene_);
+  model_ = build_model(scene_);
+}
+
+Simulator::~Simulator() = default;
+
+Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop) {
+  Runner r(scene_, model_, observer, stop);
+  return r.run();
+}
+
+namespace {
+struct Collector : Observer {
+  std::vector<HistoryRow>* rows;
+  void on_row(const HistoryRow& r) override { rows->push_back(r); }
+};
+}  // namespace
+
+RunResult simulate(const Scene& scene) {
+  RunResult res;
+  Collector c;
+  c.rows = &res.rows;
+  Simulator sim(scene);
+  res.summary = sim.run(&c);
+  return res;
+}
+
+std::string Summary::BriefReport() const {
+  std::ostringstream o;
+  o << "camdyn: " << (finished ? "finished" : "NOT finished") << " — " << scene << " — "
+    << contact_model << " on " << integrator << ": t = " << fmt(t_end) << ", " << steps
+    << " steps (" << rejected_steps << " rejected), " << rhs_evals << " rhs evals, "
+    << separations << " separations, " << impacts << " impacts, max force "
+    << fmt(max_contact_force) << ", cpu " << fmt(cpu_seconds) << " s";
+  if (!finished) o << " — " << message;
+  return o.str();
+}
+
+std::string Summary::FullReport() const {
+  std::ostringstream o;
+  auto lv = [&](const char* name, const LevelStats& s) {
+    o << "  " << name << ": mean " << fmt(s.mean()) << ", max " << s.max << ", total " << s.total
+      << "\n";
+  };
+  o << "camdyn run summary\n"
+    << "  scene:              " << scene << "\n"
+    << "  model:              " << model.ToString() << "\n"
+    << "  contact model:      " << contact_model << "\n"
+    << "  integrator:         " << integrator << "\n"
+    << "  finished:           " << (finished ? "yes" : "no") << " (" << message << ")\n"
+    << "  t reached:          " << fmt(t_end) << "\n"
+    << "  steps:              " << steps << " accepted, " << rejected_steps << " rejected\n"
+    << "  rhs evaluations:    " << rhs_evals << "\n"
+    << "  contact iterations: " << contact_iterations << " (" << iteration_failures
+    << " iteration failures)\n";
+  lv("displacement level", level_u);
+  lv("velocity level    ", level_v);
+  lv("acceleration level", level_a);
+  o << "  separations:        " << separations << "\n"
+    << "  impacts:            " << impacts << "\n"
+    << "  max contact force:  " << fmt(max_contact_force) << "\n"
+    << "  min gap:            " << fmt(min_gap) << "\n"
+    << "  max penetration:    " << fmt(max_penetration) << "\n";
+  if (first_tensile_time >= 0)
+    o << "  constraint force first tensile at t = " << fmt(first_tensile_time) << "\n";
+  o << "  energy residual:    " << fmt(energy_residual) << "\n"
+    << "  cpu / wall:         " << fmt(cpu_seconds) << " s / " << fmt(wall_seconds) << " s\n";
+  return o.str();
+}
+
+}  // namespace camdyn
