@@ -14,6 +14,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -43,7 +44,7 @@ LinearSolverKind resolve_linear_solver(const Scene& scene, int nodes);
 
 /// The contact force on node 0 (F = −p ≥ 0 pushes the follower away from the cam).
 struct ContactLaw {
-  enum class Kind { None, Ramp, Penalty };
+  enum class Kind { None, Ramp, Penalty, Prescribed };
   Kind kind = Kind::None;
   // Ramp: F(t) = F0 + (F1 − F0)(t − t0)/h on the step [t0, t0 + h].
   double t0 = 0, h = 1, F0 = 0, F1 = 0;
@@ -54,6 +55,9 @@ struct ContactLaw {
   const CamDrive* drive = nullptr;
   PenaltyLaw law = PenaltyLaw::Linear;
   double kp = 0, cp = 0, exponent = 1.5;
+  // Prescribed (held bar, node 0 moving with the cam; this model's node 0 is the bar's
+  // node 1): F = −K₁₀ X_C(t) − C₁₀ Ẋ_C(t) − M₁₀ Ẍ_C(t), independent of the state.
+  double k10 = 0, c10 = 0, m10 = 0;
 
   double force(double t, double q0, double v0) const;
   /// dF/dq₀ and dF/dv₀ (for the Jacobian); zero except for an active penalty.
@@ -89,6 +93,12 @@ class Engine {
   /// the state there.
   virtual double advance(double tout, Eigen::VectorXd& y_out) = 0;
 
+  /// Rootfinding (native mode): one function g(t, y); direction −1, 0 or +1.
+  using RootFn = std::function<double(double t, const double* y)>;
+  virtual void set_root(RootFn fn, int direction) = 0;
+  /// After advance(): true if it stopped at a root of g.
+  bool hit_root() const { return hit_root_; }
+
   const EngineStats& stats() const { return stats_; }
   ContactLaw& law() { return law_; }
 
@@ -108,6 +118,9 @@ class Engine {
   ContactLaw law_;
   EngineStats stats_;
   Eigen::VectorXd work_;
+  RootFn root_fn_;
+  bool hit_root_ = false;
+  static int root_callback(double t, const double* y, double* g, void* ud) noexcept;
 };
 
 /// Make the engine a scene asks for. @throws SundialsError on a SUNDIALS failure.

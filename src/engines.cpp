@@ -58,6 +58,10 @@ double ContactLaw::force(double t, double q0, double v0) const {
       return 0.0;
     case Kind::Ramp:
       return F0 + (F1 - F0) * (t - t0) / h;
+    case Kind::Prescribed: {
+      const CamMotion m = cam->motion(drive->theta(t), drive->omega(t), drive->omega_dot(t));
+      return -k10 * m.X - c10 * m.Xdot - m10 * m.Xddot;
+    }
     case Kind::Penalty: {
       const double th = drive->theta(t);
       const CamMotion m = cam->motion(th, drive->omega(t), drive->omega_dot(t));
@@ -109,6 +113,15 @@ void Engine::rhs(double t, const double* y, double* ydot) {
   rhs_unscaled(t, y, ydot);
   std::copy(ydot + n_, ydot + 2 * n_, work_.data());
   model_->solve_mass(work_.data(), ydot + n_);
+}
+
+int Engine::root_callback(double t, const double* y, double* g, void* ud) noexcept {
+  try {
+    g[0] = static_cast<Engine*>(ud)->root_fn_(t, y);
+    return 0;
+  } catch (...) {
+    return -1;
+  }
 }
 
 double Engine::wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const {
@@ -207,10 +220,16 @@ class ErkEngine final : public Engine {
   double advance(double tout, Eigen::VectorXd& y_out) override {
     check_flag(ERKStepSetStopTime(mem_.get(), tout), "ERKStepSetStopTime");
     double tret = 0;
-    check_flag(ERKStepEvolve(mem_.get(), tout, y_.get(), &tret, ARK_ONE_STEP), "ERKStepEvolve");
+    const int flag = check_flag(ERKStepEvolve(mem_.get(), tout, y_.get(), &tret, ARK_ONE_STEP), "ERKStepEvolve");
+    hit_root_ = flag == ARK_ROOT_RETURN;
     y_out = map(y_.get());
     ++stats_.steps;
     return tret;
+  }
+  void set_root(RootFn fn, int direction) override {
+    root_fn_ = std::move(fn);
+    check_flag(ERKStepRootInit(mem_.get(), root_fn_ ? 1 : 0, &ErkEngine::g), "ERKStepRootInit");
+    if (root_fn_) check_flag(ERKStepSetRootDirection(mem_.get(), &direction), "ERKStepSetRootDirection");
   }
 
  private:
@@ -221,6 +240,9 @@ class ErkEngine final : public Engine {
     } catch (...) {
       return -1;
     }
+  }
+  static int g(double t, N_Vector y, double* gout, void* ud) {
+    return root_callback(t, N_VGetArrayPointer(y), gout, ud);
   }
   bool trial_;
   ContextHolder ctx_;
@@ -346,10 +368,16 @@ class DirkEngine final : public Engine {
   double advance(double tout, Eigen::VectorXd& y_out) override {
     check_flag(ARKStepSetStopTime(mem_.get(), tout), "ARKStepSetStopTime");
     double tret = 0;
-    check_flag(ARKStepEvolve(mem_.get(), tout, y_.get(), &tret, ARK_ONE_STEP), "ARKStepEvolve");
+    const int flag = check_flag(ARKStepEvolve(mem_.get(), tout, y_.get(), &tret, ARK_ONE_STEP), "ARKStepEvolve");
+    hit_root_ = flag == ARK_ROOT_RETURN;
     y_out = map(y_.get());
     ++stats_.steps;
     return tret;
+  }
+  void set_root(RootFn fn, int direction) override {
+    root_fn_ = std::move(fn);
+    check_flag(ARKStepRootInit(mem_.get(), root_fn_ ? 1 : 0, &DirkEngine::g), "ARKStepRootInit");
+    if (root_fn_) check_flag(ARKStepSetRootDirection(mem_.get(), &direction), "ARKStepSetRootDirection");
   }
 
  private:
@@ -383,6 +411,9 @@ class DirkEngine final : public Engine {
     } catch (...) {
       return -1;
     }
+  }
+  static int g(double t, N_Vector y, double* gout, void* ud) {
+    return root_callback(t, N_VGetArrayPointer(y), gout, ud);
   }
   void fill_mass(SUNMatrix Mm) {
     const ModelEntries e{*model_};
@@ -607,10 +638,16 @@ class CvodeEngine final : public Engine {
   double advance(double tout, Eigen::VectorXd& y_out) override {
     check_flag(CVodeSetStopTime(mem_.get(), tout), "CVodeSetStopTime");
     double tret = 0;
-    check_flag(CVode(mem_.get(), tout, y_.get(), &tret, CV_ONE_STEP), "CVode");
+    const int flag = check_flag(CVode(mem_.get(), tout, y_.get(), &tret, CV_ONE_STEP), "CVode");
+    hit_root_ = flag == CV_ROOT_RETURN;
     y_out = map(y_.get());
     ++stats_.steps;
     return tret;
+  }
+  void set_root(RootFn fn, int direction) override {
+    root_fn_ = std::move(fn);
+    check_flag(CVodeRootInit(mem_.get(), root_fn_ ? 1 : 0, &CvodeEngine::g), "CVodeRootInit");
+    if (root_fn_) check_flag(CVodeSetRootDirection(mem_.get(), &direction), "CVodeSetRootDirection");
   }
 
  private:
@@ -626,6 +663,9 @@ class CvodeEngine final : public Engine {
     } catch (...) {
       return -1;
     }
+  }
+  static int g(double t, N_Vector y, double* gout, void* ud) {
+    return root_callback(t, N_VGetArrayPointer(y), gout, ud);
   }
   static int ls_setup(SUNLinearSolver S, SUNMatrix) {
     try {

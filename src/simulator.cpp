@@ -113,8 +113,9 @@ class Runner {
     try {
       if (sc_.contact.model == ContactModel::Penalty)
         run_native();
-      else if (sc_.contact.model == ContactModel::Event)
-        throw StepFailure("contact.model = \"event\" is not implemented yet");
+      else if (sc_.contact.model == ContactModel::Event ||
+               sc_.contact.model == ContactModel::Holonomic)
+        run_event();
       else
         run_lee();
       sum_.finished = true;
@@ -125,7 +126,7 @@ class Runner {
       if (last_row_t_ < t_) emit_row();  // keep the last accepted state
     }
     sum_.t_end = t_;
-    sum_.rhs_evals = engine_->stats().rhs_evals;
+    sum_.rhs_evals += engine_->stats().rhs_evals;
     sum_.cpu_seconds = clock.cpu();
     sum_.wall_seconds = clock.wall();
     if (!std::isfinite(sum_.min_gap)) sum_.min_gap = 0.0;
@@ -295,7 +296,8 @@ class Runner {
         }
         const double err_acc = err;
         // 3. velocity level (re-integrates with the ramp ending at F̂)
-        const double sdot_minus = cm.Xdot - y1[n_];
+        // Approach speed ŝ⁻ before the impact: at the start of the step (free flight).
+        const double sdot_minus = cam_at(t_).Xdot - y_[n_];
         const bool impact = !contact_ && F1 > 0.0;
         const double target = (impact && e_rest > 0.0) ? -e_rest * sdot_minus : 0.0;
         const double tol_v = sc_.contact.tol_v > 0 ? sc_.contact.tol_v : tol_u_ / hs;
@@ -396,6 +398,162 @@ class Runner {
       after_step(h, Ft, Xdot_prev, P_prev);
     }
   }
+
+  // ------------------------------------------------------------ event-driven -------
+  // Contact phase: node 0 moves with the cam (u₀ = X_C, u̇₀ = Ẋ_C, ü₀ = Ẍ_C); the other
+  // nodes obey the held bar M_rr q̈_r = f_r − K_rr q_r − C_rr v_r − (K₁₀X_C + C₁₀Ẋ_C + M₁₀Ẍ_C)e₁,
+  // and the reaction is F = M₀₀Ẍ_C + M₀₁q̈₁ − (f₀ − K q − C v)₀. Free phase: F = 0.
+  // Switches: the reaction reaching zero (decreasing) → separation; the gap closing
+  // (decreasing) → impact, a Newton impulse P = (1 + e) ŝ⁻ / M* on node 0, Δv = M⁻¹e₀ P,
+  // then contact if the reaction is compressive (plastic), else free flight (bounce).
+  // Roots are located by SUNDIALS rootfinding (rigid contact phase: bisection on the
+  // closed-form reaction) to round-off in time.
+  // "holonomic" is the contact phase alone, reporting where the reaction turns tensile.
+  double reaction_rigid(double t) const {
+    const CamMotion c = cam_at(t);
+    return m_.m_rigid() * c.Xddot - (m_.f0()[0] - m_.k_rigid() * c.X - m_.c_rigid() * c.Xdot);
+  }
+  double reaction_held(double t, const double* yr) {
+    const FollowerModel& h = *held_;
+    const int r = h.n();
+    const CamMotion c = cam_at(t);
+    held_law_->kind = ContactLaw::Kind::Prescribed;
+    // q̈_r from the held model's equation of motion.
+    rbuf_.resize(r);
+    h.internal_force(yr, yr + r, rbuf_.data());
+    rbuf_[0] += held_law_->force(t, 0, 0);
+    abuf_.resize(r);
+    h.solve_mass(rbuf_.data(), abuf_.data());
+    const double r0 = m_.f0()[0] - m_.k00() * c.X - m_.k10() * yr[0] - m_.c00() * c.Xdot - m_.c10() * yr[r];
+    return m_.m00() * c.Xddot + m_.m10() * abuf_[0] - r0;
+  }
+  void full_from_held(double t, const Eigen::VectorXd& yr) {
+    const CamMotion c = cam_at(t);
+    const int r = n_ - 1;
+    y_[0] = c.X;
+    y_[n_] = c.Xdot;
+    y_.segment(1, r) = yr.head(r);
+    y_.segment(n_ + 1, r) = yr.tail(r);
+  }
+  Eigen::VectorXd held_from_full() const {
+    const int r = n_ - 1;
+    Eigen::VectorXd yr(2 * r);
+    yr.head(r) = y_.segment(1, r);
+    yr.tail(r) = y_.segment(n_ + 1, r);
+    return yr;
+  }
+
+  void run_event() {
+    const bool holonomic = sc_.contact.model == ContactModel::Holonomic;
+    const bool rigid = m_.rigid();
+    const double Ms = m_.mstar(), e_rest = sc_.contact.restitution;
+    ContactLaw& law = engine_->law();
+    law.kind = ContactLaw::Kind::None;
+    std::unique_ptr<Engine> held_engine;
+    if (!rigid) {
+      held_ = m_.held_model();
+      held_engine = make_engine(held_, sc_);
+      held_law_ = &held_engine->law();
+      held_law_->kind = ContactLaw::Kind::Prescribed;
+      held_law_->cam = &cam_;
+      held_law_->drive = &drive_;
+      held_law_->k10 = m_.k10();
+      held_law_->c10 = m_.c10();
+      held_law_->m10 = m_.m10();
+      if (!holonomic)
+        held_engine->set_root([this](double t, const double* yr) { return reaction_held(t, yr); }, -1);
+    }
+    engine_->set_root([this](double t, const double* y) { return y[0] - cam_at(t).X; }, -1);
+    // Initial phase.
+    bool in_contact = holonomic || (contact_ && F_ > 0.0);
+    contact_ = in_contact;
+    if (!in_contact) F_ = 0.0;
+    Eigen::VectorXd yr, y1;
+    if (in_contact && !rigid) held_engine->reinit(t_, held_from_full());
+    if (!in_contact) engine_->reinit(t_, y_);
+    const double dt_scan = std::min(1e-4, sc_.run.t_end / 100.0);
+    while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+      const double tout = next_output_time();
+      const double Ft = F_, Xdot_prev = cam_at(t_).Xdot, P_prev = m_.damping_power(y_.data() + n_);
+      const double t_prev = t_;
+      bool separation = false, impact = false;
+      if (in_contact) {
+        if (rigid) {
+          double t1 = std::min(tout, t_ + dt_scan);
+          if (!holonomic && reaction_rigid(t1) < 0.0 && reaction_rigid(t_) >= 0.0) {
+            double a = t_, b = t1;  // bisection to round-off on the closed-form reaction
+            for (int i = 0; i < 200 && b - a > 4e-16 * std::max(1.0, std::abs(b)); ++i) {
+              const double mid = 0.5 * (a + b);
+              (reaction_rigid(mid) >= 0.0 ? a : b) = mid;
+            }
+            t1 = b;
+            separation = true;
+          }
+          t_ = t1;
+          const CamMotion c = cam_at(t_);
+          y_[0] = c.X;
+          y_[1] = c.Xdot;
+          F_ = separation ? 0.0 : reaction_rigid(t_);
+          ++sum_.steps;
+        } else {
+          t_ = held_engine->advance(tout, y1);
+          full_from_held(t_, y1);
+          separation = held_engine->hit_root();
+          F_ = separation ? 0.0 : reaction_held(t_, y1.data());
+        }
+        if (separation) {
+          in_contact = false;
+          engine_->reinit(t_, y_);
+        }
+      } else {
+        t_ = engine_->advance(tout, y1);
+        y_ = y1;
+        F_ = 0.0;
+        if (engine_->hit_root()) {
+          const CamMotion c = cam_at(t_);
+          const double approach = c.Xdot - y_[n_];  // ŝ⁻ > 0: closing
+          y_[0] = c.X;                               // the root is located to round-off
+          if (approach > 0.0) {
+            impact = true;
+            const double P = (1.0 + e_rest) * approach / Ms;
+            Eigen::VectorXd e0 = Eigen::VectorXd::Zero(n_), dv(n_);
+            e0[0] = P;
+            m_.solve_mass(e0.data(), dv.data());
+            y_.tail(n_) += dv;
+            work_ += P * c.Xdot;  // the cam's impulse does work P·Ẋ_C
+            dissipated_ += 0.5 * (1.0 - e_rest * e_rest) * approach * approach / Ms;
+            // Chattering guard: a bounce slower than this sticks (plastic).
+            const double v_stick = 1e3 * sc_.solver.atol + 1e-9;
+            if (e_rest == 0.0 || (1.0 + e_rest) * approach < v_stick) {
+              y_[n_] = c.Xdot;
+              const double Fr = rigid ? reaction_rigid(t_) : reaction_held(t_, held_from_full().data());
+              if (Fr > 0.0) {
+                in_contact = true;
+                F_ = Fr;
+              }
+            }
+          }
+          if (in_contact && !rigid) held_engine->reinit(t_, held_from_full());
+          if (!in_contact) engine_->reinit(t_, y_);
+          if (impact) {
+            ++sum_.impacts;
+            record_event("impact", approach);
+          }
+        }
+      }
+      if (separation) {
+        ++sum_.separations;
+        record_event("separation", 0.0);
+      }
+      contact_ = in_contact;
+      after_step(t_ - t_prev, Ft, Xdot_prev, P_prev);
+    }
+    sum_.rhs_evals += held_engine ? held_engine->stats().rhs_evals : 0;
+  }
+
+  std::shared_ptr<const FollowerModel> held_;
+  ContactLaw* held_law_ = nullptr;
+  Eigen::VectorXd rbuf_, abuf_;
 
   const Scene& sc_;
   std::shared_ptr<const FollowerModel> model_;

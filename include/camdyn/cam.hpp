@@ -12,6 +12,7 @@
 //     Ẍ_C = −r ω² cos β − r ω̇ sin β − 2ω²/x_yy + (ω/(y_α x_yy))² x_αα.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -62,6 +63,12 @@ class Cam {
   double lift() const;
   /// Smallest radius of curvature over the profile [length].
   double min_radius_of_curvature() const;
+
+  /// A cam-frame point {x, y} of the profile at parameter a [rad] (for tests and plots):
+  /// points — the spline at polar-angle parameter a; circle — (e + R cos a, R sin a);
+  /// lift — the envelope point that is the contact point at cam angle a,
+  /// R(−a)·(h(a), −h′(a)). As a runs over [0, 2π) the whole profile is traced.
+  std::array<double, 2> profile_point(double a) const;
 
  private:
   struct Impl;

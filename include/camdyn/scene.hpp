@@ -183,18 +183,42 @@ Scene default_scene();
 Scene paper_case(const std::string& name);
 
 /// Parse TOML text. Keys missing from the text keep the defaults of Scene{}.
+/// The result is resolved (resolve_defaults) and validated; its source is source_name.
+/// Unknown keys/tables, wrong types and broken rules throw with the offending node's line.
 /// @throws SceneError naming source, line, key, value and rule.
 Scene parse_scene(std::string_view toml_text, const std::string& source_name);
-/// Read and parse a file. @throws SceneError (also when the file cannot be read).
+/// Read and parse a file. @throws SceneError (also when the file cannot be read:
+/// "PATH: cannot read scene file: <strerror>").
 Scene load_scene_file(const std::string& path);
-/// Apply "dotted.key=value" (value in TOML syntax; bare words are taken as strings).
+/// Apply "dotted.key=value" (value in TOML syntax; bare words are taken as strings, so
+/// contact.model=penalty works). The scene is converted to a TOML table, the key set and
+/// the table parsed again with the same checks as a file (errors name file "--set", no
+/// line). On success the scene is replaced by the resolved, validated result (its source
+/// is kept); on error it is unchanged.
+/// contact.tol_u: when it is "automatic" — 0, or equal to the paper default of the
+/// scene's current follower kind (1e-8 rigid, 1e-7 elastic_bar) — and the override is not
+/// contact.tol_u itself, it is re-derived afterwards, so follower.kind=elastic_bar on a
+/// rigid scene gives 1e-7. (An explicit tol_u equal to that default is treated the same.)
 /// @throws SceneError with file "--set".
 void apply_override(Scene& scene, const std::string& assignment);
-/// Fill "0 = automatic" defaults (e.g. tol_u by follower kind). Idempotent.
+/// Fill "0 = automatic" defaults: contact.tol_u = 0 → 1e-8 (rigid) / 1e-7 (elastic_bar).
+/// Nothing else is changed (tol_v/tol_a = 0 keep meaning "per step"). Idempotent.
 void resolve_defaults(Scene& scene);
-/// Check every rule. @throws SceneError.
+/// Check every rule (errors name scene.source, no line). contact.tol_u = 0 is accepted as
+/// "not yet resolved". Cam convexity is left to Cam. @throws SceneError.
 void validate(const Scene& scene);
-/// The scene as TOML with every key written (the resolved scene).
+/// The scene as TOML with every key written (the resolved scene; floats in shortest
+/// round-trip form). parse_scene(to_toml(s), ...) == s after resolve_defaults(s).
 std::string to_toml(const Scene& scene);
+
+/// Content equality (every field except `source`); exact comparison of doubles.
+bool operator==(const CamSpec& a, const CamSpec& b);
+bool operator==(const FollowerSpec& a, const FollowerSpec& b);
+bool operator==(const SpringSpec& a, const SpringSpec& b);
+bool operator==(const ContactSpec& a, const ContactSpec& b);
+bool operator==(const SolverSpec& a, const SolverSpec& b);
+bool operator==(const RunSpec& a, const RunSpec& b);
+bool operator==(const Scene& a, const Scene& b);
+bool operator!=(const Scene& a, const Scene& b);
 
 }  // namespace camdyn

@@ -1,0 +1,83 @@
+// Cost of Cam::evaluate() — the contact-point search on the solver's hot path.
+//   *_SmallSteps: θ advances by a small step per call (what an integrator does);
+//   *_RandomJumps: θ jumps at random over ±10 turns (worst case for the tracking hint).
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <vector>
+
+#include <camdyn/cam.hpp>
+
+namespace {
+
+camdyn::CamSpec spec_of(camdyn::CamProfileKind kind) {
+  camdyn::CamSpec s;  // default: the paper cam (points)
+  s.profile = kind;
+  if (kind == camdyn::CamProfileKind::Lift) {
+    s.base_radius = 2.0;
+    s.lift_angles_deg = {0, 60, 120, 180, 240, 300};
+    s.lift = {0.0, 0.1, 0.5, 0.8, 0.4, 0.05};
+  }
+  return s;
+}
+
+void SmallSteps(benchmark::State& state, camdyn::CamProfileKind kind) {
+  const camdyn::Cam cam(spec_of(kind));
+  const double dtheta = 1e-4 * static_cast<double>(state.range(0));
+  double theta = 0.0, sink = 0.0;
+  for (auto _ : state) {
+    const camdyn::CamPoint p = cam.evaluate(theta);
+    sink += p.X_C;
+    theta += dtheta;
+    benchmark::DoNotOptimize(sink);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void RandomJumps(benchmark::State& state, camdyn::CamProfileKind kind) {
+  const camdyn::Cam cam(spec_of(kind));
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> U(-62.8, 62.8);
+  std::vector<double> th(4096);
+  for (double& t : th) t = U(rng);
+  std::size_t i = 0;
+  double sink = 0.0;
+  for (auto _ : state) {
+    sink += cam.evaluate(th[i]).X_C;
+    i = (i + 1) & 4095;
+    benchmark::DoNotOptimize(sink);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void PaperMotionForm(benchmark::State& state) {
+  const camdyn::Cam cam{camdyn::CamSpec{}};
+  double theta = 0.0, sink = 0.0;
+  for (auto _ : state) {
+    sink += cam.motion_paper(theta, 11.0, 0.0).Xddot;
+    theta += 1e-4;
+    benchmark::DoNotOptimize(sink);
+  }
+}
+
+void PaperConstruct(benchmark::State& state) {
+  const camdyn::CamSpec s;
+  for (auto _ : state) {
+    camdyn::Cam cam(s);
+    benchmark::DoNotOptimize(cam);
+  }
+}
+
+}  // namespace
+
+// Argument: step in units of 1e-4 rad (1 ≈ a solver step at 1.75 rev/s and Δt ≈ 1e-5 s).
+BENCHMARK_CAPTURE(SmallSteps, paper, camdyn::CamProfileKind::Points)->Arg(1)->Arg(100);
+BENCHMARK_CAPTURE(RandomJumps, paper, camdyn::CamProfileKind::Points);
+BENCHMARK_CAPTURE(SmallSteps, circle, camdyn::CamProfileKind::Circle)->Arg(1);
+BENCHMARK_CAPTURE(RandomJumps, circle, camdyn::CamProfileKind::Circle);
+BENCHMARK_CAPTURE(SmallSteps, lift, camdyn::CamProfileKind::Lift)->Arg(1);
+BENCHMARK_CAPTURE(RandomJumps, lift, camdyn::CamProfileKind::Lift);
+BENCHMARK(PaperMotionForm);
+BENCHMARK(PaperConstruct)->Unit(benchmark::kMicrosecond);
+
+BENCHMARK_MAIN();

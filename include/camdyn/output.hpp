@@ -1,0 +1,110 @@
+// camdyn — output files: history.csv, events.csv, summary.json, cam.csv (INTERFACE.md).
+//
+// Every file is written to "PATH.tmp.<pid>" and renamed onto PATH when complete, so a
+// reader never sees a half-written file. Numbers are written with full precision (the
+// shortest text that reads back to the same double); JSON writes non-finite numbers as
+// null.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "camdyn/cam.hpp"
+#include "camdyn/scene.hpp"
+#include "camdyn/simulator.hpp"
+
+namespace camdyn {
+
+/// A file written under a temporary name ("PATH.tmp.<pid>") and renamed onto PATH by
+/// commit(). Destroyed without commit(), it removes the temporary file and leaves PATH as
+/// it was.
+class AtomicFile {
+ public:
+  /// Opens the temporary file. @throws std::runtime_error naming the path and the reason.
+  explicit AtomicFile(std::string path);
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  ~AtomicFile();
+
+  /// Append bytes. @throws std::runtime_error on a write error.
+  void write(std::string_view text);
+  /// The underlying stream (for fprintf-style writers); valid until commit().
+  std::FILE* stream() { return f_; }
+  /// Flush, close and rename onto the final path. @throws std::runtime_error.
+  void commit();
+
+  const std::string& path() const { return path_; }
+  const std::string& temp_path() const { return tmp_; }
+
+ private:
+  std::string path_, tmp_;
+  std::FILE* f_ = nullptr;
+  bool committed_ = false;
+};
+
+/// Write `content` to `path` atomically. @throws std::runtime_error.
+void write_file_atomic(const std::string& path, std::string_view content);
+
+/// Create `dir` (like mkdir -p) and check that files can be created in it.
+/// @throws SceneError("--out", 0, "out", dir, "output directory is not writable: <reason>").
+void ensure_output_dir(const std::string& dir);
+
+/// `dir`/`name` (no separator doubling; "" or "." for dir gives `name`).
+std::string join_path(const std::string& dir, const std::string& name);
+
+// ---- number and string formatting ---------------------------------------------------
+
+/// Shortest round-trip decimal text of x ("nan", "inf", "-inf" for non-finite values).
+std::string format_double(double x);
+/// JSON number text of x, "null" when x is not finite.
+std::string json_number(double x);
+/// `s` as a JSON string literal, quotes included (RFC 8259 escaping; bytes ≥ 0x80 are
+/// copied through, invalid UTF-8 is replaced by U+FFFD).
+std::string json_string(std::string_view s);
+
+// ---- history and events ---------------------------------------------------------------
+
+/// history.csv text: header from history_columns(), one line per row.
+std::string history_csv(const std::vector<HistoryRow>& rows);
+/// events.csv text: header "t,kind,impact_velocity", one line per event.
+std::string events_csv(const std::vector<ContactEvent>& events);
+
+/// An Observer that keeps every row and event in memory as they arrive, so a run that
+/// fails or is interrupted still has what it computed; write() puts them on disk.
+class HistoryWriter : public Observer {
+ public:
+  void on_row(const HistoryRow& row) override;
+  void on_event(const ContactEvent& event) override;
+
+  const std::vector<HistoryRow>& rows() const { return rows_; }
+  const std::vector<ContactEvent>& events() const { return events_; }
+  void clear();
+
+  /// Write DIR/history.csv and DIR/events.csv atomically. @throws std::runtime_error.
+  void write(const std::string& dir) const;
+
+ private:
+  std::vector<HistoryRow> rows_;
+  std::vector<ContactEvent> events_;
+};
+
+// ---- summary.json ---------------------------------------------------------------------
+
+/// The scene as a JSON object mirroring to_toml(): title, then the tables cam, follower,
+/// spring, contact, solver, run with every key; enumerations as their strings.
+std::string scene_json(const Scene& scene, int indent = 0);
+/// summary.json: the run's statistics and "options" (the resolved scene).
+std::string summary_json(const Summary& summary, const Scene& resolved);
+/// Write DIR/summary.json atomically. @throws std::runtime_error.
+void write_summary(const std::string& dir, const Summary& summary, const Scene& resolved);
+
+// ---- cam.csv --------------------------------------------------------------------------
+
+/// Header of cam.csv: "theta,X_C,dX_dtheta,d2X_dtheta2,beta,r,rho".
+const std::vector<std::string>& cam_columns();
+/// cam.csv text: `points` rows at θ = 2π i / points, i = 0 … points−1, from Cam::evaluate.
+std::string cam_csv(const Cam& cam, int points);
+
+}  // namespace camdyn

@@ -1,0 +1,256 @@
+#!/usr/bin/env python3
+"""Figures of a camdyn output directory (numpy + matplotlib, no display needed).
+
+    camdyn_plot.py run DIR [--zoom T0 T1]
+        DIR/history.csv -> DIR/displacement.png       u_c(t) and the cam X_C = u_c + gap
+                           DIR/contact_force.png      contact force over the run
+                           DIR/contact_force_zoom.png 0.02 s around the largest force
+                                                      (or the window T0..T1)
+    camdyn_plot.py cam DIR [--speed REV_S]
+        DIR/cam.csv     -> DIR/cam_profile.png        the profile in the cam frame
+                           DIR/cam_kinematics.png     lift, velocity, acceleration vs cam angle
+                           (speed: --speed, else DIR/cam_info.json written by `camdyn cam`)
+    --quiet: do not list the files written.
+
+Exit status: 0 done, 2 bad input (missing/unreadable file), 3 numpy/matplotlib missing.
+"""
+import argparse
+import json
+import math
+import os
+import sys
+
+try:
+    import numpy as np
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+except ImportError as exc:  # pragma: no cover - depends on the system
+    sys.stderr.write("camdyn_plot: needs numpy and matplotlib (%s)\n" % exc)
+    sys.exit(3)
+
+
+class InputError(Exception):
+    pass
+
+
+def read_csv(path):
+    """Numeric CSV with a header row -> (column names, dict name -> 1-D float array)."""
+    if not os.path.isfile(path):
+        raise InputError("%s: no such file" % path)
+    with open(path, "r", encoding="utf-8") as f:
+        header = f.readline().strip()
+        if not header:
+            raise InputError("%s: empty file (no header)" % path)
+        names = header.split(",")
+        rows = []
+        for lineno, line in enumerate(f, start=2):
+            line = line.strip()
+            if not line:
+                continue
+            parts = line.split(",")
+            if len(parts) != len(names):
+                raise InputError(
+                    "%s:%d: %d fields, expected %d" % (path, lineno, len(parts), len(names))
+                )
+            try:
+                rows.append([float(p) for p in parts])
+            except ValueError:
+                raise InputError("%s:%d: not a number in %r" % (path, lineno, line))
+    data = np.array(rows, dtype=float).reshape(-1, len(names))
+    return names, {n: data[:, i] for i, n in enumerate(names)}
+
+
+def require(cols, path, names):
+    missing = [n for n in names if n not in cols]
+    if missing:
+        raise InputError("%s: missing column(s) %s" % (path, ", ".join(missing)))
+
+
+def scene_title(d):
+    try:
+        with open(os.path.join(d, "summary.json"), "r", encoding="utf-8") as f:
+            s = json.load(f)
+        title = str(s.get("scene", ""))
+        if s.get("finished") is False:
+            title += "  (did not finish: %s)" % s.get("message", "")
+        return title
+    except (OSError, ValueError):
+        return ""
+
+
+QUIET = False
+
+
+def save(fig, path):
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    if not QUIET:
+        print("wrote %s" % path)
+
+
+def cam_info(d):
+    """DIR/cam_info.json from `camdyn cam` (title, speed_rev_s), or {}."""
+    try:
+        with open(os.path.join(d, "cam_info.json"), "r", encoding="utf-8") as f:
+            info = json.load(f)
+        return info if isinstance(info, dict) else {}
+    except (OSError, ValueError):
+        return {}
+
+
+# ---- run -----------------------------------------------------------------------------
+
+
+def plot_run(d, zoom=None):
+    path = os.path.join(d, "history.csv")
+    _, c = read_csv(path)
+    require(c, path, ["t", "u_c", "contact_force", "gap"])
+    t, u, force, gap = c["t"], c["u_c"], c["contact_force"], c["gap"]
+    title = scene_title(d)
+    if t.size == 0:
+        raise InputError("%s: no rows" % path)
+
+    # Displacement of the contact face, and the cam's contact point.
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    ax.plot(t, u, "-", lw=1.2, label="follower $u_c$")
+    ax.plot(t, u + gap, "--", lw=1.0, label="cam $X_C = u_c + $gap")
+    ax.set_xlabel("time t")
+    ax.set_ylabel("displacement")
+    ax.set_title(("Displacement of the contact face\n" + title).strip())
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best")
+    save(fig, os.path.join(d, "displacement.png"))
+
+    # Contact force over the run.
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    ax.plot(t, force, "-", lw=0.8)
+    ax.set_xlabel("time t")
+    ax.set_ylabel("contact force $-p$")
+    ax.set_title(("Contact force\n" + title).strip())
+    ax.grid(True, alpha=0.3)
+    save(fig, os.path.join(d, "contact_force.png"))
+
+    # Zoomed window.
+    if zoom is not None:
+        t0, t1 = zoom
+    else:
+        finite = np.where(np.isfinite(force), force, -np.inf)
+        i = int(np.argmax(finite)) if finite.size else 0
+        half = 0.01
+        t0, t1 = t[i] - half, t[i] + half
+        # keep the window inside the run when the run is long enough
+        if t[-1] - t[0] >= 2 * half:
+            if t0 < t[0]:
+                t0, t1 = t[0], t[0] + 2 * half
+            if t1 > t[-1]:
+                t0, t1 = t[-1] - 2 * half, t[-1]
+    sel = (t >= t0) & (t <= t1)
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    if np.any(sel):
+        ax.plot(t[sel], force[sel], ".-", lw=0.8, ms=2)
+    ax.set_xlim(t0, t1)
+    ax.set_xlabel("time t")
+    ax.set_ylabel("contact force $-p$")
+    ax.set_title(("Contact force, t = %.6g … %.6g\n" % (t0, t1) + title).strip())
+    ax.grid(True, alpha=0.3)
+    save(fig, os.path.join(d, "contact_force_zoom.png"))
+
+
+# ---- cam -----------------------------------------------------------------------------
+
+
+def plot_cam(d, speed=None):
+    path = os.path.join(d, "cam.csv")
+    _, c = read_csv(path)
+    require(c, path, ["theta", "X_C", "dX_dtheta", "d2X_dtheta2", "beta", "r"])
+    th, h, dh, ddh = c["theta"], c["X_C"], c["dX_dtheta"], c["d2X_dtheta2"]
+    beta, r = c["beta"], c["r"]
+    if th.size == 0:
+        raise InputError("%s: no rows" % path)
+    info = cam_info(d)
+    title = str(info.get("title") or "")
+    if speed is None and isinstance(info.get("speed_rev_s"), (int, float)):
+        speed = float(info["speed_rev_s"])
+
+    # Profile: the contact point C at cam angle θ has polar angle β − θ in the cam frame.
+    phi = beta - th
+    x, y = r * np.cos(phi), r * np.sin(phi)
+    x, y = np.append(x, x[:1]), np.append(y, y[:1])
+    fig, ax = plt.subplots(figsize=(6, 6))
+    ax.plot(x, y, "-", lw=1.5, label="profile (contact points)")
+    ax.plot([0], [0], "k+", ms=10, label="centre of rotation O")
+    rmin = float(np.min(r))
+    a = np.linspace(0, 2 * math.pi, 361)
+    ax.plot(rmin * np.cos(a), rmin * np.sin(a), ":", lw=0.8, color="gray",
+            label="circle r = %.4g" % rmin)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x (cam frame)")
+    ax.set_ylabel("y (cam frame)")
+    ax.set_title(("Cam profile\n" + title).strip())
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3, fontsize="small")
+    save(fig, os.path.join(d, "cam_profile.png"))
+
+    # Kinematics at constant speed ω: X_C, Ẋ_C = h'ω, Ẍ_C = h''ω².
+    deg = np.degrees(th)
+    fig, axs = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
+    axs[0].plot(deg, h - np.min(h), "-")
+    axs[0].set_ylabel("lift $X_C - \\min X_C$")
+    if speed is not None and math.isfinite(speed) and speed != 0:
+        w = 2 * math.pi * speed
+        axs[1].plot(deg, dh * w, "-")
+        axs[1].set_ylabel("velocity $\\dot X_C$")
+        axs[2].plot(deg, ddh * w * w, "-")
+        axs[2].set_ylabel("acceleration $\\ddot X_C$")
+        fig.suptitle(("Cam kinematics at %.6g rev/s\n" % speed + title).strip())
+    else:
+        axs[1].plot(deg, dh, "-")
+        axs[1].set_ylabel("$dX_C/d\\theta$")
+        axs[2].plot(deg, ddh, "-")
+        axs[2].set_ylabel("$d^2X_C/d\\theta^2$")
+        fig.suptitle(("Cam kinematics (per radian of cam angle)\n" + title).strip())
+    axs[2].set_xlabel("cam angle θ [deg]")
+    axs[2].set_xlim(0, 360)
+    for ax in axs:
+        ax.grid(True, alpha=0.3)
+    save(fig, os.path.join(d, "cam_kinematics.png"))
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="camdyn_plot.py", description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="mode")
+    pr = sub.add_parser("run", help="figures from DIR/history.csv")
+    pr.add_argument("dir")
+    pr.add_argument("--zoom", nargs=2, type=float, metavar=("T0", "T1"),
+                    help="time window of contact_force_zoom.png")
+    pc = sub.add_parser("cam", help="figures from DIR/cam.csv")
+    pc.add_argument("dir")
+    pc.add_argument("--speed", type=float, default=None,
+                    help="cam speed [rev/s] for velocity and acceleration")
+    for q in (pr, pc):
+        q.add_argument("--quiet", action="store_true", help="do not list the files written")
+    a = p.parse_args(argv)
+    global QUIET
+    QUIET = bool(getattr(a, "quiet", False))
+    if a.mode is None:
+        p.print_help(sys.stderr)
+        return 2
+    try:
+        if a.mode == "run":
+            if a.zoom is not None and not a.zoom[0] < a.zoom[1]:
+                raise InputError("--zoom: expected T0 < T1")
+            plot_run(a.dir, a.zoom)
+        else:
+            plot_cam(a.dir, a.speed)
+    except InputError as e:
+        sys.stderr.write("camdyn_plot: %s\n" % e)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,621 @@
+// camdyn — command-line tool (INTERFACE.md "Command line").
+//
+//   camdyn run   [SCENE.toml] [--out DIR] [--set KEY=VALUE]... [--quiet] [--plot]
+//   camdyn cam   [SCENE.toml] [--out DIR] [--points N] [--set KEY=VALUE]...
+//   camdyn scene [SCENE.toml] [--resolved] [--set KEY=VALUE]...
+//   camdyn plot  DIR [--zoom T0 T1]
+//
+// Exit status: 0 success; 1 the simulation (or a figure) failed; 2 bad input.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <new>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "camdyn/cam.hpp"
+#include "camdyn/output.hpp"
+#include "camdyn/scene.hpp"
+#include "camdyn/simulator.hpp"
+
+#ifndef CAMDYN_PLOT_SCRIPT_BUILD
+#define CAMDYN_PLOT_SCRIPT_BUILD ""
+#endif
+#ifndef CAMDYN_PLOT_SCRIPT_INSTALL
+#define CAMDYN_PLOT_SCRIPT_INSTALL ""
+#endif
+
+namespace {
+
+using namespace camdyn;
+namespace fs = std::filesystem;
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailed = 1;
+constexpr int kExitBadInput = 2;
+
+// ---- Ctrl-C -------------------------------------------------------------------------------
+
+std::atomic<bool> g_stop{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "signal handler needs a lock-free flag");
+
+extern "C" void on_sigint(int) { g_stop.store(true); }
+
+class SigintGuard {
+ public:
+  SigintGuard() {
+    g_stop.store(false);
+    struct sigaction sa {};
+    sa.sa_handler = on_sigint;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESETHAND;  // a second Ctrl-C kills the program the usual way
+    installed_ = sigaction(SIGINT, &sa, &old_) == 0;
+  }
+  ~SigintGuard() {
+    if (installed_) sigaction(SIGINT, &old_, nullptr);
+  }
+  SigintGuard(const SigintGuard&) = delete;
+  SigintGuard& operator=(const SigintGuard&) = delete;
+
+ private:
+  struct sigaction old_ {};
+  bool installed_ = false;
+};
+
+// ---- progress line ------------------------------------------------------------------------
+
+class CliObserver : public HistoryWriter {
+ public:
+  explicit CliObserver(bool show_progress) : enabled_(show_progress) {}
+
+  void on_progress(double t, double t_end, long steps) override {
+    if (!enabled_) return;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    if (elapsed < 1.0) return;
+    char eta[48];
+    if (t > 0 && t_end > t && std::isfinite(t)) {
+      const double rest = elapsed * (t_end - t) / t;
+      if (rest < 120)
+        std::snprintf(eta, sizeof eta, "%.0f s", rest);
+      else if (rest < 7200)
+        std::snprintf(eta, sizeof eta, "%.0f min", rest / 60);
+      else
+        std::snprintf(eta, sizeof eta, "%.1f h", rest / 3600);
+    } else {
+      std::snprintf(eta, sizeof eta, "?");
+    }
+    char line[200];
+    int n = std::snprintf(line, sizeof line, "\r t = %.4g / %g s  steps %ld  ETA %s", t, t_end,
+                          steps, eta);
+    if (n < 0) return;
+    int len = n - 1;  // without '\r'
+    std::string out(line);
+    if (len < width_) out.append(static_cast<size_t>(width_ - len), ' ');
+    width_ = std::max(width_, len);
+    std::fputs(out.c_str(), stderr);
+    std::fflush(stderr);
+  }
+
+  /// Erase the progress line, if one was drawn.
+  void finish() {
+    if (width_ > 0) {
+      std::fprintf(stderr, "\r%*s\r", width_, "");
+      std::fflush(stderr);
+      width_ = 0;
+    }
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  bool enabled_;
+  Clock::time_point start_ = Clock::now();
+  int width_ = 0;
+};
+
+// ---- helpers ------------------------------------------------------------------------------
+
+std::string fmt_g(double x, int digits = 6) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*g", digits, x);
+  return b;
+}
+
+/// The scene a subcommand works on: file or paper case or a fallback, then overrides.
+Scene build_scene(const std::string& file, const std::string& case_name,
+                  const std::vector<std::string>& sets, Scene fallback) {
+  Scene sc;
+  if (!file.empty() && !case_name.empty()) {
+    throw SceneError("--case", 0, "case", case_name,
+                     "give either a scene file or --case, not both");
+  }
+  if (!file.empty()) {
+    sc = load_scene_file(file);
+  } else if (!case_name.empty()) {
+    try {
+      sc = paper_case(case_name);
+    } catch (const SceneError&) {
+      throw;
+    } catch (const std::exception& e) {
+      std::string rule = e.what();
+      if (rule.find("B1") == std::string::npos) rule += " (allowed: A, B1, B2)";
+      throw SceneError("--case", 0, "case", case_name, rule);
+    }
+  } else {
+    sc = std::move(fallback);
+  }
+  for (const auto& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos) {
+      throw SceneError("--set", 0, s, "",
+                       "expected KEY=VALUE with a dotted key, e.g. --set cam.speed_rev_s=3");
+    }
+    if (eq == 0) {
+      throw SceneError("--set", 0, "", s.substr(1),
+                       "missing key before '=': expected KEY=VALUE, e.g. cam.speed_rev_s=3");
+    }
+    apply_override(sc, s);
+  }
+  return sc;
+}
+
+std::string plot_script_path() {
+  if (const char* env = std::getenv("CAMDYN_PLOT_SCRIPT"); env && *env) return env;
+  std::error_code ec;
+  for (const char* p : {CAMDYN_PLOT_SCRIPT_INSTALL, CAMDYN_PLOT_SCRIPT_BUILD}) {
+    if (p && *p && fs::is_regular_file(p, ec)) return p;
+  }
+  return {};
+}
+
+/// Run the plot script with `args`. Returns its exit status, or −1 if it could not start.
+int run_plot_script(const std::vector<std::string>& args, std::string* why) {
+  const std::string script = plot_script_path();
+  if (script.empty()) {
+    *why = std::string("plot script not found (looked for ") + CAMDYN_PLOT_SCRIPT_INSTALL +
+           " and " + CAMDYN_PLOT_SCRIPT_BUILD + ")";
+    return -1;
+  }
+  const bool have_usr_python = ::access("/usr/bin/python3", X_OK) == 0;
+  const std::string python = have_usr_python ? "/usr/bin/python3" : "python3";
+  std::vector<std::string> argv_s{python, script};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    *why = std::string("fork failed: ") + std::strerror(errno);
+    return -1;
+  }
+  if (pid == 0) {
+    // The child keeps the default Ctrl-C behaviour.
+    std::signal(SIGINT, SIG_DFL);
+    if (have_usr_python)
+      ::execv(argv[0], argv.data());
+    else
+      ::execvp(argv[0], argv.data());
+    std::fprintf(stderr, "camdyn: cannot run %s: %s\n", python.c_str(), std::strerror(errno));
+    ::_exit(127);
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) {
+      *why = std::string("waitpid failed: ") + std::strerror(errno);
+      return -1;
+    }
+  }
+  if (WIFEXITED(status)) {
+    const int rc = WEXITSTATUS(status);
+    if (rc == 127) *why = "python3 not found";
+    else if (rc == 3) *why = "python3 has no numpy/matplotlib (apt-get install python3-matplotlib)";
+    else if (rc != 0) *why = "plot script exited with status " + std::to_string(rc);
+    return rc;
+  }
+  *why = "plot script was killed by signal " + std::to_string(WTERMSIG(status));
+  return 128 + WTERMSIG(status);
+}
+
+// ---- subcommands --------------------------------------------------------------------------
+
+struct CommonOpts {
+  std::string scene_file;
+  std::string case_name;
+  std::vector<std::string> sets;
+};
+
+struct RunOpts {
+  CommonOpts c;
+  std::string out = "camdyn-out";
+  bool quiet = false;
+  bool plot = false;
+};
+
+struct CamOpts {
+  CommonOpts c;
+  std::string out = "camdyn-out";
+  int points = 3600;
+  bool quiet = false;
+  bool no_plot = false;
+};
+
+struct SceneOpts {
+  CommonOpts c;
+  bool resolved = false;
+};
+
+struct PlotOpts {
+  std::string dir;
+  std::vector<double> zoom;
+};
+
+int cmd_run(const RunOpts& o) {
+  // Input stage: every error here is bad input (exit 2, raised to main()).
+  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
+  resolve_defaults(sc);
+  validate(sc);
+  ensure_output_dir(o.out);
+  std::optional<Simulator> sim;
+  try {
+    sim.emplace(sc);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw SceneError(sc.source, 0, "scene", sc.title, std::string("cannot build the model: ") +
+                                                          e.what());
+  }
+
+  // Run stage.
+  const bool progress = !o.quiet && ::isatty(STDERR_FILENO);
+  CliObserver obs(progress);
+  Summary summary;
+  bool interrupted = false;
+  {
+    SigintGuard guard;
+    try {
+      summary = sim->run(&obs, &g_stop);
+    } catch (const std::exception& e) {
+      summary = Summary{};
+      summary.scene = sc.title;
+      summary.finished = false;
+      summary.message = std::string("internal error: ") + e.what();
+      summary.t_end = obs.rows().empty() ? 0.0 : obs.rows().back().t;
+      summary.events = obs.events();
+    } catch (...) {
+      summary = Summary{};
+      summary.scene = sc.title;
+      summary.finished = false;
+      summary.message = "internal error (unknown exception)";
+      summary.t_end = obs.rows().empty() ? 0.0 : obs.rows().back().t;
+      summary.events = obs.events();
+    }
+    interrupted = g_stop.load();
+  }
+  obs.finish();
+  if (summary.scene.empty()) summary.scene = sc.title;
+  if (!summary.finished && summary.message.empty())
+    summary.message = interrupted ? "interrupted" : "did not finish";
+
+  // Output stage: always write what was computed.
+  int rc = summary.finished ? kExitOk : kExitFailed;
+  try {
+    obs.write(o.out);
+    write_summary(o.out, summary, sc);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "camdyn: cannot write the output in '%s': %s\n", o.out.c_str(),
+                 e.what());
+    rc = kExitFailed;
+  }
+
+  if (!o.quiet) {
+    std::string report;
+    try {
+      report = summary.BriefReport();
+    } catch (const std::exception&) {
+      report.clear();
+    }
+    if (!report.empty()) {
+      std::fputs(report.c_str(), stdout);
+      if (report.back() != '\n') std::fputc('\n', stdout);
+    }
+    std::printf("output: %s, %s, %s\n", join_path(o.out, "history.csv").c_str(),
+                join_path(o.out, "events.csv").c_str(),
+                join_path(o.out, "summary.json").c_str());
+    std::fflush(stdout);
+  }
+  if (!summary.finished) {
+    // The simulator's message may already start with "at t = ...": do not repeat it.
+    const std::string& m = summary.message;
+    const std::string where = m.rfind("at t =", 0) == 0 || m.rfind("at t=", 0) == 0
+                                  ? m
+                                  : "at t = " + fmt_g(summary.t_end, 8) + ": " + m;
+    std::fprintf(stderr, "camdyn: %s %s\n",
+                 interrupted ? "simulation interrupted" : "simulation failed", where.c_str());
+  }
+
+  if (o.plot) {
+    std::string why;
+    std::vector<std::string> args{"run", o.out, "--quiet"};  // listed below, once
+    const int prc = run_plot_script(args, &why);
+    if (prc != 0) {
+      std::fprintf(stderr, "camdyn: warning: no figures drawn: %s\n", why.c_str());
+    } else if (!o.quiet) {
+      std::printf("figures: %s, %s, %s\n", join_path(o.out, "displacement.png").c_str(),
+                  join_path(o.out, "contact_force.png").c_str(),
+                  join_path(o.out, "contact_force_zoom.png").c_str());
+    }
+  }
+  return rc;
+}
+
+int cmd_cam(const CamOpts& o) {
+  // Without a scene: the paper cam (default CamSpec) at its default speed.
+  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, Scene{});
+  resolve_defaults(sc);
+  validate(sc);
+  Cam cam(sc.cam);  // SceneError on a bad profile → exit 2
+  ensure_output_dir(o.out);
+  const std::string path = join_path(o.out, "cam.csv");
+  try {
+    write_file_atomic(path, cam_csv(cam, o.points));
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "camdyn: cannot write '%s': %s\n", path.c_str(), e.what());
+    return kExitFailed;
+  }
+  double speed = sc.cam.speed_rev_s;
+  if (!sc.cam.speed_table_rev_s.empty()) speed = sc.cam.speed_table_rev_s.front();
+  // Side file for the figures ('camdyn plot DIR' redraws them at the same speed).
+  try {
+    write_file_atomic(join_path(o.out, "cam_info.json"),
+                      "{\n  \"title\": " + json_string(sc.title) +
+                          ",\n  \"speed_rev_s\": " + json_number(speed) +
+                          ",\n  \"points\": " + std::to_string(o.points) +
+                          ",\n  \"lift\": " + json_number(cam.lift()) +
+                          ",\n  \"min_radius_of_curvature\": " +
+                          json_number(cam.min_radius_of_curvature()) + "\n}\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "camdyn: warning: %s\n", e.what());
+  }
+  if (!o.quiet) {
+    std::printf("wrote %s (%d points): lift %s, smallest radius of curvature %s\n",
+                path.c_str(), o.points, fmt_g(cam.lift()).c_str(),
+                fmt_g(cam.min_radius_of_curvature()).c_str());
+    std::fflush(stdout);
+  }
+  if (!o.no_plot) {
+    std::string why;
+    // --quiet: the figures are listed below, once.
+    std::vector<std::string> args{"cam", o.out, "--speed", fmt_g(speed, 17), "--quiet"};
+    const int prc = run_plot_script(args, &why);
+    if (prc != 0) {
+      std::fprintf(stderr, "camdyn: warning: no cam figures drawn: %s\n", why.c_str());
+    } else if (!o.quiet) {
+      std::printf("figures: %s, %s\n", join_path(o.out, "cam_profile.png").c_str(),
+                  join_path(o.out, "cam_kinematics.png").c_str());
+    }
+  }
+  return kExitOk;
+}
+
+int cmd_scene(const SceneOpts& o) {
+  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
+  Scene resolved = sc;
+  resolve_defaults(resolved);
+  validate(resolved);
+  const std::string text = to_toml(o.resolved ? resolved : sc);
+  std::fputs(text.c_str(), stdout);
+  if (!text.empty() && text.back() != '\n') std::fputc('\n', stdout);
+  return kExitOk;
+}
+
+int cmd_plot(const PlotOpts& o) {
+  std::error_code ec;
+  if (!fs::is_directory(o.dir, ec)) {
+    throw SceneError("plot", 0, "DIR", o.dir, "not a directory");
+  }
+  const bool have_history = fs::is_regular_file(join_path(o.dir, "history.csv"), ec);
+  const bool have_cam = fs::is_regular_file(join_path(o.dir, "cam.csv"), ec);
+  if (!have_history && !have_cam) {
+    throw SceneError("plot", 0, "DIR", o.dir,
+                     "holds neither history.csv (from 'camdyn run') nor cam.csv (from "
+                     "'camdyn cam')");
+  }
+  int rc = kExitOk;
+  if (have_history) {
+    std::vector<std::string> args{"run", o.dir};
+    if (o.zoom.size() == 2) {
+      args.push_back("--zoom");
+      args.push_back(fmt_g(o.zoom[0], 17));
+      args.push_back(fmt_g(o.zoom[1], 17));
+    }
+    std::string why;
+    if (run_plot_script(args, &why) != 0) {
+      std::fprintf(stderr, "camdyn: cannot draw the figures: %s\n", why.c_str());
+      rc = kExitFailed;
+    }
+  }
+  if (have_cam) {
+    std::string why;
+    if (run_plot_script({"cam", o.dir}, &why) != 0) {
+      std::fprintf(stderr, "camdyn: cannot draw the cam figures: %s\n", why.c_str());
+      rc = kExitFailed;
+    }
+  }
+  return rc;
+}
+
+void add_common(CLI::App* sub, CommonOpts& c, const char* scene_help) {
+  sub->add_option("scene", c.scene_file, scene_help)->type_name("SCENE.toml");
+  sub->add_option("--case", c.case_name,
+                  "Use one of the paper's reference cases instead of a file: A, B1, B2")
+      ->type_name("NAME");
+  sub->add_option("--set", c.sets,
+                  "Override a scene key, e.g. --set cam.speed_rev_s=3 --set "
+                  "contact.model=penalty (repeatable; applied in order; value in TOML "
+                  "syntax, bare words are strings)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+}
+
+const std::vector<std::string> kCommands{"run", "cam", "scene", "plot"};
+
+int real_main(int argc, char** argv) {
+  CLI::App app{
+      "camdyn — cam–follower dynamics with impact, separation and elastic deformation "
+      "(Lee 1997).",
+      "camdyn"};
+  app.require_subcommand(1);
+  app.footer(
+      "Exit status: 0 success, 1 the simulation failed, 2 bad input.\n"
+      "Examples:\n"
+      "  camdyn run                          # the built-in paper case B2\n"
+      "  camdyn run scene.toml --out out --set cam.speed_rev_s=3 --plot\n"
+      "  camdyn cam --out out                # cam.csv + cam figures\n"
+      "  camdyn scene scene.toml --resolved  # the scene with every default filled in\n"
+      "Run 'camdyn COMMAND --help' for the options of a command.");
+
+  RunOpts ro;
+  auto* run = app.add_subcommand(
+      "run",
+      "Simulate a scene (default: the built-in paper case B2, elastic follower at 5 rev/s) "
+      "and write DIR/history.csv, DIR/events.csv and DIR/summary.json (also when the run "
+      "fails or is interrupted with Ctrl-C)");
+  add_common(run, ro.c, "Scene file (TOML); without it the built-in default scene is run");
+  run->add_option("-o,--out", ro.out, "Output directory (created if missing)")
+      ->type_name("DIR")
+      ->capture_default_str();
+  run->add_flag("-q,--quiet", ro.quiet, "Print nothing but errors");
+  run->add_flag("--plot", ro.plot,
+                "Draw displacement.png, contact_force.png and contact_force_zoom.png in DIR "
+                "after the run (python3 + matplotlib)");
+  run->footer(
+      "history.csv columns: " +
+      [] {
+        std::string h;
+        for (const auto& c : history_columns()) h += (h.empty() ? "" : ",") + c;
+        return h;
+      }() +
+      "\nExit status: 0 finished, 1 the simulation failed (message names the time and the "
+      "reason), 2 bad input.");
+
+  CamOpts co;
+  auto* cam = app.add_subcommand(
+      "cam",
+      "Cam kinematics over one revolution: DIR/cam.csv (theta,X_C,dX_dtheta,d2X_dtheta2,"
+      "beta,r,rho) and the figures cam_profile.png and cam_kinematics.png");
+  add_common(cam, co.c, "Scene file (TOML); without it the paper's cam is used");
+  cam->add_option("-o,--out", co.out, "Output directory (created if missing)")
+      ->type_name("DIR")
+      ->capture_default_str();
+  cam->add_option("-n,--points", co.points, "Number of cam angles θ = 2π i/N, i = 0..N−1")
+      ->type_name("N")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000000));
+  cam->add_flag("-q,--quiet", co.quiet, "Print nothing but errors");
+  cam->add_flag("--no-plot", co.no_plot, "Write cam.csv only, no figures");
+
+  SceneOpts so;
+  auto* scene = app.add_subcommand(
+      "scene", "Check a scene and print it as TOML (with --resolved: every default filled in)");
+  add_common(scene, so.c, "Scene file (TOML); without it the built-in default scene");
+  scene->add_flag("-r,--resolved", so.resolved,
+                  "Print the resolved scene (automatic values such as contact.tol_u filled "
+                  "in)");
+
+  PlotOpts po;
+  auto* plot = app.add_subcommand(
+      "plot",
+      "Draw the figures of an output directory: history.csv → displacement.png, "
+      "contact_force.png, contact_force_zoom.png; cam.csv → cam_profile.png, "
+      "cam_kinematics.png (python3 + matplotlib)");
+  plot->add_option("dir", po.dir, "Output directory of 'camdyn run' or 'camdyn cam'")
+      ->type_name("DIR")
+      ->required();
+  plot->add_option("--zoom", po.zoom,
+                   "Time window of contact_force_zoom.png (default: 0.02 s around the "
+                   "largest contact force)")
+      ->type_name("T0 T1")
+      ->expected(2);
+
+  // A clear message for a mistyped command (CLI11 would only say "not expected").
+  if (argc >= 2 && argv[1][0] != '-') {
+    bool known = false;
+    for (const auto& c : kCommands) known = known || c == argv[1];
+    if (!known) {
+      std::fprintf(stderr,
+                   "camdyn: unknown command '%s' (allowed: run, cam, scene, plot; see "
+                   "camdyn --help)\n",
+                   argv[1]);
+      return kExitBadInput;
+    }
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::string what = e.what();
+    if (argc < 2) what = "no command given (allowed: run, cam, scene, plot)";
+    std::fprintf(stderr, "camdyn: %s\nRun 'camdyn --help' for the commands and options.\n",
+                 what.c_str());
+    return kExitBadInput;
+  }
+  if (po.zoom.size() == 2 && !(po.zoom[0] < po.zoom[1])) {
+    throw SceneError("--zoom", 0, "zoom", fmt_g(po.zoom[0]) + " " + fmt_g(po.zoom[1]),
+                     "expected T0 < T1");
+  }
+
+  if (run->parsed()) return cmd_run(ro);
+  if (cam->parsed()) return cmd_cam(co);
+  if (scene->parsed()) return cmd_scene(so);
+  if (plot->parsed()) return cmd_plot(po);
+  std::fprintf(stderr, "camdyn: no command given (allowed: run, cam, scene, plot)\n");
+  return kExitBadInput;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return real_main(argc, argv);
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "camdyn: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "camdyn: out of memory\n");
+    return kExitFailed;
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "camdyn: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "camdyn: %s\n", e.what());
+    return kExitFailed;
+  } catch (...) {
+    std::fprintf(stderr, "camdyn: unknown error\n");
+    return kExitFailed;
+  }
+}

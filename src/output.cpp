@@ -1,0 +1,618 @@
+// camdyn — output files (see output.hpp).
+#include "camdyn/output.hpp"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace camdyn {
+
+namespace fs = std::filesystem;
+
+// ---- atomic files -----------------------------------------------------------------------
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+  tmp_ = path_ + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+  f_ = std::fopen(tmp_.c_str(), "wb");
+  if (!f_) {
+    throw std::runtime_error("cannot create '" + tmp_ + "': " + std::strerror(errno));
+  }
+  std::setvbuf(f_, nullptr, _IOFBF, 1 << 16);
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) {
+    if (f_) std::fclose(f_);
+    std::remove(tmp_.c_str());
+  }
+}
+
+void AtomicFile::write(std::string_view text) {
+  if (!f_) throw std::runtime_error("write to '" + path_ + "' after commit");
+  if (text.empty()) return;
+  if (std::fwrite(text.data(), 1, text.size(), f_) != text.size()) {
+    throw std::runtime_error("cannot write '" + tmp_ + "': " + std::strerror(errno));
+  }
+}
+
+void AtomicFile::commit() {
+  if (committed_) return;
+  if (!f_) throw std::runtime_error("AtomicFile '" + path_ + "' is not open");
+  bool ok = std::fflush(f_) == 0;
+  int err = ok ? 0 : errno;
+  if (ok && ::fsync(::fileno(f_)) != 0 && errno != EINVAL && errno != EROFS) {
+    ok = false;
+    err = errno;
+  }
+  if (std::fclose(f_) != 0 && ok) {
+    ok = false;
+    err = errno;
+  }
+  f_ = nullptr;
+  if (!ok) {
+    std::remove(tmp_.c_str());
+    committed_ = true;
+    throw std::runtime_error("cannot write '" + tmp_ + "': " + std::strerror(err));
+  }
+  if (std::rename(tmp_.c_str(), path_.c_str()) != 0) {
+    err = errno;
+    std::remove(tmp_.c_str());
+    committed_ = true;
+    throw std::runtime_error("cannot rename '" + tmp_ + "' to '" + path_ +
+                             "': " + std::strerror(err));
+  }
+  committed_ = true;
+}
+
+void write_file_atomic(const std::string& path, std::string_view content) {
+  AtomicFile f(path);
+  f.write(content);
+  f.commit();
+}
+
+std::string join_path(const std::string& dir, const std::string& name) {
+  if (dir.empty() || dir == ".") return name;
+  if (dir.back() == '/') return dir + name;
+  return dir + "/" + name;
+}
+
+void ensure_output_dir(const std::string& dir) {
+  auto fail = [&](const std::string& reason) {
+    throw SceneError("--out", 0, "out", dir, "output directory is not writable: " + reason);
+  };
+  if (dir.empty()) fail("empty path");
+  std::error_code ec;
+  const fs::path p(dir);
+  if (fs::exists(p, ec)) {
+    if (!fs::is_directory(p, ec)) fail("exists and is not a directory");
+  } else {
+    fs::create_directories(p, ec);
+    if (ec) fail(ec.message());
+    if (!fs::is_directory(p, ec)) fail("could not be created");
+  }
+  // access() says yes for root on most file systems: also try to create a file.
+  if (::access(dir.c_str(), W_OK | X_OK) != 0) fail(std::strerror(errno));
+  const std::string probe =
+      join_path(dir, ".camdyn-probe." + std::to_string(static_cast<long>(::getpid())));
+  int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) fail(std::strerror(errno));
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+// ---- formatting ---------------------------------------------------------------------
+
+namespace {
+
+void append_double(std::string& out, double x) {
+  if (std::isnan(x)) {
+    out += "nan";
+    return;
+  }
+  if (std::isinf(x)) {
+    out += x > 0 ? "inf" : "-inf";
+    return;
+  }
+  char buf[64];
+  auto res = std::to_chars(buf, buf + sizeof buf, x);
+  if (res.ec == std::errc()) {
+    out.append(buf, res.ptr);
+  } else {
+    int n = std::snprintf(buf, sizeof buf, "%.17g", x);
+    out.append(buf, static_cast<size_t>(n));
+  }
+}
+
+void append_json_number(std::string& out, double x) {
+  if (!std::isfinite(x)) {
+    out += "null";
+    return;
+  }
+  char buf[64];
+  auto res = std::to_chars(buf, buf + sizeof buf, x);
+  std::string_view s;
+  if (res.ec == std::errc()) {
+    s = std::string_view(buf, static_cast<size_t>(res.ptr - buf));
+  } else {
+    int n = std::snprintf(buf, sizeof buf, "%.17g", x);
+    s = std::string_view(buf, static_cast<size_t>(n));
+  }
+  // JSON has no "inf"; to_chars never writes a leading '+' or '.', so s is valid JSON.
+  out += s;
+}
+
+// Length of the valid UTF-8 sequence at s[i], or 0 if invalid.
+size_t utf8_len(std::string_view s, size_t i) {
+  const auto c = static_cast<unsigned char>(s[i]);
+  size_t n = 0;
+  unsigned cp = 0;
+  if (c < 0x80) return 1;
+  if ((c & 0xE0) == 0xC0) {
+    n = 2;
+    cp = c & 0x1F;
+  } else if ((c & 0xF0) == 0xE0) {
+    n = 3;
+    cp = c & 0x0F;
+  } else if ((c & 0xF8) == 0xF0) {
+    n = 4;
+    cp = c & 0x07;
+  } else {
+    return 0;
+  }
+  if (i + n > s.size()) return 0;
+  for (size_t k = 1; k < n; ++k) {
+    const auto d = static_cast<unsigned char>(s[i + k]);
+    if ((d & 0xC0) != 0x80) return 0;
+    cp = (cp << 6) | (d & 0x3F);
+  }
+  // reject overlong forms, surrogates and out-of-range code points
+  if ((n == 2 && cp < 0x80) || (n == 3 && cp < 0x800) || (n == 4 && cp < 0x10000) ||
+      (cp >= 0xD800 && cp <= 0xDFFF) || cp > 0x10FFFF) {
+    return 0;
+  }
+  return n;
+}
+
+void append_json_string(std::string& out, std::string_view s) {
+  out += '"';
+  for (size_t i = 0; i < s.size();) {
+    const char c = s[i];
+    const auto uc = static_cast<unsigned char>(c);
+    if (uc >= 0x80) {
+      size_t n = utf8_len(s, i);
+      if (n == 0) {
+        out += "\\ufffd";
+        ++i;
+      } else {
+        out.append(s.substr(i, n));
+        i += n;
+      }
+      continue;
+    }
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\b': out += "\\b"; break;
+      case '\f': out += "\\f"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (uc < 0x20 || uc == 0x7F) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", uc);
+          out += buf;
+        } else {
+          out += c;
+        }
+    }
+    ++i;
+  }
+  out += '"';
+}
+
+// A tiny pretty-printing JSON object writer.
+class JsonObject {
+ public:
+  explicit JsonObject(std::string& out, int indent) : out_(out), indent_(indent) {
+    out_ += '{';
+  }
+  void key(std::string_view k) {
+    out_ += first_ ? "\n" : ",\n";
+    first_ = false;
+    out_.append(static_cast<size_t>(indent_ + 2), ' ');
+    append_json_string(out_, k);
+    out_ += ": ";
+  }
+  void num(std::string_view k, double v) {
+    key(k);
+    append_json_number(out_, v);
+  }
+  void integer(std::string_view k, long long v) {
+    key(k);
+    out_ += std::to_string(v);
+  }
+  void boolean(std::string_view k, bool v) {
+    key(k);
+    out_ += v ? "true" : "false";
+  }
+  void str(std::string_view k, std::string_view v) {
+    key(k);
+    append_json_string(out_, v);
+  }
+  void nums(std::string_view k, const std::vector<double>& v) {
+    key(k);
+    out_ += '[';
+    for (size_t i = 0; i < v.size(); ++i) {
+      if (i) out_ += ", ";
+      append_json_number(out_, v[i]);
+    }
+    out_ += ']';
+  }
+  void strs(std::string_view k, const std::vector<std::string>& v) {
+    key(k);
+    out_ += '[';
+    for (size_t i = 0; i < v.size(); ++i) {
+      if (i) out_ += ", ";
+      append_json_string(out_, v[i]);
+    }
+    out_ += ']';
+  }
+  void raw(std::string_view k, std::string_view json) {
+    key(k);
+    out_ += json;
+  }
+  int child_indent() const { return indent_ + 2; }
+  void close() {
+    if (!first_) {
+      out_ += '\n';
+      out_.append(static_cast<size_t>(indent_), ' ');
+    }
+    out_ += '}';
+  }
+
+ private:
+  std::string& out_;
+  int indent_;
+  bool first_ = true;
+};
+
+}  // namespace
+
+std::string format_double(double x) {
+  std::string s;
+  append_double(s, x);
+  return s;
+}
+
+std::string json_number(double x) {
+  std::string s;
+  append_json_number(s, x);
+  return s;
+}
+
+std::string json_string(std::string_view s) {
+  std::string out;
+  append_json_string(out, s);
+  return out;
+}
+
+// ---- history and events -------------------------------------------------------------
+
+namespace {
+
+void append_row(std::string& out, const HistoryRow& r) {
+  const double v[] = {r.t, r.theta, r.u_c, r.v_c, r.a_c, r.contact_force, r.gap};
+  for (double x : v) {
+    append_double(out, x);
+    out += ',';
+  }
+  out += std::to_string(r.in_contact);
+  const double e[] = {r.kinetic, r.potential, r.work_cam, r.dissipated};
+  for (double x : e) {
+    out += ',';
+    append_double(out, x);
+  }
+  out += '\n';
+}
+
+std::string csv_header(const std::vector<std::string>& cols) {
+  std::string h;
+  for (size_t i = 0; i < cols.size(); ++i) {
+    if (i) h += ',';
+    h += cols[i];
+  }
+  h += '\n';
+  return h;
+}
+
+void write_history_file(const std::string& path, const std::vector<HistoryRow>& rows) {
+  AtomicFile f(path);
+  f.write(csv_header(history_columns()));
+  std::string chunk;
+  chunk.reserve(1 << 17);
+  for (const auto& r : rows) {
+    append_row(chunk, r);
+    if (chunk.size() > (1 << 16)) {
+      f.write(chunk);
+      chunk.clear();
+    }
+  }
+  f.write(chunk);
+  f.commit();
+}
+
+}  // namespace
+
+std::string history_csv(const std::vector<HistoryRow>& rows) {
+  std::string out = csv_header(history_columns());
+  out.reserve(out.size() + rows.size() * 200);
+  for (const auto& r : rows) append_row(out, r);
+  return out;
+}
+
+std::string events_csv(const std::vector<ContactEvent>& events) {
+  std::string out = "t,kind,impact_velocity\n";
+  for (const auto& e : events) {
+    append_double(out, e.t);
+    out += ',';
+    // kinds are plain words; quote defensively if one ever holds a comma or quote
+    if (e.kind.find_first_of(",\"\n") == std::string::npos) {
+      out += e.kind;
+    } else {
+      out += '"';
+      for (char c : e.kind) {
+        if (c == '"') out += '"';
+        out += c;
+      }
+      out += '"';
+    }
+    out += ',';
+    append_double(out, e.impact_velocity);
+    out += '\n';
+  }
+  return out;
+}
+
+void HistoryWriter::on_row(const HistoryRow& row) { rows_.push_back(row); }
+void HistoryWriter::on_event(const ContactEvent& event) { events_.push_back(event); }
+void HistoryWriter::clear() {
+  rows_.clear();
+  events_.clear();
+}
+
+void HistoryWriter::write(const std::string& dir) const {
+  write_history_file(join_path(dir, "history.csv"), rows_);
+  write_file_atomic(join_path(dir, "events.csv"), events_csv(events_));
+}
+
+// ---- summary.json -----------------------------------------------------------------------
+
+std::string scene_json(const Scene& s, int indent) {
+  std::string out;
+  JsonObject o(out, indent);
+  o.str("title", s.title);
+  {
+    std::string t;
+    JsonObject c(t, o.child_indent());
+    const CamSpec& x = s.cam;
+    c.str("profile", to_string(x.profile));
+    c.nums("angles_deg", x.angles_deg);
+    c.nums("radii", x.radii);
+    c.num("base_radius", x.base_radius);
+    c.nums("lift_angles_deg", x.lift_angles_deg);
+    c.nums("lift", x.lift);
+    c.num("radius", x.radius);
+    c.num("eccentricity", x.eccentricity);
+    c.num("speed_rev_s", x.speed_rev_s);
+    c.nums("speed_table_t", x.speed_table_t);
+    c.nums("speed_table_rev_s", x.speed_table_rev_s);
+    c.num("theta0_deg", x.theta0_deg);
+    c.close();
+    o.raw("cam", t);
+  }
+  {
+    std::string t;
+    JsonObject c(t, o.child_indent());
+    const FollowerSpec& x = s.follower;
+    c.str("kind", to_string(x.kind));
+    c.num("mass", x.mass);
+    c.num("damping", x.damping);
+    c.num("youngs_modulus", x.youngs_modulus);
+    c.num("area", x.area);
+    c.num("length", x.length);
+    c.integer("elements", x.elements);
+    c.str("mass_matrix", to_string(x.mass_matrix));
+    c.num("rayleigh_alpha", x.rayleigh_alpha);
+    c.num("rayleigh_beta", x.rayleigh_beta);
+    c.close();
+    o.raw("follower", t);
+  }
+  {
+    std::string t;
+    JsonObject c(t, o.child_indent());
+    c.num("stiffness", s.spring.stiffness);
+    c.num("precompression", s.spring.precompression);
+    c.close();
+    o.raw("spring", t);
+  }
+  {
+    std::string t;
+    JsonObject c(t, o.child_indent());
+    const ContactSpec& x = s.contact;
+    c.str("model", to_string(x.model));
+    c.str("error_variant", to_string(x.error_variant));
+    c.num("tol_u", x.tol_u);
+    c.num("tol_v", x.tol_v);
+    c.num("tol_a", x.tol_a);
+    c.integer("max_iterations", x.max_iterations);
+    c.boolean("separation", x.separation);
+    c.num("restitution", x.restitution);
+    c.num("initial_gap", x.initial_gap);
+    c.str("penalty_law", to_string(x.penalty_law));
+    c.num("penalty_stiffness", x.penalty_stiffness);
+    c.num("penalty_damping", x.penalty_damping);
+    c.num("penalty_exponent", x.penalty_exponent);
+    c.close();
+    o.raw("contact", t);
+  }
+  {
+    std::string t;
+    JsonObject c(t, o.child_indent());
+    const SolverSpec& x = s.solver;
+    c.str("integrator", to_string(x.integrator));
+    c.num("rtol", x.rtol);
+    c.num("atol", x.atol);
+    c.str("linear_solver", to_string(x.linear_solver));
+    c.num("max_step", x.max_step);
+    c.num("initial_step", x.initial_step);
+    c.close();
+    o.raw("solver", t);
+  }
+  {
+    std::string t;
+    JsonObject c(t, o.child_indent());
+    c.num("t_end", s.run.t_end);
+    c.num("output_dt", s.run.output_dt);
+    c.integer("max_steps", s.run.max_steps);
+    c.close();
+    o.raw("run", t);
+  }
+  o.str("source", s.source);
+  o.close();
+  return out;
+}
+
+namespace {
+
+std::string level_json(const LevelStats& l, int indent) {
+  std::string t;
+  JsonObject c(t, indent);
+  c.num("mean", l.mean());
+  c.integer("max", l.max);
+  c.integer("total", l.total);
+  c.integer("steps", l.steps);
+  c.close();
+  return t;
+}
+
+std::string model_json(const ModelDescription& m, int indent) {
+  std::string t;
+  JsonObject c(t, indent);
+  c.str("follower", m.follower);
+  c.integer("nodes", m.nodes);
+  c.integer("unknowns", m.unknowns);
+  c.str("mass", m.mass);
+  c.boolean("sparse", m.sparse);
+  c.str("linear_solver", m.linear_solver);
+  c.boolean("damping", m.damping);
+  c.boolean("preload", m.preload);
+  c.boolean("varying_speed", m.varying_speed);
+  c.str("contact", m.contact);
+  c.strs("rhs_terms", m.rhs_terms);
+  c.close();
+  return t;
+}
+
+}  // namespace
+
+std::string summary_json(const Summary& s, const Scene& resolved) {
+  std::string out;
+  JsonObject o(out, 0);
+  o.str("scene", s.scene.empty() ? resolved.title : s.scene);
+  o.boolean("finished", s.finished);
+  o.str("message", s.message);
+  o.num("t_end", s.t_end);
+  o.num("t_end_requested", resolved.run.t_end);
+  o.integer("steps", s.steps);
+  o.integer("rejected_steps", s.rejected_steps);
+  o.integer("rhs_evals", s.rhs_evals);
+  o.integer("contact_iterations", s.contact_iterations);
+  o.integer("separations", s.separations);
+  o.integer("impacts", s.impacts);
+  o.num("max_contact_force", s.max_contact_force);
+  o.num("min_gap", s.min_gap);
+  o.num("max_penetration", s.max_penetration);
+  o.num("cpu_seconds", s.cpu_seconds);
+  o.num("wall_seconds", s.wall_seconds);
+  o.str("integrator", s.integrator);
+  o.str("contact_model", s.contact_model);
+  {
+    std::string t;
+    JsonObject c(t, o.child_indent());
+    c.raw("displacement", level_json(s.level_u, c.child_indent()));
+    c.raw("velocity", level_json(s.level_v, c.child_indent()));
+    c.raw("acceleration", level_json(s.level_a, c.child_indent()));
+    c.close();
+    o.raw("iterations", t);
+  }
+  o.integer("iteration_failures", s.iteration_failures);
+  if (s.first_tensile_time >= 0) {
+    o.num("first_tensile_time", s.first_tensile_time);
+  } else {
+    o.raw("first_tensile_time", "null");
+  }
+  o.num("energy_residual", s.energy_residual);
+  o.raw("model", model_json(s.model, o.child_indent()));
+  o.integer("events", static_cast<long long>(s.events.size()));
+  {
+    long impacts = 0, separations = 0, tensile = 0, other = 0;
+    for (const auto& e : s.events) {
+      if (e.kind == "impact") ++impacts;
+      else if (e.kind == "separation") ++separations;
+      else if (e.kind == "tensile") ++tensile;
+      else ++other;
+    }
+    std::string t;
+    JsonObject c(t, o.child_indent());
+    c.integer("impact", impacts);
+    c.integer("separation", separations);
+    c.integer("tensile", tensile);
+    if (other) c.integer("other", other);
+    c.close();
+    o.raw("event_counts", t);
+  }
+  o.raw("options", scene_json(resolved, o.child_indent()));
+  o.close();
+  out += '\n';
+  return out;
+}
+
+void write_summary(const std::string& dir, const Summary& summary, const Scene& resolved) {
+  write_file_atomic(join_path(dir, "summary.json"), summary_json(summary, resolved));
+}
+
+// ---- cam.csv --------------------------------------------------------------------------
+
+const std::vector<std::string>& cam_columns() {
+  static const std::vector<std::string> cols{"theta", "X_C",  "dX_dtheta", "d2X_dtheta2",
+                                             "beta",  "r",    "rho"};
+  return cols;
+}
+
+std::string cam_csv(const Cam& cam, int points) {
+  if (points < 1) throw std::invalid_argument("cam_csv: points must be >= 1");
+  std::string out = csv_header(cam_columns());
+  out.reserve(out.size() + static_cast<size_t>(points) * 140);
+  const double two_pi = 2.0 * std::acos(-1.0);
+  for (int i = 0; i < points; ++i) {
+    const double theta = two_pi * double(i) / double(points);
+    const CamPoint p = cam.evaluate(theta);
+    const double v[] = {theta, p.X_C, p.dX_dtheta, p.d2X_dtheta2, p.beta, p.r, p.rho};
+    for (size_t k = 0; k < 7; ++k) {
+      if (k) out += ',';
+      append_double(out, v[k]);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace camdyn

@@ -1,0 +1,927 @@
+// camdyn — scene description: enums, TOML parsing, validation, defaults, serialisation.
+//
+// One table of field descriptors (kFields) drives everything: parsing a TOML table into a
+// Scene, converting a Scene back to a TOML table (used by apply_override, so overrides go
+// through exactly the same parse and validation path as files), writing to_toml, and the
+// "allowed keys" lists of error messages.
+#include "camdyn/scene.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <utility>
+
+#include <toml++/toml.h>
+
+namespace camdyn {
+
+// ---------------------------------------------------------------- enum <-> string
+
+namespace {
+
+template <class E>
+struct EnumName {
+  E value;
+  const char* name;
+};
+
+constexpr EnumName<CamProfileKind> kProfileNames[] = {
+    {CamProfileKind::Points, "points"}, {CamProfileKind::Lift, "lift"}, {CamProfileKind::Circle, "circle"}};
+constexpr EnumName<FollowerKind> kFollowerNames[] = {{FollowerKind::Rigid, "rigid"},
+                                                     {FollowerKind::ElasticBar, "elastic_bar"}};
+constexpr EnumName<MassMatrixKind> kMassNames[] = {{MassMatrixKind::Consistent, "consistent"},
+                                                   {MassMatrixKind::Lumped, "lumped"}};
+constexpr EnumName<ContactModel> kContactNames[] = {{ContactModel::Lee, "lee"},
+                                                    {ContactModel::Penalty, "penalty"},
+                                                    {ContactModel::Holonomic, "holonomic"},
+                                                    {ContactModel::Event, "event"}};
+constexpr EnumName<ErrorVariant> kVariantNames[] = {{ErrorVariant::Eq12, "eq12"}, {ErrorVariant::Eq17, "eq17"}};
+constexpr EnumName<PenaltyLaw> kPenaltyNames[] = {{PenaltyLaw::Linear, "linear"},
+                                                  {PenaltyLaw::HuntCrossley, "hunt_crossley"}};
+constexpr EnumName<Integrator> kIntegratorNames[] = {{Integrator::ArkodeErk, "arkode-erk"},
+                                                     {Integrator::ArkodeDirk, "arkode-dirk"},
+                                                     {Integrator::CvodeBdf, "cvode-bdf"}};
+constexpr EnumName<LinearSolverKind> kLinSolNames[] = {
+    {LinearSolverKind::Auto, "auto"}, {LinearSolverKind::Dense, "dense"}, {LinearSolverKind::Klu, "klu"}};
+
+template <class E, std::size_t N>
+const char* enum_to_string(const EnumName<E> (&names)[N], E v) {
+  for (const auto& n : names)
+    if (n.value == v) return n.name;
+  return "?";
+}
+
+template <class E, std::size_t N>
+bool enum_parse(const EnumName<E> (&names)[N], std::string_view s, E* out) {
+  for (const auto& n : names)
+    if (s == n.name) {
+      if (out) *out = n.value;
+      return true;
+    }
+  return false;
+}
+
+template <class E, std::size_t N>
+std::vector<std::string> enum_names(const EnumName<E> (&names)[N]) {
+  std::vector<std::string> r;
+  for (const auto& n : names) r.emplace_back(n.name);
+  return r;
+}
+
+}  // namespace
+
+const char* to_string(CamProfileKind v) { return enum_to_string(kProfileNames, v); }
+const char* to_string(FollowerKind v) { return enum_to_string(kFollowerNames, v); }
+const char* to_string(MassMatrixKind v) { return enum_to_string(kMassNames, v); }
+const char* to_string(ContactModel v) { return enum_to_string(kContactNames, v); }
+const char* to_string(ErrorVariant v) { return enum_to_string(kVariantNames, v); }
+const char* to_string(PenaltyLaw v) { return enum_to_string(kPenaltyNames, v); }
+const char* to_string(Integrator v) { return enum_to_string(kIntegratorNames, v); }
+const char* to_string(LinearSolverKind v) { return enum_to_string(kLinSolNames, v); }
+
+bool parse_enum(std::string_view s, CamProfileKind* out) { return enum_parse(kProfileNames, s, out); }
+bool parse_enum(std::string_view s, FollowerKind* out) { return enum_parse(kFollowerNames, s, out); }
+bool parse_enum(std::string_view s, MassMatrixKind* out) { return enum_parse(kMassNames, s, out); }
+bool parse_enum(std::string_view s, ContactModel* out) { return enum_parse(kContactNames, s, out); }
+bool parse_enum(std::string_view s, ErrorVariant* out) { return enum_parse(kVariantNames, s, out); }
+bool parse_enum(std::string_view s, PenaltyLaw* out) { return enum_parse(kPenaltyNames, s, out); }
+bool parse_enum(std::string_view s, Integrator* out) { return enum_parse(kIntegratorNames, s, out); }
+bool parse_enum(std::string_view s, LinearSolverKind* out) { return enum_parse(kLinSolNames, s, out); }
+
+// ---------------------------------------------------------------- SceneError
+
+namespace {
+
+std::string compose_message(const std::string& file, int line, const std::string& key,
+                            const std::string& value, const std::string& rule) {
+  std::string m = file;
+  if (line > 0) m += ":" + std::to_string(line);
+  m += ": ";
+  if (!key.empty()) m += "key '" + key + "' = " + value + ": ";
+  m += rule;
+  return m;
+}
+
+}  // namespace
+
+SceneError::SceneError(std::string file, int line, std::string key, std::string value, std::string rule)
+    : std::runtime_error(compose_message(file, line, key, value, rule)),
+      file_(std::move(file)),
+      key_(std::move(key)),
+      value_(std::move(value)),
+      rule_(std::move(rule)),
+      line_(line) {}
+
+// ---------------------------------------------------------------- equality
+
+bool operator==(const CamSpec& a, const CamSpec& b) {
+  return a.profile == b.profile && a.angles_deg == b.angles_deg && a.radii == b.radii &&
+         a.base_radius == b.base_radius && a.lift_angles_deg == b.lift_angles_deg && a.lift == b.lift &&
+         a.radius == b.radius && a.eccentricity == b.eccentricity && a.speed_rev_s == b.speed_rev_s &&
+         a.speed_table_t == b.speed_table_t && a.speed_table_rev_s == b.speed_table_rev_s &&
+         a.theta0_deg == b.theta0_deg;
+}
+bool operator==(const FollowerSpec& a, const FollowerSpec& b) {
+  return a.kind == b.kind && a.mass == b.mass && a.damping == b.damping && a.youngs_modulus == b.youngs_modulus &&
+         a.area == b.area && a.length == b.length && a.elements == b.elements && a.mass_matrix == b.mass_matrix &&
+         a.rayleigh_alpha == b.rayleigh_alpha && a.rayleigh_beta == b.rayleigh_beta;
+}
+bool operator==(const SpringSpec& a, const SpringSpec& b) {
+  return a.stiffness == b.stiffness && a.precompression == b.precompression;
+}
+bool operator==(const ContactSpec& a, const ContactSpec& b) {
+  return a.model == b.model && a.error_variant == b.error_variant && a.tol_u == b.tol_u && a.tol_v == b.tol_v &&
+         a.tol_a == b.tol_a && a.max_iterations == b.max_iterations && a.separation == b.separation &&
+         a.restitution == b.restitution && a.initial_gap == b.initial_gap && a.penalty_law == b.penalty_law &&
+         a.penalty_stiffness == b.penalty_stiffness && a.penalty_damping == b.penalty_damping &&
+         a.penalty_exponent == b.penalty_exponent;
+}
+bool operator==(const SolverSpec& a, const SolverSpec& b) {
+  return a.integrator == b.integrator && a.rtol == b.rtol && a.atol == b.atol &&
+         a.linear_solver == b.linear_solver && a.max_step == b.max_step && a.initial_step == b.initial_step;
+}
+bool operator==(const RunSpec& a, const RunSpec& b) {
+  return a.t_end == b.t_end && a.output_dt == b.output_dt && a.max_steps == b.max_steps;
+}
+bool operator==(const Scene& a, const Scene& b) {
+  return a.title == b.title && a.cam == b.cam && a.follower == b.follower && a.spring == b.spring &&
+         a.contact == b.contact && a.solver == b.solver && a.run == b.run;
+}
+bool operator!=(const Scene& a, const Scene& b) { return !(a == b); }
+
+// ---------------------------------------------------------------- formatting helpers
+
+namespace {
+
+/// Shortest decimal form that reads back to the same double ("nan", "inf", "-inf" too).
+std::string fmt_num(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[64];
+  if (v == std::floor(v) && std::fabs(v) < 1e15) {  // integral: no exponent (90, not 9e+01)
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+    return buf;
+  }
+  for (int p = 1; p <= 17; ++p) {
+    std::snprintf(buf, sizeof buf, "%.*g", p, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+/// A double as a TOML float literal (always with '.', 'e', or a nan/inf spelling).
+std::string toml_float(double v) {
+  std::string s = fmt_num(v);
+  if (s.find_first_of(".eni") == std::string::npos) s += ".0";
+  return s;
+}
+
+std::string quote(std::string_view s) {
+  std::string r = "\"";
+  for (char c : s) {
+    switch (c) {
+      case '"': r += "\\\""; break;
+      case '\\': r += "\\\\"; break;
+      case '\n': r += "\\n"; break;
+      case '\t': r += "\\t"; break;
+      case '\r': r += "\\r"; break;
+      case '\b': r += "\\b"; break;
+      case '\f': r += "\\f"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+          r += buf;
+        } else {
+          r += c;
+        }
+    }
+  }
+  return r + "\"";
+}
+
+/// An array for a message: all values up to 8, else the first three, "...", the last.
+std::string fmt_list(const std::vector<std::string>& items) {
+  std::string r = "[";
+  const std::size_t n = items.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (n > 8 && i == 3) {
+      r += "..., ";
+      i = n - 1;
+    }
+    r += items[i];
+    if (i + 1 < n) r += ", ";
+  }
+  return r + "]";
+}
+
+std::string fmt_vec(const std::vector<double>& v) {
+  std::vector<std::string> items;
+  items.reserve(v.size());
+  for (double x : v) items.push_back(fmt_num(x));
+  return fmt_list(items);
+}
+
+std::string fmt_node(const toml::node& n) {
+  if (auto s = n.as_string()) return quote(s->get());
+  if (auto i = n.as_integer()) return std::to_string(i->get());
+  if (auto f = n.as_floating_point()) return fmt_num(f->get());
+  if (auto b = n.as_boolean()) return b->get() ? "true" : "false";
+  if (auto a = n.as_array()) {
+    std::vector<std::string> items;
+    for (const auto& e : *a) items.push_back(fmt_node(e));
+    return fmt_list(items);
+  }
+  if (n.is_table()) return "{...}";
+  std::ostringstream os;
+  n.visit([&](const auto& x) { os << x; });
+  return os.str();
+}
+
+std::string join(const std::vector<std::string>& v, const char* sep) {
+  std::string r;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (i) r += sep;
+    r += v[i];
+  }
+  return r;
+}
+
+std::string one_of(const std::vector<std::string>& allowed) {
+  std::vector<std::string> q;
+  for (const auto& a : allowed) q.push_back(quote(a));
+  return "must be one of " + join(q, ", ");
+}
+
+std::string range_rule(long long lo, long long hi) {
+  if (hi == LLONG_MAX) return "must be >= " + std::to_string(lo);
+  return "must be >= " + std::to_string(lo) + " and <= " + std::to_string(hi);
+}
+
+int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
+
+// ---------------------------------------------------------------- field descriptors
+
+enum class FK { Real, Int, Bool, Str, Arr, Enum };
+
+struct Field {
+  const char* table;  // "" for a top-level key
+  const char* key;
+  FK kind;
+  double& (*real)(Scene&) = nullptr;
+  std::vector<double>& (*arr)(Scene&) = nullptr;
+  bool& (*boolean)(Scene&) = nullptr;
+  std::string& (*str)(Scene&) = nullptr;
+  long long (*get_int)(const Scene&) = nullptr;
+  void (*set_int)(Scene&, long long) = nullptr;
+  long long imin = 0, imax = 0;
+  const char* (*get_enum)(const Scene&) = nullptr;
+  bool (*set_enum)(Scene&, std::string_view) = nullptr;
+  std::vector<std::string> allowed;
+
+  std::string path() const { return *table ? std::string(table) + "." + key : std::string(key); }
+};
+
+Field mk(const char* t, const char* k, FK kind) {
+  Field f;
+  f.table = t;
+  f.key = k;
+  f.kind = kind;
+  return f;
+}
+
+#define F_REAL(T, M)                                           \
+  [] {                                                         \
+    Field f = mk(#T, #M, FK::Real);                            \
+    f.real = [](Scene& s) -> double& { return s.T.M; };        \
+    return f;                                                  \
+  }()
+#define F_ARR(T, M)                                                     \
+  [] {                                                                  \
+    Field f = mk(#T, #M, FK::Arr);                                      \
+    f.arr = [](Scene& s) -> std::vector<double>& { return s.T.M; };     \
+    return f;                                                           \
+  }()
+#define F_BOOL(T, M)                                        \
+  [] {                                                      \
+    Field f = mk(#T, #M, FK::Bool);                         \
+    f.boolean = [](Scene& s) -> bool& { return s.T.M; };    \
+    return f;                                               \
+  }()
+#define F_INT(T, M, LO, HI)                                                               \
+  [] {                                                                                    \
+    Field f = mk(#T, #M, FK::Int);                                                        \
+    f.get_int = [](const Scene& s) -> long long { return s.T.M; };                        \
+    f.set_int = [](Scene& s, long long v) { s.T.M = static_cast<decltype(s.T.M)>(v); };   \
+    f.imin = LO;                                                                          \
+    f.imax = HI;                                                                          \
+    return f;                                                                             \
+  }()
+#define F_ENUM(T, M, NAMES)                                                            \
+  [] {                                                                                 \
+    Field f = mk(#T, #M, FK::Enum);                                                    \
+    f.get_enum = [](const Scene& s) -> const char* { return to_string(s.T.M); };       \
+    f.set_enum = [](Scene& s, std::string_view v) { return parse_enum(v, &s.T.M); };   \
+    f.allowed = enum_names(NAMES);                                                     \
+    return f;                                                                          \
+  }()
+
+const char* const kTables[] = {"cam", "follower", "spring", "contact", "solver", "run"};
+
+const std::vector<Field>& fields() {
+  static const std::vector<Field> kFields = [] {
+    std::vector<Field> v;
+    {
+      Field f = mk("", "title", FK::Str);
+      f.str = [](Scene& s) -> std::string& { return s.title; };
+      v.push_back(f);
+    }
+    v.push_back(F_ENUM(cam, profile, kProfileNames));
+    v.push_back(F_ARR(cam, angles_deg));
+    v.push_back(F_ARR(cam, radii));
+    v.push_back(F_REAL(cam, base_radius));
+    v.push_back(F_ARR(cam, lift_angles_deg));
+    v.push_back(F_ARR(cam, lift));
+    v.push_back(F_REAL(cam, radius));
+    v.push_back(F_REAL(cam, eccentricity));
+    v.push_back(F_REAL(cam, speed_rev_s));
+    v.push_back(F_ARR(cam, speed_table_t));
+    v.push_back(F_ARR(cam, speed_table_rev_s));
+    v.push_back(F_REAL(cam, theta0_deg));
+
+    v.push_back(F_ENUM(follower, kind, kFollowerNames));
+    v.push_back(F_REAL(follower, mass));
+    v.push_back(F_REAL(follower, damping));
+    v.push_back(F_REAL(follower, youngs_modulus));
+    v.push_back(F_REAL(follower, area));
+    v.push_back(F_REAL(follower, length));
+    v.push_back(F_INT(follower, elements, 1, 10000000));
+    v.push_back(F_ENUM(follower, mass_matrix, kMassNames));
+    v.push_back(F_REAL(follower, rayleigh_alpha));
+    v.push_back(F_REAL(follower, rayleigh_beta));
+
+    v.push_back(F_REAL(spring, stiffness));
+    v.push_back(F_REAL(spring, precompression));
+
+    v.push_back(F_ENUM(contact, model, kContactNames));
+    v.push_back(F_ENUM(contact, error_variant, kVariantNames));
+    v.push_back(F_REAL(contact, tol_u));
+    v.push_back(F_REAL(contact, tol_v));
+    v.push_back(F_REAL(contact, tol_a));
+    v.push_back(F_INT(contact, max_iterations, 1, 10000));
+    v.push_back(F_BOOL(contact, separation));
+    v.push_back(F_REAL(contact, restitution));
+    v.push_back(F_REAL(contact, initial_gap));
+    v.push_back(F_ENUM(contact, penalty_law, kPenaltyNames));
+    v.push_back(F_REAL(contact, penalty_stiffness));
+    v.push_back(F_REAL(contact, penalty_damping));
+    v.push_back(F_REAL(contact, penalty_exponent));
+
+    v.push_back(F_ENUM(solver, integrator, kIntegratorNames));
+    v.push_back(F_REAL(solver, rtol));
+    v.push_back(F_REAL(solver, atol));
+    v.push_back(F_ENUM(solver, linear_solver, kLinSolNames));
+    v.push_back(F_REAL(solver, max_step));
+    v.push_back(F_REAL(solver, initial_step));
+
+    v.push_back(F_REAL(run, t_end));
+    v.push_back(F_REAL(run, output_dt));
+    v.push_back(F_INT(run, max_steps, 1, LLONG_MAX));
+    return v;
+  }();
+  return kFields;
+}
+
+#undef F_REAL
+#undef F_ARR
+#undef F_BOOL
+#undef F_INT
+#undef F_ENUM
+
+const Field* find_field(std::string_view table, std::string_view key) {
+  for (const auto& f : fields())
+    if (table == f.table && key == f.key) return &f;
+  return nullptr;
+}
+
+bool is_table_name(std::string_view s) {
+  for (const char* t : kTables)
+    if (s == t) return true;
+  return false;
+}
+
+std::string allowed_top() {
+  std::vector<std::string> k{"title"};
+  for (const char* t : kTables) k.emplace_back(t);
+  return "allowed keys at top level: " + join(k, ", ");
+}
+
+std::string allowed_in(std::string_view table) {
+  std::vector<std::string> k;
+  for (const auto& f : fields())
+    if (table == f.table) k.emplace_back(f.key);
+  return "allowed keys in [" + std::string(table) + "]: " + join(k, ", ");
+}
+
+// ---------------------------------------------------------------- TOML table -> Scene
+
+/// Lines of the keys read from a file (dotted path, and path[i] for array elements).
+using LineMap = std::map<std::string, int>;
+
+[[noreturn]] void fail(const std::string& file, int line, const std::string& key, const std::string& value,
+                       const std::string& rule) {
+  throw SceneError(file, line, key, value, rule);
+}
+
+std::vector<std::pair<std::string, const toml::node*>> sorted_entries(const toml::table& t) {
+  std::vector<std::pair<std::string, const toml::node*>> e;
+  for (auto&& [k, v] : t) e.emplace_back(std::string(k.str()), &v);
+  std::stable_sort(e.begin(), e.end(), [](const auto& a, const auto& b) {
+    return line_of(*a.second) < line_of(*b.second);
+  });
+  return e;
+}
+
+void read_field(const Field& f, const toml::node& n, Scene& s, const std::string& file, bool use_lines,
+                LineMap& lines) {
+  const std::string key = f.path();
+  const int line = use_lines ? line_of(n) : 0;
+  lines[key] = line;
+  switch (f.kind) {
+    case FK::Real:
+      if (auto i = n.as_integer())
+        f.real(s) = static_cast<double>(i->get());
+      else if (auto d = n.as_floating_point())
+        f.real(s) = d->get();
+      else
+        fail(file, line, key, fmt_node(n), "must be a number");
+      return;
+    case FK::Int: {
+      long long v = 0;
+      if (auto i = n.as_integer()) {
+        v = i->get();
+      } else if (auto d = n.as_floating_point()) {
+        const double x = d->get();
+        if (!(std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 9.0e18))
+          fail(file, line, key, fmt_node(n), "must be an integer");
+        v = static_cast<long long>(x);
+      } else {
+        fail(file, line, key, fmt_node(n), "must be an integer");
+      }
+      if (v < f.imin || v > f.imax) fail(file, line, key, fmt_node(n), range_rule(f.imin, f.imax));
+      f.set_int(s, v);
+      return;
+    }
+    case FK::Bool:
+      if (auto b = n.as_boolean())
+        f.boolean(s) = b->get();
+      else
+        fail(file, line, key, fmt_node(n), "must be true or false");
+      return;
+    case FK::Str:
+      if (auto str = n.as_string())
+        f.str(s) = str->get();
+      else
+        fail(file, line, key, fmt_node(n), "must be a string");
+      return;
+    case FK::Enum: {
+      auto str = n.as_string();
+      if (!str || !f.set_enum(s, str->get())) fail(file, line, key, fmt_node(n), one_of(f.allowed));
+      return;
+    }
+    case FK::Arr: {
+      auto a = n.as_array();
+      if (!a) fail(file, line, key, fmt_node(n), "must be an array of numbers");
+      std::vector<double> v;
+      v.reserve(a->size());
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        const toml::node& e = *a->get(i);
+        const std::string ek = key + "[" + std::to_string(i) + "]";
+        const int el = use_lines ? line_of(e) : 0;
+        lines[ek] = el;
+        if (auto ii = e.as_integer())
+          v.push_back(static_cast<double>(ii->get()));
+        else if (auto d = e.as_floating_point())
+          v.push_back(d->get());
+        else
+          fail(file, el, ek, fmt_node(e), "must be a number");
+      }
+      f.arr(s) = std::move(v);
+      return;
+    }
+  }
+}
+
+void validate_impl(const Scene& s, const std::string& file, const LineMap& lines);
+
+Scene from_table(const toml::table& root, const std::string& file, bool use_lines) {
+  Scene s;
+  s.source = file;
+  LineMap lines;
+  for (const auto& [k, node] : sorted_entries(root)) {
+    const int line = use_lines ? line_of(*node) : 0;
+    if (const Field* f = find_field("", k)) {
+      read_field(*f, *node, s, file, use_lines, lines);
+      continue;
+    }
+    if (!is_table_name(k))
+      fail(file, line, k, fmt_node(*node),
+           std::string(node->is_table() ? "unknown table; " : "unknown key; ") + allowed_top());
+    const toml::table* t = node->as_table();
+    if (!t) fail(file, line, k, fmt_node(*node), "must be a table ([" + k + "]); " + allowed_in(k));
+    lines[k] = line;
+    for (const auto& [kk, nn] : sorted_entries(*t)) {
+      const Field* f = find_field(k, kk);
+      if (!f)
+        fail(file, use_lines ? line_of(*nn) : 0, k + "." + kk, fmt_node(*nn),
+             std::string(nn->is_table() ? "unknown table; " : "unknown key; ") + allowed_in(k));
+      read_field(*f, *nn, s, file, use_lines, lines);
+    }
+  }
+  resolve_defaults(s);
+  validate_impl(s, file, lines);
+  return s;
+}
+
+// ---------------------------------------------------------------- Scene -> TOML table
+
+toml::table to_table(const Scene& scene) {
+  Scene& s = const_cast<Scene&>(scene);  // accessors are non-const; nothing is modified
+  toml::table root;
+  for (const char* t : kTables) root.insert_or_assign(t, toml::table{});
+  for (const auto& f : fields()) {
+    toml::table& dst = *f.table ? *root.get_as<toml::table>(f.table) : root;
+    switch (f.kind) {
+      case FK::Real: dst.insert_or_assign(f.key, f.real(s)); break;
+      case FK::Int: dst.insert_or_assign(f.key, static_cast<int64_t>(f.get_int(s))); break;
+      case FK::Bool: dst.insert_or_assign(f.key, f.boolean(s)); break;
+      case FK::Str: dst.insert_or_assign(f.key, f.str(s)); break;
+      case FK::Enum: dst.insert_or_assign(f.key, std::string(f.get_enum(s))); break;
+      case FK::Arr: {
+        toml::array a;
+        for (double x : f.arr(s)) a.push_back(x);
+        dst.insert_or_assign(f.key, std::move(a));
+        break;
+      }
+    }
+  }
+  return root;
+}
+
+// ---------------------------------------------------------------- validation
+
+class Validator {
+ public:
+  Validator(const Scene& s, const std::string& file, const LineMap& lines) : s_(s), file_(file), lines_(lines) {}
+
+  int line(const std::string& key, const std::string& fallback = "") const {
+    auto it = lines_.find(key);
+    if (it != lines_.end()) return it->second;
+    if (!fallback.empty()) {
+      it = lines_.find(fallback);
+      if (it != lines_.end()) return it->second;
+    }
+    // An array element not recorded: use the array's line.
+    auto br = key.find('[');
+    if (br != std::string::npos) {
+      it = lines_.find(key.substr(0, br));
+      if (it != lines_.end()) return it->second;
+    }
+    return 0;
+  }
+
+  [[noreturn]] void fail_at(const std::string& key, const std::string& value, const std::string& rule,
+                            const std::string& fallback = "") const {
+    throw SceneError(file_, line(key, fallback), key, value, rule);
+  }
+
+  void finite(const std::string& key, double v) const {
+    if (!std::isfinite(v)) fail_at(key, fmt_num(v), "must be a finite number");
+  }
+  void finite(const std::string& key, const std::vector<double>& v) const {
+    for (std::size_t i = 0; i < v.size(); ++i) finite(elem(key, i), v[i]);
+  }
+  void gt(const std::string& key, double v, double lo) const {
+    finite(key, v);
+    if (!(v > lo)) fail_at(key, fmt_num(v), "must be > " + fmt_num(lo));
+  }
+  void ge(const std::string& key, double v, double lo) const {
+    finite(key, v);
+    if (!(v >= lo)) fail_at(key, fmt_num(v), "must be >= " + fmt_num(lo));
+  }
+  void in(const std::string& key, double v, double lo, double hi) const {
+    finite(key, v);
+    if (!(v >= lo && v <= hi)) fail_at(key, fmt_num(v), "must be >= " + fmt_num(lo) + " and <= " + fmt_num(hi));
+  }
+  void int_in(const std::string& key, long long v, long long lo, long long hi) const {
+    if (v < lo || v > hi) fail_at(key, std::to_string(v), range_rule(lo, hi));
+  }
+  static std::string elem(const std::string& key, std::size_t i) { return key + "[" + std::to_string(i) + "]"; }
+
+  /// ≥ 4 values, strictly increasing, span < 360°.
+  void angle_table(const std::string& key, const std::vector<double>& a, const std::string& context,
+                   const std::string& fallback) const {
+    if (a.size() < 4)
+      fail_at(key, fmt_vec(a), "must have at least 4 values" + context + " (has " + std::to_string(a.size()) + ")",
+              fallback);
+    increasing(key, a);
+    if (!(a.back() - a.front() < 360.0))
+      fail_at(elem(key, a.size() - 1), fmt_num(a.back()),
+              "must be < " + key + "[0] + 360 = " + fmt_num(a.front() + 360.0) + " (the table spans less than 360 deg)");
+  }
+  void increasing(const std::string& key, const std::vector<double>& a) const {
+    for (std::size_t i = 1; i < a.size(); ++i)
+      if (!(a[i] > a[i - 1]))
+        fail_at(elem(key, i), fmt_num(a[i]),
+                "must be > " + elem(key, i - 1) + " = " + fmt_num(a[i - 1]) + " (strictly increasing)");
+  }
+  void same_length(const std::string& key, const std::vector<double>& a, const std::string& ref_key,
+                   const std::vector<double>& ref) const {
+    if (a.size() != ref.size())
+      fail_at(key, fmt_vec(a),
+              "must have as many values as " + ref_key + " (" + std::to_string(ref.size()) + "), has " +
+                  std::to_string(a.size()),
+              ref_key);
+  }
+
+  void run() const {
+    const Scene& s = s_;
+    // ---- cam
+    const CamSpec& c = s.cam;
+    finite("cam.angles_deg", c.angles_deg);
+    finite("cam.radii", c.radii);
+    if (c.profile == CamProfileKind::Points) {
+      angle_table("cam.angles_deg", c.angles_deg, "", "cam.profile");
+      same_length("cam.radii", c.radii, "cam.angles_deg", c.angles_deg);
+      for (std::size_t i = 0; i < c.radii.size(); ++i) gt(elem("cam.radii", i), c.radii[i], 0.0);
+    }
+    gt("cam.base_radius", c.base_radius, 0.0);
+    finite("cam.lift_angles_deg", c.lift_angles_deg);
+    finite("cam.lift", c.lift);
+    if (c.profile == CamProfileKind::Lift) {
+      angle_table("cam.lift_angles_deg", c.lift_angles_deg, " for cam.profile = \"lift\"", "cam.profile");
+      same_length("cam.lift", c.lift, "cam.lift_angles_deg", c.lift_angles_deg);
+      for (std::size_t i = 0; i < c.lift.size(); ++i)
+        if (!(c.base_radius + c.lift[i] > 0))
+          fail_at(elem("cam.lift", i), fmt_num(c.lift[i]),
+                  "must be > -cam.base_radius = " + fmt_num(-c.base_radius) + " (base_radius + lift > 0)");
+    }
+    gt("cam.radius", c.radius, 0.0);
+    ge("cam.eccentricity", c.eccentricity, 0.0);
+    if (!(c.eccentricity < c.radius))
+      fail_at("cam.eccentricity", fmt_num(c.eccentricity), "must be < cam.radius = " + fmt_num(c.radius));
+    finite("cam.speed_rev_s", c.speed_rev_s);
+    finite("cam.speed_table_t", c.speed_table_t);
+    finite("cam.speed_table_rev_s", c.speed_table_rev_s);
+    if (!c.speed_table_t.empty() || !c.speed_table_rev_s.empty()) {
+      same_length("cam.speed_table_rev_s", c.speed_table_rev_s, "cam.speed_table_t", c.speed_table_t);
+      if (c.speed_table_t.front() != 0.0)
+        fail_at("cam.speed_table_t[0]", fmt_num(c.speed_table_t.front()), "must be 0 (the speed table starts at t = 0)");
+      increasing("cam.speed_table_t", c.speed_table_t);
+    }
+    finite("cam.theta0_deg", c.theta0_deg);
+
+    // ---- follower
+    const FollowerSpec& f = s.follower;
+    gt("follower.mass", f.mass, 0.0);
+    ge("follower.damping", f.damping, 0.0);
+    gt("follower.youngs_modulus", f.youngs_modulus, 0.0);
+    gt("follower.area", f.area, 0.0);
+    gt("follower.length", f.length, 0.0);
+    int_in("follower.elements", f.elements, 1, 10000000);
+    ge("follower.rayleigh_alpha", f.rayleigh_alpha, 0.0);
+    ge("follower.rayleigh_beta", f.rayleigh_beta, 0.0);
+
+    // ---- spring
+    ge("spring.stiffness", s.spring.stiffness, 0.0);
+    finite("spring.precompression", s.spring.precompression);
+
+    // ---- contact
+    const ContactSpec& k = s.contact;
+    finite("contact.tol_u", k.tol_u);
+    if (!(k.tol_u >= 0.0 && k.tol_u <= 1.0))
+      fail_at("contact.tol_u", fmt_num(k.tol_u), "must be > 0 and <= 1 (or 0 for the paper default)");
+    ge("contact.tol_v", k.tol_v, 0.0);
+    ge("contact.tol_a", k.tol_a, 0.0);
+    int_in("contact.max_iterations", k.max_iterations, 1, 10000);
+    in("contact.restitution", k.restitution, 0.0, 1.0);
+    ge("contact.initial_gap", k.initial_gap, 0.0);
+    gt("contact.penalty_stiffness", k.penalty_stiffness, 0.0);
+    ge("contact.penalty_damping", k.penalty_damping, 0.0);
+    in("contact.penalty_exponent", k.penalty_exponent, 1.0, 3.0);
+    if (!k.separation && k.model != ContactModel::Lee && k.model != ContactModel::Holonomic)
+      fail_at("contact.separation", "false",
+              std::string("requires contact.model \"lee\" or \"holonomic\" (contact.model is \"") + to_string(k.model) +
+                  "\")",
+              "contact.model");
+    if (k.restitution > 0 && (k.model == ContactModel::Penalty || k.model == ContactModel::Holonomic))
+      fail_at("contact.restitution", fmt_num(k.restitution),
+              std::string("must be 0 with contact.model \"") + to_string(k.model) +
+                  "\" (restitution needs contact.model \"lee\" or \"event\")",
+              "contact.model");
+
+    // ---- solver
+    const SolverSpec& v = s.solver;
+    in("solver.rtol", v.rtol, 1e-14, 0.1);
+    finite("solver.atol", v.atol);
+    if (!(v.atol > 0.0 && v.atol <= 1.0)) fail_at("solver.atol", fmt_num(v.atol), "must be > 0 and <= 1");
+    ge("solver.max_step", v.max_step, 0.0);
+    ge("solver.initial_step", v.initial_step, 0.0);
+
+    // ---- run
+    gt("run.t_end", s.run.t_end, 0.0);
+    ge("run.output_dt", s.run.output_dt, 0.0);
+    if (!(s.run.output_dt <= s.run.t_end))
+      fail_at("run.output_dt", fmt_num(s.run.output_dt), "must be <= run.t_end = " + fmt_num(s.run.t_end));
+    int_in("run.max_steps", s.run.max_steps, 1, LLONG_MAX);
+  }
+
+ private:
+  const Scene& s_;
+  const std::string& file_;
+  const LineMap& lines_;
+};
+
+void validate_impl(const Scene& s, const std::string& file, const LineMap& lines) {
+  Validator(s, file, lines).run();
+}
+
+double paper_tol_u(FollowerKind k) { return k == FollowerKind::Rigid ? 1e-8 : 1e-7; }
+
+std::string trim(std::string_view s) {
+  const char* ws = " \t\r\n";
+  const auto b = s.find_first_not_of(ws);
+  if (b == std::string_view::npos) return "";
+  const auto e = s.find_last_not_of(ws);
+  return std::string(s.substr(b, e - b + 1));
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- public functions
+
+void resolve_defaults(Scene& scene) {
+  if (scene.contact.tol_u == 0.0) scene.contact.tol_u = paper_tol_u(scene.follower.kind);
+}
+
+void validate(const Scene& scene) { validate_impl(scene, scene.source, LineMap{}); }
+
+Scene parse_scene(std::string_view toml_text, const std::string& source_name) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(source_name, static_cast<int>(e.source().begin.line), "", "", std::string(e.description()));
+  }
+  return from_table(root, source_name, true);
+}
+
+Scene load_scene_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    const int err = errno;
+    throw SceneError(path, 0, "", "", std::string("cannot read scene file: ") + std::strerror(err ? err : ENOENT));
+  }
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw SceneError(path, 0, "", "", std::string("cannot read scene file: ") + std::strerror(errno));
+  return parse_scene(ss.str(), path);
+}
+
+void apply_override(Scene& scene, const std::string& assignment) {
+  static const std::string kFile = "--set";
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos)
+    throw SceneError(kFile, 0, "", "", "expected KEY=VALUE (e.g. cam.speed_rev_s=3), got '" + assignment + "'");
+  const std::string key = trim(std::string_view(assignment).substr(0, eq));
+  const std::string text = trim(std::string_view(assignment).substr(eq + 1));
+  if (key.empty())
+    throw SceneError(kFile, 0, "", "", "expected KEY=VALUE (e.g. cam.speed_rev_s=3), got '" + assignment + "'");
+
+  // The value: a TOML value if it parses as one, else the bare text as a string.
+  toml::table parsed;
+  const toml::node* value = nullptr;
+  try {
+    const std::string doc = "x = " + text;
+    parsed = toml::parse(std::string_view(doc), std::string_view("--set"));
+    if (parsed.size() == 1) value = parsed.get("x");
+  } catch (const toml::parse_error&) {
+    value = nullptr;
+  }
+  if (!value) {
+    parsed = toml::table{};
+    parsed.insert_or_assign("x", text);
+    value = parsed.get("x");
+  }
+
+  // The key: "title" or "TABLE.KEY".
+  std::string table, leaf;
+  const auto dot = key.find('.');
+  if (dot == std::string::npos) {
+    leaf = key;
+    if (leaf != "title" && !is_table_name(leaf))
+      throw SceneError(kFile, 0, key, fmt_node(*value), "unknown key; " + allowed_top());
+  } else {
+    table = key.substr(0, dot);
+    leaf = key.substr(dot + 1);
+    if (!is_table_name(table))
+      throw SceneError(kFile, 0, key, fmt_node(*value), "unknown key; " + allowed_top());
+  }
+
+  // tol_u that is "automatic" (0, or the paper default of the current follower kind) is
+  // re-derived after the override, so follower.kind=elastic_bar gets 1e-7, not rigid's 1e-8.
+  const double tol_u = scene.contact.tol_u;
+  const bool tol_u_auto = tol_u == 0.0 || tol_u == paper_tol_u(scene.follower.kind);
+
+  toml::table root = to_table(scene);
+  toml::table* dst = table.empty() ? &root : root.get_as<toml::table>(table);
+  value->visit([&](const auto& v) { dst->insert_or_assign(leaf, v); });
+  if (tol_u_auto && key != "contact.tol_u") root.get_as<toml::table>("contact")->insert_or_assign("tol_u", 0.0);
+
+  Scene out = from_table(root, kFile, false);
+  out.source = scene.source;
+  scene = std::move(out);
+}
+
+std::string to_toml(const Scene& scene_in) {
+  Scene resolved = scene_in;
+  resolve_defaults(resolved);
+  Scene& s = resolved;
+  std::ostringstream os;
+  os << "# camdyn scene (every key written; see INTERFACE.md)\n";
+  const char* current = nullptr;
+  for (const auto& f : fields()) {
+    if (*f.table && (current == nullptr || std::strcmp(current, f.table) != 0)) {
+      current = f.table;
+      os << "\n[" << f.table << "]\n";
+    }
+    os << f.key << " = ";
+    switch (f.kind) {
+      case FK::Real: os << toml_float(f.real(s)); break;
+      case FK::Int: os << f.get_int(s); break;
+      case FK::Bool: os << (f.boolean(s) ? "true" : "false"); break;
+      case FK::Str: os << quote(f.str(s)); break;
+      case FK::Enum: os << quote(f.get_enum(s)); break;
+      case FK::Arr: {
+        os << "[";
+        const auto& a = f.arr(s);
+        for (std::size_t i = 0; i < a.size(); ++i) os << (i ? ", " : "") << toml_float(a[i]);
+        os << "]";
+        break;
+      }
+    }
+    os << "\n";
+  }
+  return os.str();
+}
+
+// ---------------------------------------------------------------- paper cases
+
+Scene paper_case(const std::string& name) {
+  Scene s;
+  s.cam.profile = CamProfileKind::Points;
+  s.cam.angles_deg = {0, 45, 90, 135, 180, 225, 270, 315};
+  s.cam.radii = {2.0, 2.0, 2.0, 2.1, 3.0, 2.1, 2.0, 2.0};
+  s.cam.theta0_deg = 0.0;
+  s.spring.stiffness = 500.0;
+  s.spring.precompression = 7.0;
+  s.contact.model = ContactModel::Lee;
+  s.solver.integrator = Integrator::ArkodeErk;
+  s.run.t_end = 1.0;
+  s.run.output_dt = 1e-4;
+  s.follower.mass = 1.0;
+  if (name == "A") {
+    s.title = "Case A \u2014 rigid follower, 1.75 rev/s (Lee 1997 \u00a74.1)";
+    s.follower.kind = FollowerKind::Rigid;
+    s.cam.speed_rev_s = 1.75;
+    s.solver.rtol = 1e-7;
+    s.contact.tol_u = 1e-8;
+  } else if (name == "B1" || name == "B2") {
+    const bool b2 = name == "B2";
+    s.title = b2 ? "Case B2 \u2014 elastic follower, 5 rev/s (Lee 1997 \u00a74.2)"
+                 : "Case B1 \u2014 elastic follower, 1.75 rev/s (Lee 1997 \u00a74.2)";
+    s.follower.kind = FollowerKind::ElasticBar;
+    s.follower.youngs_modulus = 1e7;
+    s.follower.area = 3.0;
+    s.follower.length = 24.0;
+    s.follower.elements = 40;
+    s.follower.mass_matrix = MassMatrixKind::Consistent;
+    s.cam.speed_rev_s = b2 ? 5.0 : 1.75;
+    s.solver.rtol = 1e-6;
+    s.contact.tol_u = 1e-7;
+  } else {
+    throw std::invalid_argument("unknown paper case '" + name + "' (known: A, B1, B2)");
+  }
+  return s;
+}
+
+Scene default_scene() { return paper_case("B2"); }
+
+}  // namespace camdyn
