@@ -11,7 +11,7 @@
 //                is filled entry by entry by our linear-system function on a pattern
 //                fixed once (no O(n²) sparse add); KLU (or dense for tiny systems).
 //   cvode-bdf    CVODE BDF (orders 1–5) with v̇ = M⁻¹ r. Its Newton systems
-//                (I − γJ) x = b are solved by a matrix-embedded linear solver through the
+//                (I − γJ) x = b are solved by our own direct linear solver through the
 //                n × n Schur complement
 //                  (M + γC̃ + γ²K̃) x_v = M b_v − γ K̃ b_u,   x_u = b_u + γ x_v,
 //                which is sparse (tridiagonal for a bar) for consistent and lumped mass
@@ -571,9 +571,10 @@ class SchurSolver {
 
 class CvodeEngine final : public Engine {
  public:
-  CvodeEngine(std::shared_ptr<const FollowerModel> model, const SolverSpec& spec, LinearSolverKind lsk)
+  CvodeEngine(std::shared_ptr<const FollowerModel> model, const SolverSpec& spec, LinearSolverKind lsk,
+              bool trial, double tol_u)
       : Engine(std::move(model), spec), schur_(*model_, lsk == LinearSolverKind::Dense),
-        y_(make_nvec(2 * n_, ctx_.ctx)), last_y_(2 * n_) {
+        y_(make_nvec(2 * n_, ctx_.ctx)) {
     N_VConst(0.0, y_.get());
     mem_.reset(not_null(CVodeCreate(CV_BDF, ctx_.ctx), "CVodeCreate"));
     void* mem = mem_.get();
@@ -581,18 +582,41 @@ class CvodeEngine final : public Engine {
     check_flag(CVodeSetUserData(mem, this), "CVodeSetUserData");
     check_flag(CVodeSStolerances(mem, spec.rtol, spec.atol), "CVodeSStolerances");
     check_flag(CVodeSetMaxNumSteps(mem, -1), "CVodeSetMaxNumSteps");
+    // BDF orders 3–5 are not A-stable: an undamped stiff bar has modes on the imaginary
+    // axis far beyond the step's resolution, which they amplify (seen as step sizes
+    // collapsing to ~0.5/ω_max). Elastic followers therefore run A-stable BDF1–2; the
+    // rigid follower (no stiff modes) keeps orders up to 5.
+    if (!model_->rigid()) check_flag(CVodeSetMaxOrd(mem, 2), "CVodeSetMaxOrd");
+    // Trial steps: solve the (linear) corrector far below the error tolerance so that
+    // the step map is affine in the contact force to well below tol_u.
+    if (trial) check_flag(CVodeSetNonlinConvCoef(mem, 1e-4), "CVodeSetNonlinConvCoef");
+    // Trial steps restart CVODE, so each contact step carries a full local tolerance of
+    // error; keep it well below the contact tolerance tol_u (else the displacement level
+    // sees integration error as gap and can clip a real contact force to zero).
+    if (trial && tol_u > 0) {
+      const double scale = std::max(1.0, model_->initial_displacement().cwiseAbs().maxCoeff());
+      check_flag(CVodeSStolerances(mem, std::min(spec.rtol, 1e-2 * tol_u / scale),
+                                   std::min(spec.atol, 1e-2 * tol_u)),
+                 "CVodeSStolerances");
+    }
     if (spec.max_step > 0) check_flag(CVodeSetMaxStep(mem, spec.max_step), "CVodeSetMaxStep");
+    // Our own direct solver for (I − γJ) x = b. CVODE hands γ (and the state, for the
+    // penalty Jacobian) to the linear-system function; the SUNMatrix is a 1 × 1
+    // placeholder that CVODE passes along but never reads (the Schur complement is ours).
     ls_.reset(SUNLinSolNewEmpty(ctx_.ctx));
     if (!ls_) throw SundialsError("SUNLinSolNewEmpty", -1);
     ls_->content = this;
-    ls_->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_MATRIX_EMBEDDED; };
+    ls_->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; };
     ls_->ops->setup = &CvodeEngine::ls_setup;
     ls_->ops->solve = &CvodeEngine::ls_solve;
     ls_->ops->free = [](SUNLinearSolver S) {
       SUNLinSolFreeEmpty(S);
       return 0;
     };
-    check_flag(CVodeSetLinearSolver(mem, ls_.get(), nullptr), "CVodeSetLinearSolver");
+    placeholder_.reset(SUNDenseMatrix(1, 1, ctx_.ctx));
+    if (!placeholder_) throw SundialsError("SUNDenseMatrix", -1);
+    check_flag(CVodeSetLinearSolver(mem, ls_.get(), placeholder_.get()), "CVodeSetLinearSolver");
+    check_flag(CVodeSetLinSysFn(mem, &CvodeEngine::linsys), "CVodeSetLinSysFn");
   }
   ~CvodeEngine() override {
     mem_.reset();  // CVodeFree before the linear solver it references
@@ -602,18 +626,17 @@ class CvodeEngine final : public Engine {
   bool estimates_error() const override { return false; }
   double suggested_step() const override { return hcur_; }
 
-  // A trial step of exactly h: CVODE integrates [t, t+h] under its own error control. It
-  // keeps its multistep history when (t, y) is the state it stopped at (within 1 % of
-  // the local error tolerance); otherwise — a retaken step, or a state changed by the
-  // contact iteration (impact, separation) — it restarts from (t, y) at order 1.
+  // A trial step of exactly h: CVODE integrates [t, t+h] under its own error control,
+  // restarted from (t, y). Lee's iteration retakes the step with other force ramps and
+  // needs the same step map each time (the response is then affine in the end force, up
+  // to the Newton tolerance, which is tightened for this reason); CVODE's multistep
+  // history cannot be saved and restored through its API, so each contact step starts
+  // at order 1. CVODE keeps its full history in native stepping (penalty, event).
   double step(double t, const Eigen::VectorXd& y, double h, Eigen::VectorXd& y_out) override {
-    const bool same = have_last_ && t == last_t_ && wrms(y - last_y_, y) <= 0.01;
-    if (!same) {
-      map(y_.get()) = y;
-      check_flag(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
-      check_flag(CVodeSetInitStep(mem_.get(), h), "CVodeSetInitStep");
-      ++stats_.reinits;
-    }
+    map(y_.get()) = y;
+    check_flag(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
+    check_flag(CVodeSetInitStep(mem_.get(), first_h_ > 0 ? std::min(h, first_h_) : h), "CVodeSetInitStep");
+    ++stats_.reinits;
     check_flag(CVodeSetStopTime(mem_.get(), t + h), "CVodeSetStopTime");
     double tret = t;
     long ns0 = 0, ns1 = 0;
@@ -622,9 +645,9 @@ class CvodeEngine final : public Engine {
     CVodeGetNumSteps(mem_.get(), &ns1);
     stats_.steps += ns1 - ns0;
     y_out = map(y_.get());
-    last_t_ = t + h;
-    last_y_ = y_out;
-    have_last_ = true;
+    double h0 = 0;
+    CVodeGetActualInitStep(mem_.get(), &h0);
+    first_h_ = 2.0 * h0;  // start the next restart near the first step that worked
     CVodeGetCurrentStep(mem_.get(), &hcur_);
     return 0.0;
   }
@@ -633,7 +656,6 @@ class CvodeEngine final : public Engine {
     check_flag(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
     check_flag(CVodeSetInitStep(mem_.get(), spec_.initial_step), "CVodeSetInitStep");
     ++stats_.reinits;
-    have_last_ = false;
   }
   double advance(double tout, Eigen::VectorXd& y_out) override {
     check_flag(CVodeSetStopTime(mem_.get(), tout), "CVodeSetStopTime");
@@ -653,12 +675,7 @@ class CvodeEngine final : public Engine {
  private:
   static int f(double t, N_Vector y, N_Vector ydot, void* ud) {
     try {
-      auto* self = static_cast<CvodeEngine*>(ud);
-      const double* yy = N_VGetArrayPointer(y);
-      self->last_t_rhs_ = t;
-      self->last_q0_ = yy[0];
-      self->last_v0_ = yy[self->n_];
-      self->rhs(t, yy, N_VGetArrayPointer(ydot));
+      static_cast<CvodeEngine*>(ud)->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
       return 0;
     } catch (...) {
       return -1;
@@ -667,14 +684,23 @@ class CvodeEngine final : public Engine {
   static int g(double t, N_Vector y, double* gout, void* ud) {
     return root_callback(t, N_VGetArrayPointer(y), gout, ud);
   }
+  static int linsys(double t, N_Vector y, N_Vector, SUNMatrix, sunbooleantype, sunbooleantype* jcur,
+                    double gamma, void* ud, N_Vector, N_Vector, N_Vector) {
+    try {
+      auto* self = static_cast<CvodeEngine*>(ud);
+      const double* yy = N_VGetArrayPointer(y);
+      self->law_.derivatives(t, yy[0], yy[self->n_], &self->dFdq_, &self->dFdv_);
+      self->gamma_ = gamma;
+      *jcur = SUNTRUE;
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
   static int ls_setup(SUNLinearSolver S, SUNMatrix) {
     try {
       auto* self = static_cast<CvodeEngine*>(S->content);
-      double g = 0;
-      if (CVodeGetCurrentGamma(self->mem_.get(), &g) < 0) return -1;
-      double dFdq = 0, dFdv = 0;  // penalty Jacobian at the state of the last rhs call
-      self->law_.derivatives(self->last_t_rhs_, self->last_q0_, self->last_v0_, &dFdq, &dFdv);
-      self->schur_.setup(g, dFdq, dFdv);
+      self->schur_.setup(self->gamma_, self->dFdq_, self->dFdv_);
       ++self->stats_.lin_setups;
       return 0;
     } catch (...) {
@@ -695,11 +721,10 @@ class CvodeEngine final : public Engine {
   SchurSolver schur_;
   ContextHolder ctx_;
   NVec y_;
+  Mat placeholder_;
   LS ls_;
   std::unique_ptr<void, CvDel> mem_;
-  Eigen::VectorXd last_y_;
-  double last_t_ = 0, hcur_ = 0, last_t_rhs_ = 0, last_q0_ = 0, last_v0_ = 0;
-  bool have_last_ = false;
+  double hcur_ = 0, first_h_ = 0, gamma_ = 0, dFdq_ = 0, dFdv_ = 0;
 };
 
 }  // namespace
@@ -713,7 +738,7 @@ std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, 
     case Integrator::ArkodeDirk:
       return std::make_unique<DirkEngine>(std::move(model), scene.solver, trial, lsk);
     case Integrator::CvodeBdf:
-      return std::make_unique<CvodeEngine>(std::move(model), scene.solver, lsk);
+      return std::make_unique<CvodeEngine>(std::move(model), scene.solver, lsk, trial, scene.contact.tol_u);
   }
   throw std::invalid_argument("unknown integrator");
 }

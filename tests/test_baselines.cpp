@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 #include "camdyn/cam.hpp"
 #include "camdyn/simulator.hpp"
@@ -15,10 +16,15 @@ namespace camdyn {
 namespace {
 
 double exact_force_case_a(const Scene& s, double t, double* u) {
-  Cam cam(s.cam);
+  static thread_local std::unique_ptr<Cam> cam;
+  static thread_local CamSpec spec;
+  if (!cam || !(spec == s.cam)) {
+    cam = std::make_unique<Cam>(s.cam);
+    spec = s.cam;
+  }
   CamDrive d(s.cam);
-  const CamMotion m = cam.motion(d.theta(t), d.omega(t), d.omega_dot(t));
-  const double X0 = cam.evaluate(d.theta(0)).X_C;
+  const CamMotion m = cam->motion(d.theta(t), d.omega(t), d.omega_dot(t));
+  const double X0 = cam->evaluate(d.theta(0)).X_C;
   *u = m.X;
   return s.follower.mass * m.Xddot + s.spring.stiffness * (s.spring.precompression + m.X - X0);
 }

@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <memory>
 
 #include "camdyn/cam.hpp"
 #include "camdyn/model.hpp"
@@ -22,10 +23,15 @@ struct Exact {
   double u, F;
 };
 Exact case_a_exact(const Scene& s, double t) {
-  Cam cam(s.cam);
+  static thread_local std::unique_ptr<Cam> cam;
+  static thread_local CamSpec spec;
+  if (!cam || !(spec == s.cam)) {
+    cam = std::make_unique<Cam>(s.cam);
+    spec = s.cam;
+  }
   CamDrive drive(s.cam);
-  const CamMotion m = cam.motion(drive.theta(t), drive.omega(t), drive.omega_dot(t));
-  const double X0 = cam.evaluate(drive.theta(0)).X_C;
+  const CamMotion m = cam->motion(drive.theta(t), drive.omega(t), drive.omega_dot(t));
+  const double X0 = cam->evaluate(drive.theta(0)).X_C;
   const double k = s.spring.stiffness;
   return {m.X, s.follower.mass * m.Xddot + k * s.spring.precompression + k * (m.X - X0)};
 }

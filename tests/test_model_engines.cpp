@@ -121,8 +121,10 @@ TEST(Engines, RigidHarmonicCvodeToleranceProportionality) {
 double simulated_frequency(Integrator integ, MassMatrixKind mk, int mode, double* exact) {
   Scene s = bar_scene(integ, 40, mk);
   if (integ == Integrator::CvodeBdf) {
-    s.solver.rtol = 1e-12;
-    s.solver.atol = 1e-14;
+    // BDF2 (see engines.cpp) under CVODE's own error control. atol stays above the
+    // round-off floor of the nodal accelerations (K q with |q| ≈ 9 and EA/h = 5e7).
+    s.solver.rtol = 1e-10;
+    s.solver.atol = 1e-9;
   }
   auto model = build_model(s);
   const int n = model->n();
