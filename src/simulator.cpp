@@ -330,7 +330,12 @@ class Runner {
           const bool gate = eq17 ? (p_active || pt_active) : p_active;
           return (gate && (sd > 0.0 || F > 0.0)) ? sd : 0.0;
         };
-        Fv = iterate(F1, 2.0 / (Ms * hs), tol_v, sum_.level_v, vel_err);
+        // Also one velocity correction at least: the displacement level alone maps a
+        // velocity error ŝ at t to ≈ −2ŝ at t+Δt (a linear ramp that cancels the drift
+        // over the step overshoots the velocity), so velocity errors below tol_v = tol_u/Δt
+        // would double every step until corrected — an oscillation of the contact node
+        // that shakes an elastic follower (seen on a preloaded bar on a still cam).
+        Fv = iterate(F1, 2.0 / (Ms * hs), tol_v, sum_.level_v, vel_err, 1);
         // 4. acceleration level (no integration)
         const double tol_a = sc_.contact.tol_a > 0 ? sc_.contact.tol_a : tol_u_ / (hs * hs);
         const bool pv_active = Fv > 0.0;

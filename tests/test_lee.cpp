@@ -177,18 +177,27 @@ TEST(LeeRigid, PreloadedFollowerOnStillCamStaysAtRest) {
 }
 
 TEST(LeeBar, PreloadedBarOnStillCamStaysAtRest) {
+  // The elastic forces K q of the preloaded bar cancel only to round-off (EA/h · |q| ·
+  // ε ≈ 5e-8), so "at rest" means: the contact face stays within the contact tolerance
+  // and the energy stays at round-off level — no growth over 10⁵ steps.
   Scene s = paper_case("B1");
+  s.follower.mass_matrix = MassMatrixKind::Lumped;
   s.cam.speed_rev_s = 0.0;
-  s.run.output_dt = 0.0;
+  s.run.output_dt = 1e-3;
   s.solver.max_step = 1e-5;
   s.run.t_end = 1.0;  // 1e5 steps
   const RunResult r = simulate(s);
   ASSERT_TRUE(r.summary.finished) << r.summary.message;
   EXPECT_GE(r.summary.steps, 100000);
   const double u0 = r.rows.front().u_c;
-  double drift = 0;
-  for (const HistoryRow& row : r.rows) drift = std::max(drift, std::abs(row.u_c - u0));
-  EXPECT_LT(drift, 1e-11);
+  double drift = 0, kin = 0;
+  for (const HistoryRow& row : r.rows) {
+    drift = std::max(drift, std::abs(row.u_c - u0));
+    kin = std::max(kin, row.kinetic);
+  }
+  std::printf("bar at rest: max |u_c drift| %.3e, max kinetic energy %.3e\n", drift, kin);
+  EXPECT_LE(drift, 1e-7);  // tol_u of the elastic case
+  EXPECT_LT(kin, 1e-12);
 }
 
 // First axial frequency of the bar with node 0 held (fixed–spring bar), from the FE
@@ -239,7 +248,7 @@ TEST(LeeCaseB1, EnginesAgree) {
   for (Integrator integ : {Integrator::ArkodeErk, Integrator::ArkodeDirk, Integrator::CvodeBdf}) {
     Scene s = paper_case("B1");
     s.solver.integrator = integ;
-    s.run.t_end = 0.1;
+    s.run.t_end = 0.01;  // (dirk and cvode restart-per-step are slow on the bar)
     const RunResult r = simulate(s);
     check_invariants(r, s, to_string(integ));
     std::printf("B1 %s: steps %ld cpu %.3f s\n", to_string(integ), r.summary.steps, r.summary.cpu_seconds);
@@ -258,7 +267,8 @@ TEST(LeeCaseB2, SeparatesAndRestrikesEveryRevolution) {
   for (ErrorVariant ev : {ErrorVariant::Eq12, ErrorVariant::Eq17}) {
     Scene s = paper_case("B2");
     s.contact.error_variant = ev;
-    s.run.t_end = 0.6;  // three revolutions of 0.2 s
+    s.run.t_end = 0.6;     // three revolutions of 0.2 s
+    s.run.output_dt = 0.0;  // every accepted step: impacts last microseconds
     const RunResult r = simulate(s);
     check_invariants(r, s, "B2");
     std::printf("%s", r.summary.FullReport().c_str());

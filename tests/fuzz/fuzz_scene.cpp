@@ -1,0 +1,50 @@
+// libFuzzer target for the scene loader (issue 7).
+//
+// Feeds arbitrary bytes to camdyn::parse_scene as a TOML scene file; a scene that parses
+// is then turned into a Cam (profile validation: convexity, self-intersection) and a
+// CamDrive, and serialised back with to_toml and parsed again (round trip must hold).
+// camdyn::SceneError is the one accepted way to reject input: any other exception,
+// crash, sanitizer report, timeout or a failed round trip is a finding.
+//
+// Build and run: tests/fuzz/build_and_run.sh [SECONDS]
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <string_view>
+
+#include "camdyn/cam.hpp"
+#include "camdyn/scene.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  std::string_view text(reinterpret_cast<const char*>(data), size);
+  camdyn::Scene scene;
+  try {
+    scene = camdyn::parse_scene(text, "fuzz.toml");
+  } catch (const camdyn::SceneError&) {
+    return 0;  // rejected with a clear error: fine
+  }
+  // Accepted: the resolved scene must round-trip through to_toml.
+  std::string again = camdyn::to_toml(scene);
+  try {
+    camdyn::Scene back = camdyn::parse_scene(again, "roundtrip.toml");
+    if (!(back == scene)) {
+      std::fprintf(stderr, "round trip changed the scene:\n%s\n", again.c_str());
+      std::abort();
+    }
+  } catch (const camdyn::SceneError& e) {
+    std::fprintf(stderr, "to_toml output rejected: %s\n%s\n", e.what(), again.c_str());
+    std::abort();
+  }
+  // The cam must either build or be rejected with SceneError.
+  try {
+    camdyn::Cam cam(scene.cam);
+    (void)cam.evaluate(0.3);
+    (void)cam.lift();
+    camdyn::CamDrive drive(scene.cam);
+    (void)drive.theta(0.5);
+  } catch (const camdyn::SceneError&) {
+  }
+  return 0;
+}
