@@ -233,7 +233,6 @@ class Runner {
     while (std::abs(v_last) >= tol || (it < min_updates && v_last != 0.0)) {
       if (++it > max_it) {
         ++sum_.iteration_failures;
-        if (std::getenv("CAMDYN_DEBUG")) std::fprintf(stderr, "  fail b %.3e tol %.3e F %.9g v_last %.3e F_last %.9g\n", b, tol, F, v_last, F_last);
         throw StepFailure("contact iteration did not converge");
       }
       // p = min(0, p − b v)  ⇔  F = max(0, F + b v)  (no clipping if bilateral)
@@ -264,7 +263,7 @@ class Runner {
     const double e_rest = sc_.contact.restitution;
     double h = initial_step();
     double slope_prev = 0.0;  // dF/dt of the previous accepted ramp
-    Eigen::VectorXd y1(2 * n_), yv(2 * n_);
+    Eigen::VectorXd y1(2 * n_), yv(2 * n_), y_free(2 * n_);
     const double hmin_rel = 1e-14;
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       // Land on output times and t_end exactly.
@@ -272,10 +271,12 @@ class Runner {
       const double h_planned = h;
       double hs = std::min(h, t_next - t_);
       if (sc_.solver.max_step > 0) hs = std::min(hs, sc_.solver.max_step);
-      if (t_next - t_ - hs < 1e-10 * hs) hs = t_next - t_;
+      // No slivers: a remainder below 1e-6 of the step is absorbed into it.
+      if (t_next - t_ - hs < 1e-6 * hs) hs = t_next - t_;
       if (hs <= hmin_rel * std::max(1.0, std::abs(t_)))
         throw StepFailure("step size underflow (h = " + fmt(hs) + ")");
-      const double t1 = t_ + hs;
+      const bool lands = hs == t_next - t_;
+      const double t1 = lands ? t_next : t_ + hs;  // land exactly, no round-off sliver
       const CamMotion cm = cam_at(t1);
       const double Ft = F_;
       const bool pt_active = Ft > 0.0;  // p̃ᵗ < 0
@@ -287,9 +288,14 @@ class Runner {
       try {
         // 1. displacement level
         const double b = 6.0 / (Ms * hs * hs);
+        bool free_taken = false;
         auto disp_err = [&](double F) {
           law.F1 = F;
           err = engine_->step(t_, y_, hs, y1);
+          if (!free_taken && !contact_ && Ft == 0.0 && F == 0.0) {
+            y_free = y1;  // free flight over the step (for the impact velocity)
+            free_taken = true;
+          }
           const double s = cm.X - y1[0];
           if (bilateral_) return s;
           return (F > 0.0 || s > 0.0) ? s : 0.0;
@@ -303,16 +309,21 @@ class Runner {
         F1 = iterate(Ft, b, tol_u_, sum_.level_u, disp_err, 1);
         // 2. step control
         if (err > 1.0) {
-          if (std::getenv("CAMDYN_DEBUG")) std::fprintf(stderr, "  reject t %.9g h %.3e err %.3e F1 %.9g\n", t_, hs, err, F1);
           ++sum_.rejected_steps;
           h = hs * std::max(0.2, 0.9 * std::pow(err, -1.0 / q));
           continue;
         }
         const double err_acc = err;
-        if (std::getenv("CAMDYN_DEBUG")) std::fprintf(stderr, "t %.9g h %.3e err %.3e F1 %.6g it %ld\n", t_, hs, err, F1, sum_.level_u.total);
         // 3. velocity level (re-integrates with the ramp ending at F̂)
-        // Approach speed ŝ⁻ before the impact: at the start of the step (free flight).
-        const double sdot_minus = cam_at(t_).Xdot - y_[n_];
+        // Approach speed ŝ⁻ at the impact instant: the free-flight gap crosses zero at
+        // τ ≈ g₀/(g₀ − g₁)·Δt (linear in the gaps at t and, without contact, at t+Δt);
+        // ŝ is interpolated there (O(Δt²)). Without a free-flight iterate: ŝ at t.
+        double sdot_minus = cam_at(t_).Xdot - y_[n_];
+        if (free_taken) {
+          const double g0 = y_[0] - cam_at(t_).X, g1 = y_free[0] - cm.X;
+          const double s1 = cm.Xdot - y_free[n_];
+          if (g0 > 0.0 && g1 < 0.0) sdot_minus += (s1 - sdot_minus) * g0 / (g0 - g1);
+        }
         const bool impact = !contact_ && F1 > 0.0;
         const double target = (impact && e_rest > 0.0) ? -e_rest * sdot_minus : 0.0;
         const double tol_v = sc_.contact.tol_v > 0 ? sc_.contact.tol_v : tol_u_ / hs;
@@ -564,7 +575,14 @@ class Runner {
             work_ += P * c.Xdot;  // the cam's impulse does work P·Ẋ_C
             dissipated_ += 0.5 * (1.0 - e_rest * e_rest) * approach * approach / Ms;
             // Chattering guard: a bounce slower than this sticks (plastic).
-            const double v_stick = 1e3 * sc_.solver.atol + 1e-9;
+            // (bounces of a coefficient e < 1 on a still surface form a Zeno sequence;
+            // below 1e-6 of the first impact speed the follower is taken to rest on it)
+            // The root offset δ itself lets the follower gain √(2|s̈|δ) before each root
+            // is reported; bounces slower than a few times that are round-off, not motion.
+            if (v_impact_ref_ == 0.0) v_impact_ref_ = approach;
+            const double rel_acc = std::abs(c.Xddot - m_.contact_acceleration(y_.data(), y_.data() + n_, 0.0));
+            const double delta = 64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(c.X));
+            const double v_stick = std::max(1e-6 * std::max(v_impact_ref_, 1e-3), 8.0 * std::sqrt(2.0 * rel_acc * delta));
             if (e_rest == 0.0 || (1.0 + e_rest) * approach < v_stick) {
               y_[n_] = c.Xdot;
               const double Fr = rigid ? reaction_rigid(t_) : reaction_held(t_, held_from_full().data());
@@ -594,6 +612,7 @@ class Runner {
 
   std::shared_ptr<const FollowerModel> held_;
   ContactLaw* held_law_ = nullptr;
+  double v_impact_ref_ = 0.0;
   Eigen::VectorXd rbuf_, abuf_;
 
   const Scene& sc_;

@@ -78,7 +78,7 @@ TEST(Event, EventTimesConvergeAsToleranceTightens) {
     ASSERT_TRUE(r.summary.finished);
     const double err = std::abs(r.summary.events.at(0).t - t_star);
     std::printf("tol %.0e: impact time error %.3e\n", tol, err);
-    EXPECT_LE(err, prev);
+    EXPECT_LE(err, prev + 1e-14);  // non-increasing (already at round-off when loose)
     prev = err;
   }
   EXPECT_LT(prev, 1e-11);

@@ -94,8 +94,11 @@ TEST(LeeCaseA, ErrorsFallAsTolerancesTighten) {
     const CaseAErrors e = case_a_errors(r, s);
     std::printf("rtol %.0e: u err %.3e F err %.3e steps %ld\n", tol, e.u, e.F / e.Fpeak,
                 r.summary.steps);
-    EXPECT_LT(e.u, prev_u);
-    EXPECT_LT(e.F, prev_F);
+    // Every level makes one Newton correction, exact for a rigid linear follower: the
+    // contact-face error is bounded by tol_u and reaches round-off; it never grows.
+    EXPECT_LE(e.u, 0.1 * tol);
+    EXPECT_LE(e.u, prev_u + 1e-13);
+    EXPECT_LE(e.F, prev_F + 1e-9);
     prev_u = e.u;
     prev_F = e.F;
   }

@@ -4,6 +4,7 @@
 //   camdyn cam   [SCENE.toml] [--out DIR] [--points N] [--set KEY=VALUE]...
 //   camdyn scene [SCENE.toml] [--resolved] [--set KEY=VALUE]...
 //   camdyn plot  DIR [--zoom T0 T1]
+//   camdyn bench [SCENE ...] [--out DIR] [--quick] [--repeats N]
 //
 // Exit status: 0 success; 1 the simulation (or a figure) failed; 2 bad input.
 #include <CLI/CLI.hpp>
@@ -27,6 +28,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "camdyn/bench.hpp"
 #include "camdyn/cam.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
@@ -181,9 +183,24 @@ std::string plot_script_path() {
   return {};
 }
 
-/// Run the plot script with `args`. Returns its exit status, or −1 if it could not start.
-int run_plot_script(const std::vector<std::string>& args, std::string* why) {
-  const std::string script = plot_script_path();
+/// scripts/camdyn_bench_plot.py: $CAMDYN_BENCH_PLOT_SCRIPT, else next to camdyn_plot.py
+/// (installed, then source tree).
+std::string bench_plot_script_path() {
+  if (const char* env = std::getenv("CAMDYN_BENCH_PLOT_SCRIPT"); env && *env) return env;
+  std::error_code ec;
+  for (const char* p : {CAMDYN_PLOT_SCRIPT_INSTALL, CAMDYN_PLOT_SCRIPT_BUILD}) {
+    if (!p || !*p) continue;
+    const fs::path cand = fs::path(p).parent_path() / "camdyn_bench_plot.py";
+    if (fs::is_regular_file(cand, ec)) return cand.string();
+  }
+  return {};
+}
+
+/// Run the plot script (`script_override`, or camdyn_plot.py) with `args`. Returns its
+/// exit status, or −1 if it could not start.
+int run_plot_script(const std::vector<std::string>& args, std::string* why,
+                    const std::string& script_override = std::string()) {
+  const std::string script = script_override.empty() ? plot_script_path() : script_override;
   if (script.empty()) {
     *why = std::string("plot script not found (looked for ") + CAMDYN_PLOT_SCRIPT_INSTALL +
            " and " + CAMDYN_PLOT_SCRIPT_BUILD + ")";
@@ -263,6 +280,17 @@ struct SceneOpts {
 struct PlotOpts {
   std::string dir;
   std::vector<double> zoom;
+};
+
+struct BenchOpts {
+  std::vector<std::string> scenes;
+  std::string out = "camdyn-bench";
+  bool quick = false;
+  int repeats = 3;
+  double budget = 20.0;
+  double t_end = 0.0;
+  bool quiet = false;
+  bool no_plot = false;
 };
 
 int cmd_run(const RunOpts& o) {
@@ -464,6 +492,71 @@ int cmd_plot(const PlotOpts& o) {
   return rc;
 }
 
+int cmd_bench(const BenchOpts& o) {
+  // Input stage: every error here is bad input (exit 2, raised to main()).
+  BenchOptions bo;
+  for (const auto& name : o.scenes) {
+    std::error_code ec;
+    if ((name == "A" || name == "B1" || name == "B2") && !fs::exists(name, ec)) {
+      bo.scenes.push_back(paper_case(name));
+      bo.labels.push_back(name);
+      continue;
+    }
+    Scene sc = load_scene_file(name);
+    resolve_defaults(sc);
+    validate(sc);
+    Cam cam(sc.cam);  // a bad profile is bad input
+    bo.scenes.push_back(std::move(sc));
+    bo.labels.push_back(fs::path(name).stem().string());
+  }
+  if (o.repeats < 1)
+    throw SceneError("--repeats", 0, "repeats", std::to_string(o.repeats), "must be >= 1");
+  if (!(o.budget > 0))
+    throw SceneError("--budget", 0, "budget", fmt_g(o.budget), "must be > 0 seconds");
+  if (!(o.t_end >= 0) || !std::isfinite(o.t_end))
+    throw SceneError("--t-end", 0, "t_end", fmt_g(o.t_end), "must be > 0 (0: the scene's)");
+  bo.quick = o.quick;
+  bo.repeats = o.repeats;
+  bo.time_budget_seconds = o.budget;
+  bo.t_end = o.t_end;
+  bo.out_dir = o.out;
+  ensure_output_dir(o.out);
+  if (!o.quiet)
+    bo.log = [](const std::string& line) {
+      std::fprintf(stderr, "%s\n", line.c_str());
+      std::fflush(stderr);
+    };
+
+  BenchResult res;
+  try {
+    res = run_bench(bo);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "camdyn: bench failed: %s\n", e.what());
+    return kExitFailed;
+  }
+  if (!o.quiet) {
+    for (size_t i = 0; i < res.headline_scene.size(); ++i)
+      std::printf("scene %s: %s\n", res.headline_scene[i].c_str(),
+                  res.headline_text[i].c_str());
+    std::printf("output: %s, %s\n", res.csv_path.c_str(), res.md_path.c_str());
+    std::fflush(stdout);
+  }
+  if (!o.no_plot) {
+    std::string why;
+    const std::string script = bench_plot_script_path();
+    if (script.empty()) {
+      std::fprintf(stderr, "camdyn: warning: no figures drawn: camdyn_bench_plot.py not found\n");
+    } else if (run_plot_script({o.out}, &why, script) != 0) {
+      std::fprintf(stderr, "camdyn: warning: no figures drawn: %s\n", why.c_str());
+    } else if (!o.quiet) {
+      std::printf("figures: %s\n", join_path(o.out, "wp_*.png").c_str());
+    }
+  }
+  return kExitOk;
+}
+
 void add_common(CLI::App* sub, CommonOpts& c, const char* scene_help) {
   sub->add_option("scene", c.scene_file, scene_help)->type_name("SCENE.toml");
   sub->add_option("--case", c.case_name,
@@ -477,7 +570,7 @@ void add_common(CLI::App* sub, CommonOpts& c, const char* scene_help) {
       ->allow_extra_args(false);
 }
 
-const std::vector<std::string> kCommands{"run", "cam", "scene", "plot"};
+const std::vector<std::string> kCommands{"run", "cam", "scene", "plot", "bench"};
 
 int real_main(int argc, char** argv) {
   CLI::App app{
@@ -492,6 +585,7 @@ int real_main(int argc, char** argv) {
       "  camdyn run scene.toml --out out --set cam.speed_rev_s=3 --plot\n"
       "  camdyn cam --out out                # cam.csv + cam figures\n"
       "  camdyn scene scene.toml --resolved  # the scene with every default filled in\n"
+      "  camdyn bench --quick                # work–precision: Lee vs penalty vs baselines\n"
       "Run 'camdyn COMMAND --help' for the options of a command.");
 
   RunOpts ro;
@@ -557,13 +651,41 @@ int real_main(int argc, char** argv) {
       ->type_name("T0 T1")
       ->expected(2);
 
+  BenchOpts bo;
+  auto* bench = app.add_subcommand(
+      "bench",
+      "Work–precision benchmark: Lee (engines × error variants × tolerances), penalty "
+      "(k_p × c_p × rtol), holonomic and event runs against an event-driven reference; "
+      "writes DIR/work_precision.csv, DIR/work_precision.md and wp_*.png figures");
+  bench->add_option("scenes", bo.scenes,
+                    "Scene files (TOML) or paper case names A, B1, B2; default: A B1 B2")
+      ->type_name("SCENE");
+  bench->add_option("-o,--out", bo.out, "Output directory (created if missing)")
+      ->type_name("DIR")
+      ->capture_default_str();
+  bench->add_flag("--quick", bo.quick,
+                  "Reduced sweep: Lee on arkode-erk at two tolerances, penalty at three k_p, "
+                  "elastic scenes cut to t_end = 0.05");
+  bench->add_option("--repeats", bo.repeats, "Timing repeats (median CPU time)")
+      ->type_name("N")
+      ->capture_default_str();
+  bench->add_option("--budget", bo.budget,
+                    "CPU seconds per run before it is stopped and the tighter settings of "
+                    "its series are skipped")
+      ->type_name("SECONDS")
+      ->capture_default_str();
+  bench->add_option("--t-end", bo.t_end, "Override every scene's run.t_end (0: keep)")
+      ->type_name("T");
+  bench->add_flag("-q,--quiet", bo.quiet, "Print nothing but errors");
+  bench->add_flag("--no-plot", bo.no_plot, "Write the CSV and Markdown only, no figures");
+
   // A clear message for a mistyped command (CLI11 would only say "not expected").
   if (argc >= 2 && argv[1][0] != '-') {
     bool known = false;
     for (const auto& c : kCommands) known = known || c == argv[1];
     if (!known) {
       std::fprintf(stderr,
-                   "camdyn: unknown command '%s' (allowed: run, cam, scene, plot; see "
+                   "camdyn: unknown command '%s' (allowed: run, cam, scene, plot, bench; see "
                    "camdyn --help)\n",
                    argv[1]);
       return kExitBadInput;
@@ -579,7 +701,7 @@ int real_main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
     std::string what = e.what();
-    if (argc < 2) what = "no command given (allowed: run, cam, scene, plot)";
+    if (argc < 2) what = "no command given (allowed: run, cam, scene, plot, bench)";
     std::fprintf(stderr, "camdyn: %s\nRun 'camdyn --help' for the commands and options.\n",
                  what.c_str());
     return kExitBadInput;
@@ -593,7 +715,8 @@ int real_main(int argc, char** argv) {
   if (cam->parsed()) return cmd_cam(co);
   if (scene->parsed()) return cmd_scene(so);
   if (plot->parsed()) return cmd_plot(po);
-  std::fprintf(stderr, "camdyn: no command given (allowed: run, cam, scene, plot)\n");
+  if (bench->parsed()) return cmd_bench(bo);
+  std::fprintf(stderr, "camdyn: no command given (allowed: run, cam, scene, plot, bench)\n");
   return kExitBadInput;
 }
 

@@ -1,0 +1,87 @@
+// camdyn — work–precision benchmark ("what accuracy costs in time", `camdyn bench`).
+//
+// For each scene, run_bench() sweeps Lee's method (engines × error variants × tolerances),
+// the penalty baseline (k_p × c_p × rtol), and the holonomic and event-driven baselines,
+// and compares every run with an event-driven reference on a common output grid. It writes
+// DIR/work_precision.csv (one row per run) and DIR/work_precision.md (tables and the
+// headline ratio). The figures are drawn by scripts/camdyn_bench_plot.py (the CLI calls it).
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "camdyn/scene.hpp"
+
+namespace camdyn {
+
+struct BenchOptions {
+  /// Scenes to benchmark, with a short label each (same length). Empty: the paper's cases
+  /// A, B1 and B2 labelled "A", "B1", "B2".
+  std::vector<Scene> scenes;
+  std::vector<std::string> labels;
+  /// Quick mode: Lee on arkode-erk only at two tolerances, penalty at three k_p and one
+  /// rtol, elastic scenes cut to quick_elastic_t_end (unless t_end is given).
+  bool quick = false;
+  /// Timing repeats (median of Summary::cpu_seconds), ≥ 1 (3 recommended). A run whose
+  /// first timing exceeds repeat_cap_seconds is timed once (noted in the row).
+  int repeats = 3;
+  double repeat_cap_seconds = 5.0;
+  /// Output directory for work_precision.csv / .md (created if missing).
+  std::string out_dir = "camdyn-bench";
+  /// Common output grid of every run and of the reference [time], > 0.
+  double output_dt = 1e-4;
+  /// CPU budget of one run [s]: a run over it is stopped and the tighter settings of its
+  /// series are skipped (rows recorded with the reason). The references have no budget.
+  double time_budget_seconds = 20.0;
+  /// > 0: overrides every scene's run.t_end.
+  double t_end = 0.0;
+  /// Quick mode: t_end of elastic scenes when t_end is not given.
+  double quick_elastic_t_end = 0.05;
+  /// Progress lines (one per run); may be empty.
+  std::function<void(const std::string&)> log;
+};
+
+/// One benchmark run (one CSV row).
+struct BenchRow {
+  std::string scene, method, engine, variant;
+  double tol = std::numeric_limits<double>::quiet_NaN();  ///< Lee: tol_u; others: rtol
+  double kp = std::numeric_limits<double>::quiet_NaN();   ///< penalty only
+  double cp = std::numeric_limits<double>::quiet_NaN();   ///< penalty only
+  double cpu_seconds = std::numeric_limits<double>::quiet_NaN();  ///< median over repeats
+  long steps = 0, rhs_evals = 0;
+  double err_u = std::numeric_limits<double>::quiet_NaN();
+  /// rigid: max |F − F_ref| / max F_ref; elastic: 1 ms window impulse error / max window
+  /// impulse (chaotic scenes: over the first revolution only).
+  double err_force = std::numeric_limits<double>::quiet_NaN();
+  /// total variation of F over that of the reference (spurious oscillation).
+  double osc_index = std::numeric_limits<double>::quiet_NaN();
+  /// contact impulse per revolution: max relative error over complete revolutions (whole
+  /// run when shorter than one revolution).
+  double impulse_err = std::numeric_limits<double>::quiet_NaN();
+  bool finished = false;
+  std::string note;
+};
+
+struct BenchResult {
+  std::vector<BenchRow> rows;
+  /// Per scene label: the headline text (cheapest penalty / cheapest Lee CPU at a
+  /// contact-force error ≤ 1e-3), and the ratio (NaN when it cannot be formed).
+  std::vector<std::string> headline_scene;
+  std::vector<std::string> headline_text;
+  std::vector<double> headline_ratio;
+  std::string csv_path, md_path;
+};
+
+/// Header of work_precision.csv.
+const std::vector<std::string>& bench_columns();
+/// work_precision.csv text.
+std::string bench_csv(const std::vector<BenchRow>& rows);
+
+/// Run the sweep and write DIR/work_precision.csv and DIR/work_precision.md.
+/// @throws SceneError on a bad option or unwritable directory.
+BenchResult run_bench(const BenchOptions& options);
+
+}  // namespace camdyn

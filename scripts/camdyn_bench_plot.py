@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""Work-precision figures of `camdyn bench`.
+
+Usage: camdyn_bench_plot.py DIR [--quiet]
+
+Reads DIR/work_precision.csv and writes, for each scene and each error kind
+(err_u, err_force, impulse_err), DIR/wp_<scene>_<kind>.png: error against CPU time,
+log-log, one line per method/engine(/variant). Only finished runs with a positive error
+are drawn. Exit status: 0 ok, 2 bad input, 3 numpy/matplotlib missing.
+"""
+import csv
+import math
+import os
+import re
+import sys
+
+
+def main(argv):
+    args = [a for a in argv[1:] if not a.startswith("--")]
+    quiet = "--quiet" in argv
+    if len(args) != 1:
+        print(__doc__, file=sys.stderr)
+        return 2
+    d = args[0]
+    path = os.path.join(d, "work_precision.csv")
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("camdyn_bench_plot: matplotlib is not installed", file=sys.stderr)
+        return 3
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        print(f"camdyn_bench_plot: cannot read {path}: {e}", file=sys.stderr)
+        return 2
+
+    def num(s):
+        try:
+            x = float(s)
+        except (TypeError, ValueError):
+            return math.nan
+        return x
+
+    kinds = {
+        "err_u": "max |u_c - u_ref|",
+        "err_force": "contact-force error (rigid: pointwise / peak; elastic: 1 ms impulse)",
+        "impulse_err": "impulse per revolution, relative error",
+    }
+    scenes = []
+    for r in rows:
+        if r["scene"] not in scenes:
+            scenes.append(r["scene"])
+    written = []
+    for sc in scenes:
+        for kind, label in kinds.items():
+            series = {}
+            for r in rows:
+                if r["scene"] != sc or r.get("finished") != "1":
+                    continue
+                if r["method"] == "reference-check":
+                    continue
+                cpu, err = num(r["cpu_seconds"]), num(r[kind])
+                if not (cpu > 0 and err > 0 and math.isfinite(err)):
+                    continue
+                if r["method"] == "lee":
+                    key = f"lee {r['engine']} {r['variant']}"
+                elif r["method"] == "penalty":
+                    key = f"penalty {r['variant']} rtol {num(r['tol']):g}"
+                else:
+                    key = f"{r['method']} {r['engine']}"
+                series.setdefault(key, []).append((cpu, err, r))
+            if not series:
+                continue
+            fig, ax = plt.subplots(figsize=(7.5, 5.2))
+            for key in sorted(series):
+                pts = series[key]
+                # Lee: in tolerance order; penalty: in k_p order.
+                if key.startswith("penalty"):
+                    pts.sort(key=lambda p: num(p[2]["kp"]))
+                else:
+                    pts.sort(key=lambda p: -num(p[2]["tol"]))
+                xs = [p[0] for p in pts]
+                ys = [p[1] for p in pts]
+                style = "-o" if key.startswith("lee") else ("--s" if key.startswith("penalty") else "^")
+                ax.loglog(xs, ys, style, label=key, ms=4)
+            ax.set_xlabel("CPU time [s] (median)")
+            ax.set_ylabel(label)
+            ax.set_title(f"scene {sc}: work-precision ({kind})")
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=7, loc="best")
+            fig.tight_layout()
+            safe = re.sub(r"[^A-Za-z0-9_.-]", "_", sc)
+            out = os.path.join(d, f"wp_{safe}_{kind}.png")
+            fig.savefig(out, dpi=110)
+            plt.close(fig)
+            written.append(out)
+    if not quiet:
+        for w in written:
+            print(w)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
