@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -706,8 +707,9 @@ class Validator {
     // ---- contact
     const ContactSpec& k = s.contact;
     finite("contact.tol_u", k.tol_u);
-    if (!(k.tol_u >= 0.0 && k.tol_u <= 1.0))
-      fail_at("contact.tol_u", fmt_num(k.tol_u), "must be > 0 and <= 1 (or 0 for the paper default)");
+    if (!(k.tol_u == 0.0 || (k.tol_u >= 1e-14 && k.tol_u <= 1.0)))
+      fail_at("contact.tol_u", fmt_num(k.tol_u),
+              "must be between 1e-14 and 1 (or 0 for the paper default); below 1e-14 the gap is round-off");
     ge("contact.tol_v", k.tol_v, 0.0);
     ge("contact.tol_a", k.tol_a, 0.0);
     int_in("contact.max_iterations", k.max_iterations, 1, 10000);
@@ -784,6 +786,9 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name) {
 }
 
 Scene load_scene_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw SceneError(path, 0, "", "", "cannot read scene file: it is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     const int err = errno;

@@ -418,7 +418,7 @@ TEST(SceneMalformed, ExactMessages) {
       {"atol = 0", "[solver]\natol = 0\n", "bad.toml:2: key 'solver.atol' = 0: must be > 0 and <= 1"},
       {"negative max_step", "[solver]\nmax_step = -1e-3\n", "bad.toml:2: key 'solver.max_step' = -0.001: must be >= 0"},
       {"negative tol_u", "[contact]\ntol_u = -1e-8\n",
-       "bad.toml:2: key 'contact.tol_u' = -1e-08: must be > 0 and <= 1 (or 0 for the paper default)"},
+       "bad.toml:2: key 'contact.tol_u' = -1e-08: must be between 1e-14 and 1 (or 0 for the paper default); below 1e-14 the gap is round-off"},
       {"negative tol_v", "[contact]\ntol_v = -1\n", "bad.toml:2: key 'contact.tol_v' = -1: must be >= 0"},
       {"max_iterations = 0", "[contact]\nmax_iterations = 0\n",
        "bad.toml:2: key 'contact.max_iterations' = 0: must be >= 1 and <= 10000"},

@@ -66,15 +66,18 @@ class SigintGuard {
     sigemptyset(&sa.sa_mask);
     sa.sa_flags = SA_RESETHAND;  // a second Ctrl-C kills the program the usual way
     installed_ = sigaction(SIGINT, &sa, &old_) == 0;
+    sigaction(SIGTERM, &sa, &old_term_);  // SIGTERM too: keep what was computed
   }
   ~SigintGuard() {
     if (installed_) sigaction(SIGINT, &old_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
   }
   SigintGuard(const SigintGuard&) = delete;
   SigintGuard& operator=(const SigintGuard&) = delete;
 
  private:
   struct sigaction old_ {};
+  struct sigaction old_term_ {};
   bool installed_ = false;
 };
 
@@ -170,6 +173,20 @@ Scene build_scene(const std::string& file, const std::string& case_name,
                        "missing key before '=': expected KEY=VALUE, e.g. cam.speed_rev_s=3");
     }
     apply_override(sc, s);
+  }
+  // Cam geometry (convexity, self-intersection) is checked by the Cam itself; name the
+  // file or --set the offending key came from, not the Cam's own "<cam>".
+  try {
+    const Cam cam(sc.cam);
+  } catch (const SceneError& e) {
+    if (e.file() != "<cam>") throw;
+    bool from_set = false;
+    for (const auto& s : sets) {
+      const std::string key = s.substr(0, s.find('='));
+      if (key.rfind("cam.", 0) == 0) from_set = true;
+    }
+    throw SceneError(from_set ? "--set" : (file.empty() ? std::string("<built-in>") : file), 0,
+                     e.key(), e.value(), e.rule());
   }
   return sc;
 }
