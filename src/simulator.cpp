@@ -379,6 +379,14 @@ class Runner {
           record_event("separation", 0.0);
         }
         contact_ = now_contact;
+        // Work of the contact force (ramp Fᵗ → F̂ that produced the accepted velocity)
+        // by Simpson's rule on F·Ẋ_C; after_step adds the trapezoid of F·Ẋ_C, which is
+        // replaced here.
+        {
+          const double Xm = cam_at(t_ - 0.5 * hs).Xdot;
+          const double simpson = hs / 6.0 * (Ft * Xdot_prev + 4.0 * 0.5 * (Ft + Fv) * Xm + Fv * cm.Xdot);
+          work_ += simpson - 0.5 * hs * (Ft * Xdot_prev + F_ * cm.Xdot);
+        }
         after_step(hs, Ft, Xdot_prev, P_prev);
         // next step size
         if (engine_->estimates_error()) {
