@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <system_error>
 
@@ -398,93 +399,33 @@ void HistoryWriter::write(const std::string& dir) const {
 std::string scene_json(const Scene& s, int indent) {
   std::string out;
   JsonObject o(out, indent);
-  o.str("title", s.title);
-  {
-    std::string t;
-    JsonObject c(t, o.child_indent());
-    const CamSpec& x = s.cam;
-    c.str("profile", to_string(x.profile));
-    c.nums("angles_deg", x.angles_deg);
-    c.nums("radii", x.radii);
-    c.num("base_radius", x.base_radius);
-    c.nums("lift_angles_deg", x.lift_angles_deg);
-    c.nums("lift", x.lift);
-    c.num("radius", x.radius);
-    c.num("eccentricity", x.eccentricity);
-    c.num("speed_rev_s", x.speed_rev_s);
-    c.nums("speed_table_t", x.speed_table_t);
-    c.nums("speed_table_rev_s", x.speed_table_rev_s);
-    c.num("theta0_deg", x.theta0_deg);
-    c.close();
-    o.raw("cam", t);
-  }
-  {
-    std::string t;
-    JsonObject c(t, o.child_indent());
-    const FollowerSpec& x = s.follower;
-    c.str("kind", to_string(x.kind));
-    c.num("mass", x.mass);
-    c.num("damping", x.damping);
-    c.num("youngs_modulus", x.youngs_modulus);
-    c.num("area", x.area);
-    c.num("length", x.length);
-    c.integer("elements", x.elements);
-    c.str("mass_matrix", to_string(x.mass_matrix));
-    c.num("rayleigh_alpha", x.rayleigh_alpha);
-    c.num("rayleigh_beta", x.rayleigh_beta);
-    c.close();
-    o.raw("follower", t);
-  }
-  {
-    std::string t;
-    JsonObject c(t, o.child_indent());
-    c.num("stiffness", s.spring.stiffness);
-    c.num("precompression", s.spring.precompression);
-    c.close();
-    o.raw("spring", t);
-  }
-  {
-    std::string t;
-    JsonObject c(t, o.child_indent());
-    const ContactSpec& x = s.contact;
-    c.str("model", to_string(x.model));
-    c.str("error_variant", to_string(x.error_variant));
-    c.num("tol_u", x.tol_u);
-    c.num("tol_v", x.tol_v);
-    c.num("tol_a", x.tol_a);
-    c.integer("max_iterations", x.max_iterations);
-    c.boolean("separation", x.separation);
-    c.num("restitution", x.restitution);
-    c.num("initial_gap", x.initial_gap);
-    c.str("penalty_law", to_string(x.penalty_law));
-    c.num("penalty_stiffness", x.penalty_stiffness);
-    c.num("penalty_damping", x.penalty_damping);
-    c.num("penalty_exponent", x.penalty_exponent);
-    c.close();
-    o.raw("contact", t);
-  }
-  {
-    std::string t;
-    JsonObject c(t, o.child_indent());
-    const SolverSpec& x = s.solver;
-    c.str("integrator", to_string(x.integrator));
-    c.num("rtol", x.rtol);
-    c.num("atol", x.atol);
-    c.str("linear_solver", to_string(x.linear_solver));
-    c.num("max_step", x.max_step);
-    c.num("initial_step", x.initial_step);
-    c.close();
-    o.raw("solver", t);
-  }
-  {
-    std::string t;
-    JsonObject c(t, o.child_indent());
-    c.num("t_end", s.run.t_end);
-    c.num("output_dt", s.run.output_dt);
-    c.integer("max_steps", s.run.max_steps);
-    c.close();
-    o.raw("run", t);
-  }
+  // One nested object per table, filled from the scene's own key list (the one the loader
+  // and to_toml use), so no key can be missing here.
+  std::string table, body;
+  std::unique_ptr<JsonObject> child;
+  auto close_table = [&] {
+    if (!child) return;
+    child->close();
+    o.raw(table, body);
+    child.reset();
+    body.clear();
+  };
+  for_each_scene_entry(s, [&](const SceneEntry& e) {
+    if (e.table != table) {
+      close_table();
+      table = e.table;
+      if (!table.empty()) child = std::make_unique<JsonObject>(body, o.child_indent());
+    }
+    JsonObject& w = child ? *child : o;
+    switch (e.kind) {
+      case SceneEntry::Kind::Real: w.num(e.key, e.real); break;
+      case SceneEntry::Kind::Int: w.integer(e.key, e.integer); break;
+      case SceneEntry::Kind::Bool: w.boolean(e.key, e.boolean); break;
+      case SceneEntry::Kind::Str: w.str(e.key, e.text); break;
+      case SceneEntry::Kind::Array: w.nums(e.key, e.array); break;
+    }
+  });
+  close_table();
   o.str("source", s.source);
   o.close();
   return out;

@@ -855,35 +855,50 @@ void apply_override(Scene& scene, const std::string& assignment) {
   scene = std::move(out);
 }
 
+void for_each_scene_entry(const Scene& scene, const std::function<void(const SceneEntry&)>& visit) {
+  Scene& s = const_cast<Scene&>(scene);  // the field accessors return references; only read
+  SceneEntry e;
+  for (const auto& f : fields()) {
+    e.table = f.table;
+    e.key = f.key;
+    switch (f.kind) {
+      case FK::Real: e.kind = SceneEntry::Kind::Real; e.real = f.real(s); break;
+      case FK::Int: e.kind = SceneEntry::Kind::Int; e.integer = f.get_int(s); break;
+      case FK::Bool: e.kind = SceneEntry::Kind::Bool; e.boolean = f.boolean(s); break;
+      case FK::Str: e.kind = SceneEntry::Kind::Str; e.text = f.str(s); break;
+      case FK::Enum: e.kind = SceneEntry::Kind::Str; e.text = f.get_enum(s); break;
+      case FK::Arr: e.kind = SceneEntry::Kind::Array; e.array = f.arr(s); break;
+    }
+    visit(e);
+  }
+}
+
 std::string to_toml(const Scene& scene_in) {
   Scene resolved = scene_in;
   resolve_defaults(resolved);
-  Scene& s = resolved;
   std::ostringstream os;
   os << "# camdyn scene (every key written; see INTERFACE.md)\n";
-  const char* current = nullptr;
-  for (const auto& f : fields()) {
-    if (*f.table && (current == nullptr || std::strcmp(current, f.table) != 0)) {
-      current = f.table;
-      os << "\n[" << f.table << "]\n";
+  std::string current;
+  for_each_scene_entry(resolved, [&](const SceneEntry& e) {
+    if (!e.table.empty() && e.table != current) {
+      current = e.table;
+      os << "\n[" << e.table << "]\n";
     }
-    os << f.key << " = ";
-    switch (f.kind) {
-      case FK::Real: os << toml_float(f.real(s)); break;
-      case FK::Int: os << f.get_int(s); break;
-      case FK::Bool: os << (f.boolean(s) ? "true" : "false"); break;
-      case FK::Str: os << quote(f.str(s)); break;
-      case FK::Enum: os << quote(f.get_enum(s)); break;
-      case FK::Arr: {
+    os << e.key << " = ";
+    switch (e.kind) {
+      case SceneEntry::Kind::Real: os << toml_float(e.real); break;
+      case SceneEntry::Kind::Int: os << e.integer; break;
+      case SceneEntry::Kind::Bool: os << (e.boolean ? "true" : "false"); break;
+      case SceneEntry::Kind::Str: os << quote(e.text); break;
+      case SceneEntry::Kind::Array: {
         os << "[";
-        const auto& a = f.arr(s);
-        for (std::size_t i = 0; i < a.size(); ++i) os << (i ? ", " : "") << toml_float(a[i]);
+        for (std::size_t i = 0; i < e.array.size(); ++i) os << (i ? ", " : "") << toml_float(e.array[i]);
         os << "]";
         break;
       }
     }
     os << "\n";
-  }
+  });
   return os.str();
 }
 

@@ -5,6 +5,7 @@
 // (model.hpp) turns a Scene into the smallest model with exactly the effects it asks for.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -210,6 +211,23 @@ void validate(const Scene& scene);
 /// The scene as TOML with every key written (the resolved scene; floats in shortest
 /// round-trip form). parse_scene(to_toml(s), ...) == s after resolve_defaults(s).
 std::string to_toml(const Scene& scene);
+
+/// One key of a scene with its value, as the writers (to_toml, the summary's "options")
+/// see it. Enumerations arrive as their spelling in `text`.
+struct SceneEntry {
+  enum class Kind { Real, Int, Bool, Str, Array };
+  std::string table;  ///< "" for a top-level key
+  std::string key;
+  Kind kind = Kind::Real;
+  double real = 0;
+  long long integer = 0;
+  bool boolean = false;
+  std::string text;
+  std::vector<double> array;
+};
+/// Visit every key of `scene` in file order (top-level keys first, each table contiguous):
+/// the one list of scene keys behind the loader, to_toml and the summary JSON.
+void for_each_scene_entry(const Scene& scene, const std::function<void(const SceneEntry&)>& visit);
 
 /// Content equality (every field except `source`); exact comparison of doubles.
 bool operator==(const CamSpec& a, const CamSpec& b);
