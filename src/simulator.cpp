@@ -174,12 +174,19 @@ class Runner {
     if (obs_) obs_->on_event(e);
   }
 
-  // Statistics and output after an accepted step (state already updated).
-  void after_step(double h, double F_prev, double Xdot_prev, double P_prev) {
+  // Work of the contact force over the step just taken by the trapezoid rule on F·Ẋ_C
+  // (state already updated to the step's end).
+  double trapezoid_work(double h, double F_prev, double Xdot_prev) const {
+    return 0.5 * h * (F_prev * Xdot_prev + F_ * cam_at(t_).Xdot);
+  }
+
+  // Statistics and output after an accepted step (state already updated); dW is the
+  // work the contact force did over the step.
+  void after_step(double h, double dW, double P_prev) {
     ++sum_.steps;
     const CamMotion cm = cam_at(t_);
     const double P = m_.damping_power(y_.data() + n_);
-    work_ += 0.5 * h * (F_prev * Xdot_prev + F_ * cm.Xdot);
+    work_ += dW;
     dissipated_ += 0.5 * h * (P_prev + P);
     const double gap = y_[0] - cm.X;
     sum_.max_contact_force = std::max(sum_.max_contact_force, F_);
@@ -380,14 +387,9 @@ class Runner {
         }
         contact_ = now_contact;
         // Work of the contact force (ramp Fᵗ → F̂ that produced the accepted velocity)
-        // by Simpson's rule on F·Ẋ_C; after_step adds the trapezoid of F·Ẋ_C, which is
-        // replaced here.
-        {
-          const double Xm = cam_at(t_ - 0.5 * hs).Xdot;
-          const double simpson = hs / 6.0 * (Ft * Xdot_prev + 4.0 * 0.5 * (Ft + Fv) * Xm + Fv * cm.Xdot);
-          work_ += simpson - 0.5 * hs * (Ft * Xdot_prev + F_ * cm.Xdot);
-        }
-        after_step(hs, Ft, Xdot_prev, P_prev);
+        // by Simpson's rule on F·Ẋ_C.
+        const double Xm = cam_at(t_ - 0.5 * hs).Xdot;
+        after_step(hs, hs / 6.0 * (Ft * Xdot_prev + 2.0 * (Ft + Fv) * Xm + Fv * cm.Xdot), P_prev);
         // next step size
         if (engine_->estimates_error()) {
           const double fac = err_acc > 0 ? 0.9 * std::pow(err_acc, -1.0 / q) : 5.0;
@@ -446,7 +448,7 @@ class Runner {
         record_event("separation", 0.0);
       }
       contact_ = now_contact;
-      after_step(h, Ft, Xdot_prev, P_prev);
+      after_step(h, trapezoid_work(h, Ft, Xdot_prev), P_prev);
     }
   }
 
@@ -613,7 +615,7 @@ class Runner {
         record_event("separation", 0.0);
       }
       contact_ = in_contact;
-      after_step(t_ - t_prev, Ft, Xdot_prev, P_prev);
+      after_step(t_ - t_prev, trapezoid_work(t_ - t_prev, Ft, Xdot_prev), P_prev);
     }
     sum_.rhs_evals += held_engine ? held_engine->stats().rhs_evals : 0;
   }
