@@ -7,6 +7,7 @@
 // NothingLost: a run that fails mid-way (max_steps) or is interrupted (SIGINT) exits 1
 // and still writes a parseable history.csv and a summary.json saying it did not finish.
 #include <gtest/gtest.h>
+#include "test_support.hpp"
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -27,15 +28,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using camdyn_test::slurp;
+using camdyn_test::split;
+
 const std::string kCli = CAMDYN_CLI_PATH;
 const std::string kSrc = CAMDYN_SOURCE_DIR;
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
 
 struct Proc {
   bool exited = false;  ///< false: killed by a signal (or could not start)
@@ -267,21 +264,6 @@ TEST_F(BadInput, MalformedScenesAndCommandLinesExitTwo) {
 }
 
 // ---- nothing computed is lost -----------------------------------------------------------
-
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : s) {
-    if (c == sep) {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
 
 /// Every line complete and numeric; returns the last t (or −1).
 double check_history(const std::string& text, size_t* nrows) {

@@ -2,6 +2,7 @@
 // well-formed work_precision.csv whose Lee rows are accurate and improve with tolerance.
 // (Timings are not checked: the machine is shared.)
 #include <gtest/gtest.h>
+#include "test_support.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,20 +23,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::string> split_csv_line(const std::string& s) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : s) {
-    if (c == ',') {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
+using camdyn_test::slurp;
+using camdyn_test::split;
 
 double num(const std::string& s) {
   if (s.empty()) return std::nan("");
@@ -69,7 +58,7 @@ TEST(Bench, QuickCaseAWritesWellFormedCsv) {
   ASSERT_TRUE(f.good());
   std::string line;
   ASSERT_TRUE(std::getline(f, line));
-  const std::vector<std::string> header = split_csv_line(line);
+  const std::vector<std::string> header = split(line, ',');
   ASSERT_EQ(header, camdyn::bench_columns());
   ASSERT_EQ(header.size(), 16u);
   std::map<std::string, size_t> col;
@@ -78,7 +67,7 @@ TEST(Bench, QuickCaseAWritesWellFormedCsv) {
   std::vector<std::vector<std::string>> rows;
   while (std::getline(f, line)) {
     if (line.empty()) continue;
-    auto r = split_csv_line(line);
+    auto r = split(line, ',');
     ASSERT_EQ(r.size(), header.size()) << "row: " << line;
     rows.push_back(r);
   }

@@ -1,6 +1,7 @@
 // The command-line tool and the output files (INTERFACE.md), driven as a user would:
 // the camdyn binary is run through the shell in a fresh temporary directory.
 #include <gtest/gtest.h>
+#include "test_support.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,6 +23,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using camdyn_test::slurp;
+using camdyn_test::split;
+
 const std::string kCli = CAMDYN_CLI_PATH;
 const std::string kSource = CAMDYN_SOURCE_DIR;
 
@@ -36,13 +40,6 @@ std::string quote(const std::string& s) {
   return q + "'";
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> out;
   std::stringstream ss(text);
@@ -50,21 +47,6 @@ std::vector<std::string> lines_of(const std::string& text) {
   while (std::getline(ss, line)) {
     if (!line.empty()) out.push_back(line);
   }
-  return out;
-}
-
-std::vector<std::string> split_commas(const std::string& s) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : s) {
-    if (c == ',') {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
   return out;
 }
 
@@ -131,14 +113,14 @@ bool have_matplotlib() {
 void expect_history_parseable(const std::string& text, size_t min_rows) {
   const auto lines = lines_of(text);
   ASSERT_FALSE(lines.empty()) << "history.csv is empty";
-  const auto header = split_commas(lines[0]);
+  const auto header = split(lines[0], ',');
   const auto& cols = camdyn::history_columns();
   ASSERT_EQ(header.size(), cols.size()) << lines[0];
   for (size_t i = 0; i < cols.size(); ++i) EXPECT_EQ(header[i], cols[i]);
   EXPECT_GE(lines.size() - 1, min_rows);
   double t_prev = -std::numeric_limits<double>::infinity();
   for (size_t i = 1; i < lines.size(); ++i) {
-    const auto f = split_commas(lines[i]);
+    const auto f = split(lines[i], ',');
     ASSERT_EQ(f.size(), header.size()) << "line " << i + 1 << ": " << lines[i];
     for (const auto& x : f) ASSERT_TRUE(parses_as_double(x)) << "line " << i + 1 << ": " << x;
     const double t = std::strtod(f[0].c_str(), nullptr);
@@ -195,7 +177,7 @@ TEST_F(CliTest, CamWritesOneRevolution) {
   ASSERT_EQ(lines.size(), 3601u);
   const double two_pi = 2 * std::acos(-1.0);
   for (size_t i = 1; i < lines.size(); ++i) {
-    const auto f = split_commas(lines[i]);
+    const auto f = split(lines[i], ',');
     ASSERT_EQ(f.size(), 7u) << lines[i];
     for (const auto& x : f) ASSERT_TRUE(parses_as_double(x)) << lines[i];
     EXPECT_NEAR(std::strtod(f[0].c_str(), nullptr), two_pi * double(i - 1) / 3600.0, 1e-12);
@@ -314,7 +296,7 @@ TEST_F(CliTest, ShortRunWritesAllOutputs) {
       << history.substr(0, 200);
   expect_history_parseable(history, 2);
   const auto lines = lines_of(history);
-  const auto last = split_commas(lines.back());
+  const auto last = split(lines.back(), ',');
   EXPECT_NEAR(std::strtod(last[0].c_str(), nullptr), 0.02, 1e-9) << "last row at t_end";
 
   const std::string events = slurp(d / "events.csv");
@@ -391,7 +373,7 @@ TEST(Output, FullPrecisionCsv) {
   const std::string csv = camdyn::history_csv(w.rows());
   const auto lines = lines_of(csv);
   ASSERT_EQ(lines.size(), 2u);
-  const auto f = split_commas(lines[1]);
+  const auto f = split(lines[1], ',');
   ASSERT_EQ(f.size(), camdyn::history_columns().size());
   EXPECT_EQ(std::strtod(f[0].c_str(), nullptr), row.t);
   EXPECT_EQ(std::strtod(f[2].c_str(), nullptr), row.u_c);
