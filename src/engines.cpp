@@ -79,6 +79,28 @@ double ContactLaw::force(double t, double q0, double v0) const {
   return 0.0;
 }
 
+namespace {
+double penetration(const ContactLaw& l, double t, double q0) {
+  const CamMotion m = l.cam->motion(l.drive->theta(t), l.drive->omega(t), l.drive->omega_dot(t));
+  return m.X - q0;
+}
+}  // namespace
+
+double ContactLaw::elastic_force(double t, double q0) const {
+  if (kind != Kind::Penalty) return 0.0;
+  const double s = penetration(*this, t, q0);
+  if (s <= 0.0) return 0.0;
+  return law == PenaltyLaw::Linear ? kp * s : kp * std::pow(s, exponent);
+}
+
+double ContactLaw::stored_energy(double t, double q0) const {
+  if (kind != Kind::Penalty) return 0.0;
+  const double s = penetration(*this, t, q0);
+  if (s <= 0.0) return 0.0;
+  return law == PenaltyLaw::Linear ? 0.5 * kp * s * s
+                                   : kp * std::pow(s, exponent + 1.0) / (exponent + 1.0);
+}
+
 void ContactLaw::derivatives(double t, double q0, double v0, double* dFdq, double* dFdv) const {
   *dFdq = 0.0;
   *dFdv = 0.0;

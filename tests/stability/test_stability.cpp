@@ -8,9 +8,14 @@
 //   - Lee: penetration (−gap) ≤ tol_u + 1e-12;
 //   - energy balance from the history columns, at every row:
 //       |work_cam − (kinetic − kinetic(0)) − potential − dissipated| ≤ 1e-3 · E
-//     with E = max(1, max over the rows so far of |work_cam|) — the energy the cam has
-//     exchanged with the follower up to that time (work_cam itself returns to ~0 after
-//     each revolution, so a pointwise |work_cam| would demand absolute accuracy there).
+//     with E = max(1, max over the rows so far of |work_cam|, dissipated, |kinetic −
+//     kinetic(0)|) — the energy exchanged so far: the work the cam has done, or the energy
+//     the preloaded spring released into motion and the impacts dissipated (a follower
+//     falling onto the cam through a lash gains and loses energy before the cam does any
+//     work). work_cam itself returns to ~0 after each revolution, so a pointwise
+//     |work_cam| would demand absolute accuracy there.
+//     Penalty on an implicit integrator may lose energy to numerical damping (checked
+//     one-sided, Energy::NoGain; closed at a tight tolerance).
 // plus per-case checks (periodicity, per-revolution statistics of the chaotic cases,
 // separation speed of the ramp, ...). See tests/hard/README.md.
 #include <gtest/gtest.h>
@@ -59,20 +64,15 @@ bool all_finite(const HistoryRow& x) {
   return true;
 }
 
-/// Run the scene and check the invariants of every hard run.
-// Known gaps in the energy bookkeeping of the history columns (issue 7 stays open until
-// they close; the residual is still computed and printed for these runs, not asserted):
-//  - impacts: the energy an impact dissipates is booked as ½ŝ⁻²/M* (Lee) or from the
-//    impulse (event); on elastic bars and on fast runs this does not yet balance
-//    (measured residuals 2–20× the bound on B2, 8 rev/s, Rayleigh, valve lash, speed ramp);
-//  - penalty: the energy stored in the contact spring and dissipated by its damper is not
-//    in the `potential`/`dissipated` columns.
-constexpr bool kEnergyClosesForImpacts = false;
-constexpr bool kEnergyClosesForImpactsOnBars = false;
-constexpr bool kEnergyIncludesPenaltySpring = false;
-constexpr bool kLeeWorkQuadratureClosesOnLongSteps = false;
+/// How the energy balance W − ΔT − ΔV − D is checked (bound b = 1e-3·E):
+///   Closes  |W − ΔT − ΔV − D| ≤ b at every row;
+///   NoGain  W − ΔT − ΔV − D ≥ −b: the run may lose energy that no column books
+///           (an implicit integrator's numerical damping of a stiff penalty spring's
+///           chatter), but never create it. The residual is printed.
+enum class Energy { Closes, NoGain };
 
-Checked run_checked(const Scene& scene, bool check_energy = true) {
+/// Run the scene and check the invariants of every hard run.
+Checked run_checked(const Scene& scene, Energy energy = Energy::Closes) {
   Checked c;
   c.r = camdyn::simulate(scene);
   const auto& rows = c.r.rows;
@@ -92,9 +92,9 @@ Checked run_checked(const Scene& scene, bool check_energy = true) {
     if (unilateral && x.contact_force < 0) ++bad_force;
     c.max_pen = std::max(c.max_pen, -x.gap);
     if (lee && -x.gap > scene.contact.tol_u + 1e-12) ++bad_pen;
-    wmax = std::max(wmax, std::abs(x.work_cam));
+    wmax = std::max({wmax, std::abs(x.work_cam), x.dissipated, std::abs(x.kinetic - k0)});
     const double res = x.work_cam - (x.kinetic - k0) - x.potential - x.dissipated;
-    const double ratio = std::abs(res) / (1e-3 * wmax);
+    const double ratio = (energy == Energy::Closes ? std::abs(res) : std::max(0.0, -res)) / (1e-3 * wmax);
     if (!(ratio <= c.energy_worst)) {  // also catches NaN
       c.energy_worst = std::isnan(ratio) ? INFINITY : ratio;
       c.energy_abs = res;
@@ -107,11 +107,10 @@ Checked run_checked(const Scene& scene, bool check_energy = true) {
     EXPECT_EQ(bad_pen, 0) << what << ": rows with penetration > tol_u + 1e-12 (max "
                           << c.max_pen << ", tol_u " << scene.contact.tol_u << ")";
   }
-  if (check_energy) {
-    EXPECT_LE(c.energy_worst, 1.0)
-        << what << ": energy balance residual " << c.energy_abs << " at t = " << c.energy_t
-        << " (bound 1e-3 * max(1, max|work_cam|) = " << 1e-3 * wmax << ")";
-  }
+  EXPECT_LE(c.energy_worst, 1.0)
+      << what << ": energy balance residual W - dT - dV - D = " << c.energy_abs << " at t = "
+      << c.energy_t << (energy == Energy::NoGain ? " (energy created)" : "")
+      << " (bound at the end 1e-3 * E = " << 1e-3 * wmax << ")";
   std::printf("[ stats    ] %s: rows %zu steps %ld rejected %ld impacts %ld separations %ld "
               "maxF %.6g maxpen %.3g energy residual %.3g at t=%.6g (%.3g of bound) cpu %.2fs\n",
               what.c_str(), rows.size(), sum.steps, sum.rejected_steps, sum.impacts,
@@ -165,7 +164,7 @@ double spread(const std::vector<double>& v) {  // (max − min) / mean
 
 TEST(Stability, B2ElasticFiveRevsOneSecond) {
   const Scene s = load("b2_1s.toml");
-  const auto c = run_checked(s, kEnergyClosesForImpactsOnBars);
+  const auto c = run_checked(s);
   const auto st = per_revolution(c.r.rows, 1.0 / 5.0);
   print_revs("B2", st);
   ASSERT_EQ(st.impulse.size(), 5u);
@@ -182,7 +181,7 @@ TEST(Stability, B2ElasticFiveRevsOneSecond) {
 
 TEST(Stability, ElasticEightRevs) {
   const Scene s = load("elastic_8revs.toml");
-  const auto c = run_checked(s, kEnergyClosesForImpactsOnBars);
+  const auto c = run_checked(s);
   const auto st = per_revolution(c.r.rows, 1.0 / 8.0);
   print_revs("8 rev/s", st);
   ASSERT_EQ(st.impulse.size(), 2u);
@@ -233,7 +232,7 @@ TEST(Stability, LumpedVsConsistentMass) {
 }
 
 TEST(Stability, RayleighDamping) {
-  const auto c = run_checked(load("rayleigh_b2.toml"), kEnergyClosesForImpactsOnBars);
+  const auto c = run_checked(load("rayleigh_b2.toml"));
   double prev = 0;
   long backwards = 0;
   for (const auto& x : c.r.rows) {
@@ -249,7 +248,7 @@ TEST(Stability, RayleighDamping) {
 TEST(Stability, ValveLash) {
   for (const char* model : {"lee", "event"}) {
     SCOPED_TRACE(model);
-    const auto c = run_checked(load("lash.toml", {std::string("contact.model=") + model}), kEnergyClosesForImpacts);
+    const auto c = run_checked(load("lash.toml", {std::string("contact.model=") + model}));
     const auto& rows = c.r.rows;
     EXPECT_NEAR(rows.front().gap, 0.01, 1e-12) << "starts 0.01 off the cam";
     EXPECT_EQ(rows.front().in_contact, 0);
@@ -266,8 +265,7 @@ TEST(Stability, CaseAHundredRevolutionsPeriodic) {
     // steps of this run its quadrature error adds up to ~2 % over 100 revolutions
     // (kinematics at the step ends are exact) — a known gap of the bookkeeping.
     const bool lee = std::string(model) == "lee";
-    const auto c = run_checked(load("case_a_100rev.toml", {std::string("contact.model=") + model}),
-                               !lee || kLeeWorkQuadratureClosesOnLongSteps);
+    const auto c = run_checked(load("case_a_100rev.toml", {std::string("contact.model=") + model}));
     const auto& rows = c.r.rows;
     constexpr size_t kPerRev = 200;  // output_dt = 1/(1.75·200)
     ASSERT_EQ(rows.size(), 100 * kPerRev + 1);
@@ -316,7 +314,7 @@ TEST(Stability, B1TwoRevolutionsPeriodic) {
 TEST(Stability, SpeedRampSeparatesPastSeparationSpeed) {
   for (const char* model : {"lee", "event"}) {
     SCOPED_TRACE(model);
-    const auto c = run_checked(load("speed_ramp.toml", {std::string("contact.model=") + model}), kEnergyClosesForImpacts);
+    const auto c = run_checked(load("speed_ramp.toml", {std::string("contact.model=") + model}));
     double t_sep = -1;
     for (const auto& e : c.r.summary.events) {
       if (e.kind == "separation") {
@@ -336,15 +334,22 @@ TEST(Stability, SpeedRampSeparatesPastSeparationSpeed) {
 TEST(Stability, CornerCam) {
   for (const char* model : {"lee", "event", "penalty"}) {
     SCOPED_TRACE(model);
-    const auto c = run_checked(load("corner_cam.toml", {std::string("contact.model=") + model}), std::string(model) != "penalty" || kEnergyIncludesPenaltySpring);
+    const auto c = run_checked(load("corner_cam.toml", {std::string("contact.model=") + model}));
     EXPECT_EQ(c.r.summary.finished, true);
   }
 }
 
 // ---- stiff penalty, extreme tolerances ------------------------------------------------
 
-TEST(Stability, PenaltyStiffCvodeBdf) { run_checked(load("penalty_bdf.toml"), kEnergyIncludesPenaltySpring); }
-TEST(Stability, PenaltyStiffArkodeDirk) { run_checked(load("penalty_dirk.toml"), kEnergyIncludesPenaltySpring); }
+TEST(Stability, PenaltyStiffCvodeBdf) { run_checked(load("penalty_bdf.toml")); }
+TEST(Stability, PenaltyStiffArkodeDirk) {
+  // At rtol 1e-7 the stiff penalty spring chatters (hundreds of contact losses) and the
+  // SDIRK method's numerical damping absorbs part of that chatter's energy: measured
+  // W − ΔT − ΔV − D up to 4× the bound, always a loss. It must never create energy; at
+  // rtol 1e-10 the chatter is resolved and the balance closes.
+  run_checked(load("penalty_dirk.toml"), Energy::NoGain);
+  run_checked(load("penalty_dirk.toml", {"solver.rtol=1e-10"}));
+}
 
 TEST(Stability, TightAndLooseTolerances) {
   const auto tight = run_checked(load("tight_tol.toml"));
