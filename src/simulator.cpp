@@ -310,7 +310,8 @@ class Runner {
   // with node 0 on the cam (q₀ = X_C, v₀ = Ẋ_C) and the other nodes by cubic Hermite
   // interpolation of the step's end states (q̇ = v, v̇ = M⁻¹(f₀ − Kq − Cv + e₀F)).
   // Adaptive Simpson on F·Ẋ_C to 1e-8 of the step's work scale. For a rigid follower
-  // F(τ) is exact (ü₀,free depends on node 0 only); costs O(n) per sample.
+  // F(τ) is exact (ü₀,free depends on node 0 only); costs O(n) per sample. The samples
+  // also enter max_contact_force, which step ends alone would miss inside long steps.
   double held_contact_work(double t0, const Eigen::VectorXd& ya, double Fa0, double t1,
                            const Eigen::VectorXd& yb, double Fb1) {
     const double h = t1 - t0, Ms = m_.mstar();
@@ -341,6 +342,8 @@ class Runner {
       hv_[0] = c.Xdot;
       double F = (c.Xddot - m_.contact_acceleration(hq_.data(), hv_.data(), 0.0)) / Ms;
       if (!bilateral_ && F < 0.0) F = 0.0;
+      // The samples also show the force between step ends (a peak inside a long step).
+      sum_.max_contact_force = std::max(sum_.max_contact_force, F);
       return F * c.Xdot;
     };
     const double ga = Fa0 * cam_at(t0).Xdot, gb = Fb1 * cam_at(t1).Xdot;

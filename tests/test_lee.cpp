@@ -63,6 +63,45 @@ void check_invariants(const RunResult& r, const Scene& s, const char* what) {
   }
 }
 
+TEST(LeeCaseA, LongStepsPeakForceAndWorkAgainstClosedForm) {
+  // Coarse output grid (output_dt = 0.02): Lee's steps grow to several ms and straddle the
+  // sharp force peak near θ = 120°. The reported max contact force (step ends plus the
+  // work quadrature's interior samples) and the work the cam did over one revolution must
+  // still match the closed form: max F on a 2e5-point grid, and W = ∫ F Ẋ_C dt = 0 over a
+  // revolution of a periodic, conservative motion, with ∫ over the lift
+  // half = ΔT + ΔV between θ = 0 and the nose.
+  Scene s = paper_case("A");
+  const double T = 1.0 / s.cam.speed_rev_s;
+  s.run.t_end = T;
+  s.run.output_dt = T / 50.0;
+  const RunResult r = simulate(s);
+  check_invariants(r, s, "case A, coarse grid");
+  double Fmax = 0;
+  for (int i = 0; i <= 200000; ++i) Fmax = std::max(Fmax, case_a_exact(s, T * i / 200000.0).F);
+  const double Fmid = case_a_exact(s, 0.5 * T).F;
+  // Work over the lift half: W(T/2) = ΔT + ΔV with u = X_C, v = Ẋ_C exact.
+  CamDrive drive(s.cam);
+  Cam cam(s.cam);
+  auto energy = [&](double t) {
+    const CamMotion m = cam.motion(drive.theta(t), drive.omega(t), 0.0);
+    const double X0 = cam.evaluate(drive.theta(0)).X_C, k = s.spring.stiffness;
+    const double d = m.X - X0;
+    return 0.5 * s.follower.mass * m.Xdot * m.Xdot + k * s.spring.precompression * d + 0.5 * k * d * d;
+  };
+  const HistoryRow* half = nullptr;
+  for (const auto& row : r.rows)
+    if (std::abs(row.t - 0.5 * T) < 1e-12) half = &row;
+  ASSERT_NE(half, nullptr);
+  const double W_exact = energy(0.5 * T) - energy(0.0);
+  std::printf("coarse case A: %ld steps; max F %.10g (exact %.10g, at the nose %.6g); W(T/2) "
+              "%.10g (exact %.10g), W(T) %.3g\n", r.summary.steps, r.summary.max_contact_force,
+              Fmax, Fmid, half->work_cam, W_exact, r.rows.back().work_cam);
+  EXPECT_LT(r.summary.steps, 1000) << "the point is long steps";
+  EXPECT_NEAR(r.summary.max_contact_force, Fmax, 1e-3 * Fmax);
+  EXPECT_NEAR(half->work_cam, W_exact, 1e-6 * std::abs(W_exact));
+  EXPECT_NEAR(r.rows.back().work_cam, 0.0, 1e-6 * std::abs(W_exact));
+}
+
 TEST(LeeCaseA, MatchesClosedFormWithDefaultTolerances) {
   Scene s = paper_case("A");
   const RunResult r = simulate(s);

@@ -162,12 +162,12 @@ double spread(const std::vector<double>& v) {  // (max − min) / mean
 
 // ---- chaotic elastic cases: per-revolution statistics only ----------------------------
 
-TEST(Stability, B2ElasticFiveRevsOneSecond) {
-  const Scene s = load("b2_1s.toml");
+TEST(Stability, B2ElasticFiveRevsTwoSeconds) {
+  const Scene s = load("b2_2s.toml");
   const auto c = run_checked(s);
   const auto st = per_revolution(c.r.rows, 1.0 / 5.0);
   print_revs("B2", st);
-  ASSERT_EQ(st.impulse.size(), 5u);
+  ASSERT_EQ(st.impulse.size(), 10u);
   // METHOD.md: ≈ 712.7 in the first revolution; all within a few per cent of each other.
   EXPECT_NEAR(st.impulse[0], 712.7, 0.01 * 712.7);
   EXPECT_LT(spread(st.impulse), 0.03);
@@ -179,11 +179,15 @@ TEST(Stability, B2ElasticFiveRevsOneSecond) {
   EXPECT_GT(c.r.summary.impacts, 50) << "B2 separates and re-strikes again and again";
 }
 
-TEST(Stability, ElasticEightRevs) {
-  const Scene s = load("elastic_8revs.toml");
+TEST(Stability, ElasticEightAndTenRevs) {
+ for (double speed : {8.0, 10.0}) {
+  SCOPED_TRACE(speed);
+  const Scene s = load("elastic_8revs.toml", {"title=Hard: elastic follower at " + std::to_string(int(speed)) + " rev/s",
+                                              "cam.speed_rev_s=" + std::to_string(speed),
+                                              "run.t_end=" + std::to_string(2.0 / speed)});
   const auto c = run_checked(s);
-  const auto st = per_revolution(c.r.rows, 1.0 / 8.0);
-  print_revs("8 rev/s", st);
+  const auto st = per_revolution(c.r.rows, 1.0 / speed);
+  print_revs(speed == 8.0 ? "8 rev/s" : "10 rev/s", st);
   ASSERT_EQ(st.impulse.size(), 2u);
   // Two revolutions are not a statistically steady state at 8 rev/s (the follower is
   // thrown off in revolution 2): only bounded, positive impulses are asked for.
@@ -192,6 +196,7 @@ TEST(Stability, ElasticEightRevs) {
     EXPECT_LT(j, 5.0 * 712.7);
   }
   EXPECT_GT(c.r.summary.separations, 0) << "far above the separation speed";
+ }
 }
 
 // ---- stiff and fine bars --------------------------------------------------------------
@@ -287,27 +292,44 @@ TEST(Stability, CaseAHundredRevolutionsPeriodic) {
   }
 }
 
-TEST(Stability, B1TwoRevolutionsPeriodic) {
+TEST(Stability, B1HundredRevolutionsPeriodicBounded) {
+  // 100 revolutions of the undamped elastic follower (57 s simulated, ~6 min CPU on one
+  // core, ~7·10⁶ Lee steps). The rigid-body part is periodic in the cam revolution; the
+  // elastic oscillation is not (its frequencies are incommensurate with the cam's), so its
+  // energy is checked for boundedness: the follower's mechanical energy T + V at the same
+  // cam angle differs between revolutions only by the oscillation's phase, and that
+  // difference must not grow from the first ten revolutions to the last ten.
   const auto c = run_checked(load("b1_long.toml"));
   const auto& rows = c.r.rows;
   constexpr size_t kPerRev = 200;
-  ASSERT_EQ(rows.size(), 2 * kPerRev + 1);
-  double du = 0, pmax1 = 0, pmax2 = 0, lift = 0;
+  constexpr size_t kRevs = 100;
+  ASSERT_EQ(rows.size(), kRevs * kPerRev + 1);
+  double lift = 0, du = 0;
   for (size_t i = 0; i < kPerRev; ++i) {
-    du = std::max(du, std::abs(rows[i].u_c - rows[i + kPerRev].u_c));
     lift = std::max(lift, std::abs(rows[i].u_c - rows[0].u_c));
-    pmax1 = std::max(pmax1, rows[i].potential);
-    pmax2 = std::max(pmax2, rows[i + kPerRev].potential);
+    du = std::max(du, std::abs(rows[i].u_c - rows[i + (kRevs - 1) * kPerRev].u_c));
   }
+  // dE(k) = max over the revolution's angles of |E_k(θ) − E_1(θ)|, E = T + V.
+  auto energy = [&](size_t i) { return rows[i].kinetic + rows[i].potential; };
+  std::vector<double> dE(kRevs, 0.0);
+  double emax = 0;
+  for (size_t k = 0; k < kRevs; ++k) {
+    for (size_t i = 0; i < kPerRev; ++i) {
+      dE[k] = std::max(dE[k], std::abs(energy(i + k * kPerRev) - energy(i)));
+      emax = std::max(emax, std::abs(energy(i)));
+    }
+  }
+  const double early = *std::max_element(dE.begin() + 1, dE.begin() + 10);
+  const double late = *std::max_element(dE.end() - 10, dE.end());
   long in = 0;
   for (const auto& x : rows) in += x.in_contact;
-  std::printf("[ periodic ] B1 rev 1 vs rev 2: max |du_c| %.3g (lift %.4g), max potential "
-              "%.8g vs %.8g, in contact %.4f of rows, energy residual at end %.3g\n",
-              du, lift, pmax1, pmax2, double(in) / rows.size(),
-              rows.back().work_cam - (rows.back().kinetic - rows.front().kinetic) -
-                  rows.back().potential - rows.back().dissipated);
+  std::printf("[ periodic ] B1 rev 1 vs rev 100: max |du_c| %.3g (lift %.4g); energy T+V at equal "
+              "angles differs from rev 1 by at most %.4g (revs 2-10) and %.4g (revs 91-100), "
+              "of max |T+V| %.6g; in contact %.4f of rows\n",
+              du, lift, early, late, emax, double(in) / rows.size());
   EXPECT_LT(du, 1e-3 * lift) << "displacement periodic (matches case A)";
-  EXPECT_LT(std::abs(pmax2 - pmax1), 1e-3 * pmax1) << "energy bounded, no drift";
+  EXPECT_LT(late, 2.0 * early + 1e-3 * emax) << "elastic oscillation energy grows";
+  EXPECT_LT(late, 1e-2 * emax) << "elastic oscillation energy bounded";
   EXPECT_GT(double(in) / rows.size(), 0.99) << "B1 keeps contact";
 }
 
@@ -341,6 +363,7 @@ TEST(Stability, CornerCam) {
 
 // ---- stiff penalty, extreme tolerances ------------------------------------------------
 
+TEST(Stability, PenaltyStiffArkodeErk) { run_checked(load("penalty_erk.toml")); }
 TEST(Stability, PenaltyStiffCvodeBdf) { run_checked(load("penalty_bdf.toml")); }
 TEST(Stability, PenaltyStiffArkodeDirk) {
   // At rtol 1e-7 the stiff penalty spring chatters (hundreds of contact losses) and the
