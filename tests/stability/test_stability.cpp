@@ -292,7 +292,7 @@ TEST(Stability, CaseAHundredRevolutionsPeriodic) {
   }
 }
 
-TEST(Stability, B1HundredRevolutionsPeriodicBounded) {
+TEST(StabilityLong, B1HundredRevolutionsPeriodicBounded) {
   // 100 revolutions of the undamped elastic follower (57 s simulated, ~6 min CPU on one
   // core, ~7·10⁶ Lee steps). The rigid-body part is periodic in the cam revolution; the
   // elastic oscillation is not (its frequencies are incommensurate with the cam's), so its
