@@ -11,12 +11,15 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "camdyn/bench.hpp"
+#include "camdyn/cam.hpp"
+#include "camdyn/simulator.hpp"
 #include "camdyn/scene.hpp"
 
 namespace fs = std::filesystem;
@@ -148,3 +151,65 @@ TEST(Bench, CliBadInputExits2) {
   fs::remove_all(dir);
 }
 #endif
+
+// The bench's penalty baseline starts fairly: in its own equilibrium, pressed into the cam
+// by s₀ so that the penalty force carries the initial contact force (simulator.cpp,
+// Runner::run()). Truth: case A's exact force F₀ = mẌ_C(0) + kδ₀ from the cam's closed
+// kinematics; the rigid follower's equilibrium k_p s₀ = F₀ − k s₀ (the spring relaxes by
+// s₀), i.e. F(0) = F₀ k_p/(k_p + k).
+TEST(BenchPenaltyStart, CaseAStartsInEquilibrium) {
+  const camdyn::Scene a = camdyn::paper_case("A");
+  camdyn::Cam cam(a.cam);
+  camdyn::CamDrive drive(a.cam);
+  const camdyn::CamMotion m0 = cam.motion(drive.theta(0), drive.omega(0), drive.omega_dot(0));
+  const double k = a.spring.stiffness;
+  const double F0 = a.follower.mass * m0.Xddot + k * a.spring.precompression;
+  ASSERT_GT(F0, 0.0);
+  for (const auto law : {camdyn::PenaltyLaw::Linear, camdyn::PenaltyLaw::HuntCrossley}) {
+    for (double kp : {1e4, 1e10}) {
+      camdyn::Scene s = a;
+      s.contact.model = camdyn::ContactModel::Penalty;
+      s.contact.penalty_law = law;
+      s.contact.penalty_stiffness = kp;
+      s.contact.penalty_damping = 0.1 * 2.0 * std::sqrt(kp * s.follower.mass);
+      s.solver.integrator = camdyn::Integrator::CvodeBdf;
+      s.solver.rtol = 1e-10;
+      s.solver.atol = 1e-12;
+      s.run.t_end = 2e-3;
+      const camdyn::RunResult r = camdyn::simulate(s);
+      ASSERT_TRUE(r.summary.finished) << r.summary.message;
+      ASSERT_GE(r.rows.size(), 2u);
+      const camdyn::HistoryRow& r0 = r.rows.front();
+      ASSERT_EQ(r0.t, 0.0);
+      const double s0 = -r0.gap;  // penetration at t = 0
+      ASSERT_GT(s0, 0.0);
+      const double n = s.contact.penalty_exponent;
+      const double Fpen = law == camdyn::PenaltyLaw::Linear ? kp * s0 : kp * std::pow(s0, n);
+      const char* name = law == camdyn::PenaltyLaw::Linear ? "linear" : "hunt_crossley";
+      // The row's force is the penalty law's force at that penetration ...
+      // (s₀ is read back as a difference of positions ≈ 3: up to ~2 ulp of 3 off)
+      const double ds = 4.0 * std::numeric_limits<double>::epsilon() * std::abs(m0.X);
+      const double slope = law == camdyn::PenaltyLaw::Linear ? kp : n * Fpen / s0;
+      EXPECT_NEAR(r0.contact_force, Fpen, slope * ds + 1e-12 * F0) << name << " k_p " << kp;
+      // ... and it balances the exact initial force with the relaxed spring.
+      EXPECT_NEAR(r0.contact_force + k * s0, F0, k * ds + 1e-11 * F0) << name << " k_p " << kp;
+      EXPECT_NEAR(r0.a_c, m0.Xddot, 1e-9 * std::abs(m0.Xddot)) << name << " k_p " << kp;
+      if (law == camdyn::PenaltyLaw::Linear)
+        EXPECT_NEAR(r0.contact_force, F0 * kp / (kp + k), 1e-12 * F0) << "k_p " << kp;
+      // Linear law, stiff contact: the start is the exact force within 1e-6 (Hunt–Crossley
+      // presses in further, s₀ = (F₀/k_p)^(1/n), so its k s₀ is larger).
+      if (kp >= 1e10 && law == camdyn::PenaltyLaw::Linear) {
+        EXPECT_NEAR(r0.contact_force, F0, 1e-6 * F0) << name;
+        // No start-up transient: the force stays on the exact one (up to the penalty's
+        // own O(k/k_p) and the cam's small motion) over the first 2 ms.
+        for (const auto& row : r.rows) {
+          const camdyn::CamMotion m =
+              cam.motion(drive.theta(row.t), drive.omega(row.t), drive.omega_dot(row.t));
+          const double F = a.follower.mass * m.Xddot +
+                           k * (a.spring.precompression + m.X - m0.X);
+          EXPECT_NEAR(row.contact_force, F, 1e-4 * F0) << name << " t " << row.t;
+        }
+      }
+    }
+  }
+}
