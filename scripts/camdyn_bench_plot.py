@@ -4,9 +4,10 @@
 Usage: camdyn_bench_plot.py DIR [--quiet]
 
 Reads DIR/work_precision.csv and writes, for each scene and each error kind
-(err_u, err_force, impulse_err), DIR/wp_<scene>_<kind>.png: error against CPU time,
-log-log, one line per method/engine(/variant). Only finished runs with a positive error
-are drawn. Exit status: 0 ok, 2 bad input, 3 numpy/matplotlib missing.
+(err_u, err_force, impulse_err, event_err), DIR/wp_<scene>_<kind>.png: error against CPU
+time, log-log, one line per method/engine(/variant): Lee in tolerance order, Lee with a
+step-size cap (max_step) in cap order, penalty in k_p order. Only finished runs with a
+positive error are drawn. Exit status: 0 ok, 2 bad input, 3 numpy/matplotlib missing.
 """
 import csv
 import math
@@ -48,6 +49,7 @@ def main(argv):
         "err_u": "max |u_c - u_ref|",
         "err_force": "contact-force error (rigid: pointwise / peak; elastic: 1 ms impulse)",
         "impulse_err": "impulse per revolution, relative error",
+        "event_err": "separation/impact time error [s]",
     }
     scenes = []
     for r in rows:
@@ -62,10 +64,12 @@ def main(argv):
                     continue
                 if r["method"] == "reference-check":
                     continue
-                cpu, err = num(r["cpu_seconds"]), num(r[kind])
+                cpu, err = num(r["cpu_seconds"]), num(r.get(kind))
                 if not (cpu > 0 and err > 0 and math.isfinite(err)):
                     continue
-                if r["method"] == "lee":
+                if r["method"] == "lee" and math.isfinite(num(r.get("max_step"))):
+                    key = f"lee {r['engine']} {r['variant']} tol_u {num(r['tol']):g}, max_step swept"
+                elif r["method"] == "lee":
                     key = f"lee {r['engine']} {r['variant']}"
                 elif r["method"] == "penalty":
                     key = f"penalty {r['variant']} rtol {num(r['tol']):g}"
@@ -80,11 +84,15 @@ def main(argv):
                 # Lee: in tolerance order; penalty: in k_p order.
                 if key.startswith("penalty"):
                     pts.sort(key=lambda p: num(p[2]["kp"]))
+                elif "max_step" in key:
+                    pts.sort(key=lambda p: -num(p[2]["max_step"]))
                 else:
                     pts.sort(key=lambda p: -num(p[2]["tol"]))
                 xs = [p[0] for p in pts]
                 ys = [p[1] for p in pts]
                 style = "-o" if key.startswith("lee") else ("--s" if key.startswith("penalty") else "^")
+                if "max_step" in key:
+                    style = ":D"
                 ax.loglog(xs, ys, style, label=key, ms=4)
             ax.set_xlabel("CPU time [s] (median)")
             ax.set_ylabel(label)
