@@ -78,7 +78,7 @@ def main(argv):
                 series.setdefault(key, []).append((cpu, err, r))
             if not series:
                 continue
-            fig, ax = plt.subplots(figsize=(7.5, 5.2))
+            fig, ax = plt.subplots(figsize=(10.5, 5.6))
             for key in sorted(series):
                 pts = series[key]
                 # Lee: in tolerance order; penalty: in k_p order.
@@ -94,11 +94,14 @@ def main(argv):
                 if "max_step" in key:
                     style = ":D"
                 ax.loglog(xs, ys, style, label=key, ms=4)
+            if kind == "err_force":
+                ax.axhline(1e-3, ls=":", color="k", lw=0.8, label="headline accuracy 1e-3")
             ax.set_xlabel("CPU time [s] (median)")
             ax.set_ylabel(label)
             ax.set_title(f"scene {sc}: work-precision ({kind})")
             ax.grid(True, which="both", alpha=0.3)
-            ax.legend(fontsize=7, loc="best")
+            # Outside the axes: the curves fill the plot.
+            ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
             fig.tight_layout()
             safe = re.sub(r"[^A-Za-z0-9_.-]", "_", sc)
             out = os.path.join(d, f"wp_{safe}_{kind}.png")
