@@ -367,8 +367,9 @@ class Bench {
       s.solver.rtol = std::min(1e-1, tol * 10);
       if (std::isfinite(max_step)) s.solver.max_step = max_step;
       if (!measure(si, s, row))
-        blown_[key] = "Lee " + key + " at tol_u " + g3(tol) + " took over " +
-                      g3(o_.time_budget_seconds) + " s";
+        blown_[key] = "Lee " + row.engine + " " + row.variant +
+                      (std::isnan(max_step) ? "" : " max_step " + g3(max_step)) + " at tol_u " +
+                      g3(tol) + " took over " + g3(o_.time_budget_seconds) + " s";
     }
   }
 
@@ -490,7 +491,7 @@ class Bench {
     std::vector<double> kps = o_.quick ? std::vector<double>{1e4, 1e7, 1e10}
                                        : std::vector<double>{1e3, 1e4, 1e5, 1e6,
                                                              1e7, 1e8, 1e9, 1e10};
-    std::vector<double> rtols = o_.quick ? std::vector<double>{1e-9}
+    std::vector<double> rtols = o_.quick ? std::vector<double>{1e-6}
                                          : std::vector<double>{1e-6, 1e-9};
     if (!o_.quick && si.rigid) {
       kps.clear();
@@ -500,8 +501,9 @@ class Bench {
     for (double rtol : rtols) {
       // c_p: none, 10 % and 100 % of critical for a mass m on the spring k_p (critical
       // damping makes a plastic-like impact, which the references' e = 0 is).
+      // Each penalty run has its own budget and none is skipped: the cost is not monotone
+      // in k_p (on B2 a soft k_p = 1e3 bounces for longer than a stiff one takes).
       for (int damped = 0; damped <= 2; ++damped) {
-        std::string blown;
         for (double kp : kps) {
           BenchRow row;
           row.scene = label;
@@ -512,10 +514,6 @@ class Bench {
           row.kp = kp;
           row.cp = (damped == 0 ? 0.0 : damped == 1 ? 0.1 : 1.0) * 2.0 *
                    std::sqrt(kp * base.follower.mass);
-          if (!blown.empty()) {
-            skip(row, blown);
-            continue;
-          }
           Scene s = base;
           s.contact.model = ContactModel::Penalty;
           s.contact.penalty_law = PenaltyLaw::Linear;
@@ -523,9 +521,7 @@ class Bench {
           s.contact.penalty_damping = row.cp;
           s.solver.integrator = Integrator::CvodeBdf;
           s.solver.rtol = rtol;
-          if (!measure(si, s, row))
-            blown = "penalty at k_p " + g3(kp) + " took over " + g3(o_.time_budget_seconds) +
-                    " s";
+          measure(si, s, row);
         }
       }
     }

@@ -688,7 +688,7 @@ int real_main(int argc, char** argv) {
       ->capture_default_str();
   bench->add_flag("--quick", bo.quick,
                   "Reduced sweep: Lee on arkode-erk at two tolerances, penalty at three k_p, "
-                  "elastic scenes cut to t_end = 0.05");
+                  "elastic scenes cut to t_end = 0.02 (under a minute)");
   bench->add_option("--repeats", bo.repeats, "Timing repeats (median CPU time)")
       ->type_name("N")
       ->capture_default_str();
