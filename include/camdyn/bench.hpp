@@ -23,7 +23,7 @@ struct BenchOptions {
   std::vector<Scene> scenes;
   std::vector<std::string> labels;
   /// Quick mode: Lee on arkode-erk only at two tolerances, penalty at three k_p and one
-  /// rtol (1e-6), elastic scenes cut to quick_elastic_t_end (unless t_end is given).
+  /// rtol (1e-8 rigid, 1e-6 elastic), elastic scenes cut to quick_elastic_t_end (unless t_end is given).
   bool quick = false;
   /// Timing repeats (median of Summary::cpu_seconds), ≥ 1 (3 recommended). A run whose
   /// first timing exceeds repeat_cap_seconds is timed once (noted in the row).
