@@ -176,6 +176,7 @@ TEST(Bench, CliBadInputExits2) {
                    (dir / "o").string() + "'"),
             2);
   EXPECT_EQ(status("A --repeats 0 --out '" + (dir / "o").string() + "'"), 2);
+  EXPECT_EQ(status("A7 --output-dt -1 --out '" + (dir / "o").string() + "'"), 2);
   fs::remove_all(dir);
 }
 #endif

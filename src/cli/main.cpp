@@ -535,7 +535,7 @@ int cmd_bench(const BenchOpts& o) {
     throw SceneError("--t-end", 0, "t_end", fmt_g(o.t_end), "must be > 0 (0: the scene's)");
   if (!(o.output_dt >= 0) || !std::isfinite(o.output_dt))
     throw SceneError("--output-dt", 0, "output_dt", fmt_g(o.output_dt),
-                     "must be > 0 (0: 1e-2 for rigid, 1e-4 for elastic followers)");
+                     "must be >= 0 (0: chosen per scene)");
   bo.quick = o.quick;
   bo.repeats = o.repeats;
   bo.time_budget_seconds = o.budget;
@@ -570,7 +570,9 @@ int cmd_bench(const BenchOpts& o) {
     const std::string script = bench_plot_script_path();
     if (script.empty()) {
       std::fprintf(stderr, "camdyn: warning: no figures drawn: camdyn_bench_plot.py not found\n");
-    } else if (run_plot_script({o.out}, &why, script) != 0) {
+    } else if (run_plot_script(o.quiet ? std::vector<std::string>{o.out, "--quiet"}
+                                       : std::vector<std::string>{o.out},
+                               &why, script) != 0) {
       std::fprintf(stderr, "camdyn: warning: no figures drawn: %s\n", why.c_str());
     } else if (!o.quiet) {
       std::printf("figures: %s\n", join_path(o.out, "wp_*.png").c_str());
@@ -693,15 +695,15 @@ int real_main(int argc, char** argv) {
       ->type_name("N")
       ->capture_default_str();
   bench->add_option("--budget", bo.budget,
-                    "CPU seconds per run before it is stopped and the tighter settings of "
-                    "its series are skipped")
+                    "CPU seconds per run before it is stopped (a Lee series then skips its "
+                    "tighter tolerances)")
       ->type_name("SECONDS")
       ->capture_default_str();
   bench->add_option("--t-end", bo.t_end, "Override every scene's run.t_end (0: keep)")
       ->type_name("T");
   bench->add_option("--output-dt", bo.output_dt,
                     "Common output grid every run lands on and is compared on (0: 1e-2 for "
-                    "a rigid follower, 1e-4 for an elastic one)")
+                    "a rigid follower, 1e-3 if it separates, 1e-4 for an elastic one)")
       ->type_name("DT");
   bench->add_flag("-q,--quiet", bo.quiet, "Print nothing but errors");
   bench->add_flag("--no-plot", bo.no_plot, "Write the CSV and Markdown only, no figures");
