@@ -108,7 +108,34 @@ class Runner {
       F_ = (cm0.Xddot - a_free) / m_.mstar();
       if (!bilateral_ && F_ < 0.0) F_ = 0.0;
     }
+    // Penalty contact starts in its own equilibrium (the fair start for the penalty
+    // baseline): the follower is shifted rigidly into the cam by the penetration s₀ at
+    // which the penalty force carries what the contact must carry at t = 0, i.e. the
+    // force F_req(s₀) = (Ẍ_C − a_free(q − s₀))/M* that gives the contact face the cam's
+    // acceleration. F_req is affine in s₀ (the return spring relaxes by s₀; rigid:
+    // F_req = mẌ_C + kδ₀ − k s₀). Linear law: k_p s₀ = F_req(s₀); Hunt–Crossley:
+    // k_p s₀ⁿ = F_req(s₀) (Newton; ŝ = 0 at t = 0, so c_p plays no part). So
+    // F(0) = F₀·k_p/(k_p + k) for a rigid follower, → F₀ as k_p grows. Without it the
+    // penalty run starts with no force against the preload.
+    if (touching && F_ > 0.0 && sc_.contact.model == ContactModel::Penalty) {
+      Eigen::VectorXd q1 = y_.head(n_).array() - 1.0;  // a unit shift (the model is affine)
+      const double a1 = m_.contact_acceleration(q1.data(), y_.data() + n_, 0.0);
+      const double slope = (cm0.Xddot - a1) / m_.mstar() - F_;  // dF_req/ds₀ (< 0)
+      const double kp = sc_.contact.penalty_stiffness, n = sc_.contact.penalty_exponent;
+      double s0 = F_ / (kp - slope);
+      if (sc_.contact.penalty_law == PenaltyLaw::HuntCrossley) {
+        s0 = std::pow(F_ / kp, 1.0 / n);  // right of the root: Newton falls monotonically
+        for (int i = 0; i < 100; ++i) {
+          const double g = kp * std::pow(s0, n) - F_ - slope * s0;
+          const double ds = g / (n * kp * std::pow(s0, n - 1.0) - slope);
+          s0 -= ds;
+          if (std::abs(ds) <= 1e-15 * s0) break;
+        }
+      }
+      y_.head(n_).array() -= s0;
+    }
     if (sc_.contact.model == ContactModel::Penalty) {
+      // ŝ = 0 at t = 0: the force the penalty law gives there (also in the t = 0 row).
       setup_penalty_law();
       F_ = engine_->law().force(0.0, y_[0], y_[n_]);
     }

@@ -18,12 +18,12 @@
 namespace camdyn {
 
 struct BenchOptions {
-  /// Scenes to benchmark, with a short label each (same length). Empty: the paper's cases
-  /// A, B1 and B2 labelled "A", "B1", "B2".
+  /// Scenes to benchmark, with a short label each (same length). Empty: bench_case() of
+  /// "A", "A7", "B1", "B2".
   std::vector<Scene> scenes;
   std::vector<std::string> labels;
   /// Quick mode: Lee on arkode-erk only at two tolerances, penalty at three k_p and one
-  /// rtol, elastic scenes cut to quick_elastic_t_end (unless t_end is given).
+  /// rtol (1e-8 rigid, 1e-6 elastic), elastic scenes cut to quick_elastic_t_end (unless t_end is given).
   bool quick = false;
   /// Timing repeats (median of Summary::cpu_seconds), ≥ 1 (3 recommended). A run whose
   /// first timing exceeds repeat_cap_seconds is timed once (noted in the row).
@@ -31,15 +31,19 @@ struct BenchOptions {
   double repeat_cap_seconds = 5.0;
   /// Output directory for work_precision.csv / .md (created if missing).
   std::string out_dir = "camdyn-bench";
-  /// Common output grid of every run and of the reference [time], > 0.
-  double output_dt = 1e-4;
+  /// Common output grid of every run and of the reference [time]; every run lands its
+  /// steps on it. 0 (default): per scene, 1e-2 for a rigid follower (coarse enough that
+  /// each method's own step control sets its steps; a 1e-4 grid forces Lee to 1e-4 steps,
+  /// at which it is exact to round-off on case A at every tolerance) and 1e-4 for an
+  /// elastic one (its 1 ms impulse windows and ~3.6 ms axial mode need it).
+  double output_dt = 0.0;
   /// CPU budget of one run [s]: a run over it is stopped and the tighter settings of its
   /// series are skipped (rows recorded with the reason). The references have no budget.
   double time_budget_seconds = 20.0;
   /// > 0: overrides every scene's run.t_end.
   double t_end = 0.0;
   /// Quick mode: t_end of elastic scenes when t_end is not given.
-  double quick_elastic_t_end = 0.05;
+  double quick_elastic_t_end = 0.02;
   /// Progress lines (one per run); may be empty.
   std::function<void(const std::string&)> log;
 };
@@ -61,6 +65,12 @@ struct BenchRow {
   /// contact impulse per revolution: max relative error over complete revolutions (whole
   /// run when shorter than one revolution).
   double impulse_err = std::numeric_limits<double>::quiet_NaN();
+  /// Lee's step-size cap (solver.max_step) of a "step-cap" series; NaN: none.
+  double max_step = std::numeric_limits<double>::quiet_NaN();
+  /// Separation and impact times: max over the reference's events (within the pointwise
+  /// horizon) of |t − t_ref| to the nearest event of the same kind in the run (the run's
+  /// t_end when it has none of that kind); NaN when the reference has no events.
+  double event_err = std::numeric_limits<double>::quiet_NaN();
   bool finished = false;
   std::string note;
 };
@@ -74,6 +84,14 @@ struct BenchResult {
   std::vector<double> headline_ratio;
   std::string csv_path, md_path;
 };
+
+/// The bench's named scenes: the paper's cases "A", "B1", "B2" (paper_case()) and "A7",
+/// case A at 7 rev/s — above the rigid follower's separation speed (≈ 6.4 rev/s), so it
+/// separates near the cam's nose and lands again with an impact once per revolution.
+/// @throws SceneError for another name.
+Scene bench_case(const std::string& name);
+/// True for a name bench_case() knows.
+bool is_bench_case(const std::string& name);
 
 /// Header of work_precision.csv.
 const std::vector<std::string>& bench_columns();

@@ -306,6 +306,7 @@ struct BenchOpts {
   int repeats = 3;
   double budget = 20.0;
   double t_end = 0.0;
+  double output_dt = 0.0;
   bool quiet = false;
   bool no_plot = false;
 };
@@ -514,8 +515,8 @@ int cmd_bench(const BenchOpts& o) {
   BenchOptions bo;
   for (const auto& name : o.scenes) {
     std::error_code ec;
-    if ((name == "A" || name == "B1" || name == "B2") && !fs::exists(name, ec)) {
-      bo.scenes.push_back(paper_case(name));
+    if (is_bench_case(name) && !fs::exists(name, ec)) {
+      bo.scenes.push_back(bench_case(name));
       bo.labels.push_back(name);
       continue;
     }
@@ -532,10 +533,14 @@ int cmd_bench(const BenchOpts& o) {
     throw SceneError("--budget", 0, "budget", fmt_g(o.budget), "must be > 0 seconds");
   if (!(o.t_end >= 0) || !std::isfinite(o.t_end))
     throw SceneError("--t-end", 0, "t_end", fmt_g(o.t_end), "must be > 0 (0: the scene's)");
+  if (!(o.output_dt >= 0) || !std::isfinite(o.output_dt))
+    throw SceneError("--output-dt", 0, "output_dt", fmt_g(o.output_dt),
+                     "must be >= 0 (0: chosen per scene)");
   bo.quick = o.quick;
   bo.repeats = o.repeats;
   bo.time_budget_seconds = o.budget;
   bo.t_end = o.t_end;
+  bo.output_dt = o.output_dt;
   bo.out_dir = o.out;
   ensure_output_dir(o.out);
   if (!o.quiet)
@@ -565,7 +570,9 @@ int cmd_bench(const BenchOpts& o) {
     const std::string script = bench_plot_script_path();
     if (script.empty()) {
       std::fprintf(stderr, "camdyn: warning: no figures drawn: camdyn_bench_plot.py not found\n");
-    } else if (run_plot_script({o.out}, &why, script) != 0) {
+    } else if (run_plot_script(o.quiet ? std::vector<std::string>{o.out, "--quiet"}
+                                       : std::vector<std::string>{o.out},
+                               &why, script) != 0) {
       std::fprintf(stderr, "camdyn: warning: no figures drawn: %s\n", why.c_str());
     } else if (!o.quiet) {
       std::printf("figures: %s\n", join_path(o.out, "wp_*.png").c_str());
@@ -675,24 +682,29 @@ int real_main(int argc, char** argv) {
       "(k_p × c_p × rtol), holonomic and event runs against an event-driven reference; "
       "writes DIR/work_precision.csv, DIR/work_precision.md and wp_*.png figures");
   bench->add_option("scenes", bo.scenes,
-                    "Scene files (TOML) or paper case names A, B1, B2; default: A B1 B2")
+                    "Scene files (TOML) or case names A, A7 (case A at 7 rev/s: separates), "
+                    "B1, B2; default: A A7 B1 B2")
       ->type_name("SCENE");
   bench->add_option("-o,--out", bo.out, "Output directory (created if missing)")
       ->type_name("DIR")
       ->capture_default_str();
   bench->add_flag("--quick", bo.quick,
                   "Reduced sweep: Lee on arkode-erk at two tolerances, penalty at three k_p, "
-                  "elastic scenes cut to t_end = 0.05");
+                  "elastic scenes cut to t_end = 0.02 (under a minute)");
   bench->add_option("--repeats", bo.repeats, "Timing repeats (median CPU time)")
       ->type_name("N")
       ->capture_default_str();
   bench->add_option("--budget", bo.budget,
-                    "CPU seconds per run before it is stopped and the tighter settings of "
-                    "its series are skipped")
+                    "CPU seconds per run before it is stopped (a Lee series then skips its "
+                    "tighter tolerances)")
       ->type_name("SECONDS")
       ->capture_default_str();
   bench->add_option("--t-end", bo.t_end, "Override every scene's run.t_end (0: keep)")
       ->type_name("T");
+  bench->add_option("--output-dt", bo.output_dt,
+                    "Common output grid every run lands on and is compared on (0: 1e-2 for "
+                    "a rigid follower, 1e-3 if it separates, 1e-4 for an elastic one)")
+      ->type_name("DT");
   bench->add_flag("-q,--quiet", bo.quiet, "Print nothing but errors");
   bench->add_flag("--no-plot", bo.no_plot, "Write the CSV and Markdown only, no figures");
 
