@@ -369,6 +369,7 @@ class Runner {
         // from the velocity-level ramp end value to the force the equation of motion
         // demands at t+Δt. Further iterations follow the paper's tol_a = tol_u/Δt².
         Fa = iterate(Fv, 1.0 / Ms, tol_a, sum_.level_a, acc_err, 1);
+        if (obs_) obs_->on_lee_step(t_, hs, Ft, Fv);  // the accepted velocity's ramp
         // accept
         const double Xdot_prev = cam_at(t_).Xdot;
         const double P_prev = m_.damping_power(y_.data() + n_);
