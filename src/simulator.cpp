@@ -129,6 +129,8 @@ class Runner {
     }
     sum_.t_end = t_;
     sum_.rhs_evals += engine_->stats().rhs_evals;
+    sum_.lin_setups += engine_->stats().lin_setups;
+    sum_.lin_analyses += engine_->stats().lin_analyses;
     sum_.cpu_seconds = clock.cpu();
     sum_.wall_seconds = clock.wall();
     if (!std::isfinite(sum_.min_gap)) sum_.min_gap = 0.0;

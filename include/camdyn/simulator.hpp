@@ -55,6 +55,9 @@ struct Summary {
   std::string message;
   double t_end = 0;  ///< time reached
   long steps = 0, rejected_steps = 0, rhs_evals = 0;
+  /// Implicit engines: numeric factorisations of the Newton matrix (redone only when the
+  /// step size changed) and symbolic analyses of its pattern (once per engine).
+  long lin_setups = 0, lin_analyses = 0;
   long contact_iterations = 0;
   LevelStats level_u, level_v, level_a;  ///< Lee's three levels
   long iteration_failures = 0;           ///< steps retried because an iteration failed
