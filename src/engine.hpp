@@ -73,7 +73,8 @@ struct ContactLaw {
 struct EngineStats {
   long steps = 0;         ///< internal steps taken (accepted by the engine)
   long rhs_evals = 0;     ///< right-hand-side evaluations
-  long lin_setups = 0;    ///< linear-solver setups (factorisations)
+  long lin_setups = 0;    ///< numeric factorisations of the Newton matrix (implicit engines)
+  long lin_analyses = 0;  ///< symbolic analyses (KLU orderings) of its sparsity pattern
   long reinits = 0;       ///< restarts (CVODE history lost)
 };
 

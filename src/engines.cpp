@@ -4,18 +4,16 @@
 //
 //   arkode-erk   Dormand–Prince 5(4), v̇ = M⁻¹ r (lumped: diagonal; consistent: LDLᵀ
 //                factor of M computed once).
-//   arkode-dirk  ARKStep, SDIRK 5-stage 4(3) (L-stable), mass matrix blockdiag(I, M)
-//                through ARKODE's mass-matrix support; the Newton matrix
-//                  A = M_full − γJ = [ I        −γI      ]
-//                                    [ γK̃      M + γC̃   ],  K̃ = K − e₀e₀ᵀ∂F/∂q₀, C̃ = C − e₀e₀ᵀ∂F/∂v₀
-//                is filled entry by entry by our linear-system function on a pattern
-//                fixed once (no O(n²) sparse add); KLU (or dense for tiny systems).
-//   cvode-bdf    CVODE BDF (orders 1–5) with v̇ = M⁻¹ r. Its Newton systems
-//                (I − γJ) x = b are solved by our own direct linear solver through the
-//                n × n Schur complement
+//   arkode-dirk  ARKStep, SDIRK 5-stage 4(3) (L-stable), v̇ = M⁻¹ r.
+//   cvode-bdf    CVODE BDF (orders 1–5, ≤ 2 for bars), v̇ = M⁻¹ r.
+//   The Newton systems (I − γJ) x = b of both implicit engines, K̃ = K − e₀e₀ᵀ∂F/∂q₀,
+//   C̃ = C − e₀e₀ᵀ∂F/∂v₀, are solved by our own direct linear solver through the n × n
+//   Schur complement
 //                  (M + γC̃ + γ²K̃) x_v = M b_v − γ K̃ b_u,   x_u = b_u + γ x_v,
-//                which is sparse (tridiagonal for a bar) for consistent and lumped mass
-//                alike, so CVODE integrates the consistent-mass bar without a dense M⁻¹K.
+//   which is sparse (tridiagonal for a bar) for consistent and lumped mass alike: no
+//   dense M⁻¹K, no 2n × 2n matrix, no O(n²) SUNMatScaleAdd. KLU (dense LU for a handful
+//   of unknowns): symbolic analysis once per engine, numeric refactorisation only when
+//   γ (the step size) or the penalty derivatives changed; O(nnz) per factorisation/solve.
 //
 // Every SUNDIALS flag is checked (negative → SundialsError naming the call); callbacks
 // catch every exception and return −1 so none crosses SUNDIALS.
@@ -26,10 +24,7 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_dense.h>
-#include <sunmatrix/sunmatrix_sparse.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -272,46 +267,6 @@ class ErkEngine final : public Engine {
   std::unique_ptr<void, ErkDel> mem_;
 };
 
-// A fixed CSC pattern for A = M_full − γJ (2n × 2n) and M_full = blockdiag(I, M), filled
-// entry by entry. P is the shared pattern of K, M, C (all the same for a bar).
-struct BlockPattern {
-  long n = 0;
-  std::vector<long> Ap, Ai;  // pattern of A
-  std::vector<long> Mp, Mi;  // pattern of M_full
-};
-
-BlockPattern make_block_pattern(const FollowerModel& m) {
-  BlockPattern b;
-  const long n = m.n();
-  b.n = n;
-  b.Ap.assign(2 * n + 1, 0);
-  b.Mp.assign(2 * n + 1, 0);
-  auto pattern_col = [&](long j, std::vector<long>& rows) {
-    rows.clear();
-    if (m.rigid()) {
-      rows.push_back(0);
-      return;
-    }
-    const SparseMatrix& K = m.K();
-    for (long p = K.outerIndexPtr()[j]; p < K.outerIndexPtr()[j + 1]; ++p) rows.push_back(K.innerIndexPtr()[p]);
-  };
-  std::vector<long> rows;
-  for (long c = 0; c < 2 * n; ++c) {
-    const long j = c % n;
-    pattern_col(j, rows);
-    b.Ai.push_back(j);  // identity (u-column) or −γI (v-column) in the u rows
-    for (long r : rows) b.Ai.push_back(n + r);
-    b.Ap[c + 1] = long(b.Ai.size());
-    if (c < n) {
-      b.Mi.push_back(c);
-    } else {
-      for (long r : rows) b.Mi.push_back(n + r);
-    }
-    b.Mp[c + 1] = long(b.Mi.size());
-  }
-  return b;
-}
-
 // Values of K, M, C at pattern position p of column j (rigid: scalars).
 struct ModelEntries {
   const FollowerModel& m;
@@ -326,37 +281,177 @@ struct ModelEntries {
   long row(long p) const { return m.rigid() ? 0 : m.K().innerIndexPtr()[p]; }
 };
 
+// ---------------------------------------------------------------- Schur solver ---
+// The Newton systems of both implicit engines, (I − γJ) x = b with
+// J = [[0, I], [−M⁻¹K̃, −M⁻¹C̃]], through the n × n system
+//   S x_v = M b_v − γ K̃ b_u,   S = M + γC̃ + γ²K̃,   x_u = b_u + γ x_v.
+// S has the pattern of K (tridiagonal for a bar). KLU's symbolic analysis is done once
+// for that pattern; the numeric factorisation is redone only when (γ, ∂F/∂q₀, ∂F/∂v₀)
+// changed since the last one — Lee's trial steps retake the same step size several
+// times, and ARKODE asks for a setup at the first stage after every reset.
+class SchurSolver {
+ public:
+  SchurSolver(const FollowerModel& m, bool dense, EngineStats& stats)
+      : m_(m), dense_(dense), n_(m.n()), stats_(stats) {
+    if (!m.rigid()) {
+      S_ = m.K();  // copy of the shared pattern
+      klu_l_defaults(&common_);
+    }
+  }
+  ~SchurSolver() {
+    if (numeric_) klu_l_free_numeric(&numeric_, &common_);
+    if (symbolic_) klu_l_free_symbolic(&symbolic_, &common_);
+  }
+  SchurSolver(const SchurSolver&) = delete;
+  SchurSolver& operator=(const SchurSolver&) = delete;
+
+  void setup(double g, double dFdq, double dFdv) {
+    if (factored_ && g == g_ && dFdq == dFdq_ && dFdv == dFdv_) return;  // S unchanged
+    g_ = g;
+    dFdq_ = dFdq;
+    dFdv_ = dFdv;
+    factored_ = true;
+    ++stats_.lin_setups;
+    if (m_.rigid()) {
+      s_rigid_ = m_.m_rigid() + g * (m_.c_rigid() - dFdv) + g * g * (m_.k_rigid() - dFdq);
+      return;
+    }
+    const ModelEntries e{m_};
+    double* x = S_.valuePtr();
+    for (long j = 0; j < n_; ++j)
+      for (long p = e.begin(j); p < e.end(j); ++p) {
+        double v = e.M(p) + g * e.C(p) + g * g * e.K(p);
+        if (j == 0 && e.row(p) == 0) v -= g * dFdv + g * g * dFdq;
+        x[p] = v;
+      }
+    if (dense_) {
+      lu_.compute(Eigen::MatrixXd(S_));
+      return;
+    }
+    long* Ap = S_.outerIndexPtr();
+    long* Ai = S_.innerIndexPtr();
+    if (!symbolic_) {
+      symbolic_ = klu_l_analyze(n_, Ap, Ai, &common_);
+      if (!symbolic_) throw SundialsError("klu_l_analyze", -1);
+      ++stats_.lin_analyses;
+    }
+    if (!numeric_) {
+      numeric_ = klu_l_factor(Ap, Ai, x, symbolic_, &common_);
+      if (!numeric_) throw SundialsError("klu_l_factor", -1);
+    } else if (!klu_l_refactor(Ap, Ai, x, symbolic_, numeric_, &common_)) {
+      throw SundialsError("klu_l_refactor", -1);
+    }
+  }
+  // x = (I − γJ)⁻¹ b, in place on b (length 2n).
+  void solve(double* b) {
+    const long n = n_;
+    double* bu = b;
+    double* bv = b + n;
+    if (m_.rigid()) {
+      const double rhs = m_.m_rigid() * bv[0] - g_ * (m_.k_rigid() - dFdq_) * bu[0];
+      bv[0] = rhs / s_rigid_;
+      bu[0] += g_ * bv[0];
+      return;
+    }
+    Eigen::Map<Eigen::VectorXd> U(bu, n), V(bv, n);
+    rhs_.noalias() = m_.M() * V;
+    rhs_.noalias() -= g_ * (m_.K() * U);
+    rhs_[0] += g_ * dFdq_ * U[0];
+    if (dense_) {
+      V = lu_.solve(rhs_);
+    } else {
+      if (!klu_l_solve(symbolic_, numeric_, n, 1, rhs_.data(), &common_)) throw SundialsError("klu_l_solve", -1);
+      V = rhs_;
+    }
+    U += g_ * V;
+  }
+
+ private:
+  const FollowerModel& m_;
+  bool dense_;
+  long n_;
+  EngineStats& stats_;
+  bool factored_ = false;
+  double g_ = 0, dFdq_ = 0, dFdv_ = 0, s_rigid_ = 1;
+  SparseMatrix S_;
+  Eigen::VectorXd rhs_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  klu_l_common common_{};
+  klu_l_symbolic* symbolic_ = nullptr;
+  klu_l_numeric* numeric_ = nullptr;
+};
+
+// The SchurSolver as a SUNDIALS linear solver: "direct" with a 1 × 1 placeholder matrix
+// that the integrator passes along but never reads (the system is ours). The engine's
+// linear-system function hands over γ and the contact law's derivatives (prepare), the
+// solver's setup factorises (if they changed), its solve applies (I − γJ)⁻¹.
+class SchurLinearSolver {
+ public:
+  SchurLinearSolver(const FollowerModel& m, bool dense, EngineStats& stats, SUNContext ctx)
+      : schur_(m, dense, stats), n_(m.n()) {
+    ls_.reset(SUNLinSolNewEmpty(ctx));
+    if (!ls_) throw SundialsError("SUNLinSolNewEmpty", -1);
+    ls_->content = this;
+    ls_->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; };
+    ls_->ops->setup = &SchurLinearSolver::ls_setup;
+    ls_->ops->solve = &SchurLinearSolver::ls_solve;
+    ls_->ops->free = [](SUNLinearSolver S) {
+      SUNLinSolFreeEmpty(S);
+      return 0;
+    };
+    placeholder_.reset(SUNDenseMatrix(1, 1, ctx));
+    if (!placeholder_) throw SundialsError("SUNDenseMatrix", -1);
+  }
+  SUNLinearSolver ls() { return ls_.get(); }
+  SUNMatrix placeholder() { return placeholder_.get(); }
+  // From the linear-system function: the system I − γJ at (t, y) under `law`.
+  void prepare(const ContactLaw& law, double t, const double* y, double gamma) {
+    law.derivatives(t, y[0], y[n_], &dFdq_, &dFdv_);
+    gamma_ = gamma;
+  }
+
+ private:
+  static int ls_setup(SUNLinearSolver S, SUNMatrix) {
+    try {
+      auto* self = static_cast<SchurLinearSolver*>(S->content);
+      self->schur_.setup(self->gamma_, self->dFdq_, self->dFdv_);
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
+  static int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, double) {
+    try {
+      auto* self = static_cast<SchurLinearSolver*>(S->content);
+      N_VScale(1.0, b, x);
+      self->schur_.solve(N_VGetArrayPointer(x));
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
+  SchurSolver schur_;
+  long n_;
+  double gamma_ = 0, dFdq_ = 0, dFdv_ = 0;
+  Mat placeholder_;
+  LS ls_;
+};
+
 // ---------------------------------------------------------------- DIRK -----------
 class DirkEngine final : public Engine {
  public:
   DirkEngine(std::shared_ptr<const FollowerModel> model, const SolverSpec& spec, bool trial,
              LinearSolverKind lsk)
-      : Engine(std::move(model), spec), trial_(trial), dense_(lsk == LinearSolverKind::Dense),
-        y_(make_nvec(2 * n_, ctx_.ctx)), ele_(make_nvec(2 * n_, ctx_.ctx)) {
+      : Engine(std::move(model), spec), trial_(trial), y_(make_nvec(2 * n_, ctx_.ctx)),
+        ele_(make_nvec(2 * n_, ctx_.ctx)), sls_(*model_, lsk == LinearSolverKind::Dense, stats_, ctx_.ctx) {
     N_VConst(0.0, y_.get());
-    const long N2 = 2L * n_;
     mem_.reset(not_null(ARKStepCreate(nullptr, &DirkEngine::fi, 0.0, y_.get(), ctx_.ctx), "ARKStepCreate"));
     void* mem = mem_.get();
     check_flag(ARKStepSetTableNum(mem, ARKODE_SDIRK_5_3_4, ARKODE_ERK_NONE), "ARKStepSetTableNum");
     check_flag(ARKStepSetUserData(mem, this), "ARKStepSetUserData");
     check_flag(ARKStepSetMaxNumSteps(mem, -1), "ARKStepSetMaxNumSteps");
-    if (dense_) {
-      A_.reset(SUNDenseMatrix(N2, N2, ctx_.ctx));
-      Mm_.reset(SUNDenseMatrix(N2, N2, ctx_.ctx));
-      ls_.reset(SUNLinSol_Dense(y_.get(), A_.get(), ctx_.ctx));
-      mls_.reset(SUNLinSol_Dense(y_.get(), Mm_.get(), ctx_.ctx));
-    } else {
-      pat_ = make_block_pattern(*model_);
-      A_.reset(SUNSparseMatrix(N2, N2, long(pat_.Ai.size()), CSC_MAT, ctx_.ctx));
-      Mm_.reset(SUNSparseMatrix(N2, N2, long(pat_.Mi.size()), CSC_MAT, ctx_.ctx));
-      ls_.reset(SUNLinSol_KLU(y_.get(), A_.get(), ctx_.ctx));
-      mls_.reset(SUNLinSol_KLU(y_.get(), Mm_.get(), ctx_.ctx));
-    }
-    if (!A_ || !Mm_ || !ls_ || !mls_) throw SundialsError("SUNMatrix/SUNLinearSolver creation", -1);
-    check_flag(ARKStepSetLinearSolver(mem, ls_.get(), A_.get()), "ARKStepSetLinearSolver");
+    check_flag(ARKStepSetLinearSolver(mem, sls_.ls(), sls_.placeholder()), "ARKStepSetLinearSolver");
     check_flag(ARKStepSetLinSysFn(mem, &DirkEngine::linsys), "ARKStepSetLinSysFn");
-    check_flag(ARKStepSetMassLinearSolver(mem, mls_.get(), Mm_.get(), SUNFALSE), "ARKStepSetMassLinearSolver");
-    check_flag(ARKStepSetMassFn(mem, &DirkEngine::massfn), "ARKStepSetMassFn");
     if (trial_) {
       // Lee's steps see a prescribed force ramp: the problem is linear in y, one Newton
       // iteration with an exact matrix solves each stage exactly.
@@ -405,30 +500,18 @@ class DirkEngine final : public Engine {
  private:
   static int fi(double t, N_Vector y, N_Vector ydot, void* ud) {
     try {
-      static_cast<DirkEngine*>(ud)->rhs_unscaled(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+      static_cast<DirkEngine*>(ud)->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
       return 0;
     } catch (...) {
       return -1;
     }
   }
-  static int massfn(double, SUNMatrix M, void* ud, N_Vector, N_Vector, N_Vector) {
-    try {
-      static_cast<DirkEngine*>(ud)->fill_mass(M);
-      return 0;
-    } catch (...) {
-      return -1;
-    }
-  }
-  static int linsys(double t, N_Vector y, N_Vector, SUNMatrix A, SUNMatrix, sunbooleantype,
+  static int linsys(double t, N_Vector y, N_Vector, SUNMatrix, SUNMatrix, sunbooleantype,
                     sunbooleantype* jcur, double gamma, void* ud, N_Vector, N_Vector, N_Vector) {
     try {
       auto* self = static_cast<DirkEngine*>(ud);
-      const double* yy = N_VGetArrayPointer(y);
-      double dFdq = 0, dFdv = 0;
-      self->law_.derivatives(t, yy[0], yy[self->n_], &dFdq, &dFdv);
-      self->fill_A(A, gamma, dFdq, dFdv);
+      self->sls_.prepare(self->law_, t, N_VGetArrayPointer(y), gamma);
       *jcur = SUNTRUE;
-      ++self->stats_.lin_setups;
       return 0;
     } catch (...) {
       return -1;
@@ -437,166 +520,21 @@ class DirkEngine final : public Engine {
   static int g(double t, N_Vector y, double* gout, void* ud) {
     return root_callback(t, N_VGetArrayPointer(y), gout, ud);
   }
-  void fill_mass(SUNMatrix Mm) {
-    const ModelEntries e{*model_};
-    const long n = n_;
-    if (dense_) {
-      SUNMatZero(Mm);
-      for (long j = 0; j < n; ++j) SM_ELEMENT_D(Mm, j, j) = 1.0;
-      for (long j = 0; j < n; ++j)
-        for (long p = e.begin(j); p < e.end(j); ++p) SM_ELEMENT_D(Mm, n + e.row(p), n + j) = e.M(p);
-      return;
-    }
-    std::copy(pat_.Mp.begin(), pat_.Mp.end(), SM_INDEXPTRS_S(Mm));
-    std::copy(pat_.Mi.begin(), pat_.Mi.end(), SM_INDEXVALS_S(Mm));
-    double* x = SM_DATA_S(Mm);
-    long k = 0;
-    for (long j = 0; j < n; ++j) x[k++] = 1.0;
-    for (long j = 0; j < n; ++j)
-      for (long p = e.begin(j); p < e.end(j); ++p) x[k++] = e.M(p);
-  }
-  // A = M_full − γJ, J = [[0, I], [−K̃, −C̃]] (unscaled form, M on the left).
-  void fill_A(SUNMatrix A, double g, double dFdq, double dFdv) {
-    const ModelEntries e{*model_};
-    const long n = n_;
-    if (dense_) {
-      SUNMatZero(A);
-      for (long j = 0; j < n; ++j) {
-        SM_ELEMENT_D(A, j, j) = 1.0;
-        SM_ELEMENT_D(A, j, n + j) = -g;
-        for (long p = e.begin(j); p < e.end(j); ++p) {
-          SM_ELEMENT_D(A, n + e.row(p), j) = g * e.K(p);
-          SM_ELEMENT_D(A, n + e.row(p), n + j) = e.M(p) + g * e.C(p);
-        }
-      }
-      SM_ELEMENT_D(A, n, 0) -= g * dFdq;
-      SM_ELEMENT_D(A, n, n) -= g * dFdv;
-      return;
-    }
-    std::copy(pat_.Ap.begin(), pat_.Ap.end(), SM_INDEXPTRS_S(A));
-    std::copy(pat_.Ai.begin(), pat_.Ai.end(), SM_INDEXVALS_S(A));
-    double* x = SM_DATA_S(A);
-    long k = 0;
-    for (long j = 0; j < n; ++j) {  // u-columns
-      x[k++] = 1.0;
-      for (long p = e.begin(j); p < e.end(j); ++p) {
-        double v = g * e.K(p);
-        if (j == 0 && e.row(p) == 0) v -= g * dFdq;
-        x[k++] = v;
-      }
-    }
-    for (long j = 0; j < n; ++j) {  // v-columns
-      x[k++] = -g;
-      for (long p = e.begin(j); p < e.end(j); ++p) {
-        double v = e.M(p) + g * e.C(p);
-        if (j == 0 && e.row(p) == 0) v -= g * dFdv;
-        x[k++] = v;
-      }
-    }
-  }
 
-  bool trial_, dense_;
+  bool trial_;
   ContextHolder ctx_;
   NVec y_, ele_;
-  BlockPattern pat_;
-  Mat A_, Mm_;
-  LS ls_, mls_;
+  SchurLinearSolver sls_;
   std::unique_ptr<void, ArkDel> mem_;
 };
 
 // ---------------------------------------------------------------- CVODE ----------
-// Matrix-embedded linear solver for CVODE: (I − γJ) x = b through the n × n system
-// S x_v = M b_v − γ K̃ b_u with S = M + γC̃ + γ²K̃ (KLU, symbolic analysis once).
-class SchurSolver {
- public:
-  SchurSolver(const FollowerModel& m, bool dense) : m_(m), dense_(dense), n_(m.n()) {
-    if (!m.rigid()) {
-      S_ = m.K();  // copy of the shared pattern
-      klu_l_defaults(&common_);
-    }
-  }
-  ~SchurSolver() {
-    if (numeric_) klu_l_free_numeric(&numeric_, &common_);
-    if (symbolic_) klu_l_free_symbolic(&symbolic_, &common_);
-  }
-  SchurSolver(const SchurSolver&) = delete;
-  SchurSolver& operator=(const SchurSolver&) = delete;
-
-  void setup(double g, double dFdq, double dFdv) {
-    g_ = g;
-    dFdq_ = dFdq;
-    if (m_.rigid()) {
-      s_rigid_ = m_.m_rigid() + g * (m_.c_rigid() - dFdv) + g * g * (m_.k_rigid() - dFdq);
-      return;
-    }
-    const ModelEntries e{m_};
-    double* x = S_.valuePtr();
-    for (long j = 0; j < n_; ++j)
-      for (long p = e.begin(j); p < e.end(j); ++p) {
-        double v = e.M(p) + g * e.C(p) + g * g * e.K(p);
-        if (j == 0 && e.row(p) == 0) v -= g * dFdv + g * g * dFdq;
-        x[p] = v;
-      }
-    if (dense_) {
-      lu_.compute(Eigen::MatrixXd(S_));
-      return;
-    }
-    long* Ap = S_.outerIndexPtr();
-    long* Ai = S_.innerIndexPtr();
-    if (!symbolic_) {
-      symbolic_ = klu_l_analyze(n_, Ap, Ai, &common_);
-      if (!symbolic_) throw SundialsError("klu_l_analyze", -1);
-    }
-    if (!numeric_) {
-      numeric_ = klu_l_factor(Ap, Ai, x, symbolic_, &common_);
-      if (!numeric_) throw SundialsError("klu_l_factor", -1);
-    } else if (!klu_l_refactor(Ap, Ai, x, symbolic_, numeric_, &common_)) {
-      throw SundialsError("klu_l_refactor", -1);
-    }
-  }
-  // x = (I − γJ)⁻¹ b, in place on b (length 2n).
-  void solve(double* b) {
-    const long n = n_;
-    double* bu = b;
-    double* bv = b + n;
-    if (m_.rigid()) {
-      const double rhs = m_.m_rigid() * bv[0] - g_ * (m_.k_rigid() - dFdq_) * bu[0];
-      bv[0] = rhs / s_rigid_;
-      bu[0] += g_ * bv[0];
-      return;
-    }
-    Eigen::Map<Eigen::VectorXd> U(bu, n), V(bv, n);
-    rhs_.noalias() = m_.M() * V;
-    rhs_.noalias() -= g_ * (m_.K() * U);
-    rhs_[0] += g_ * dFdq_ * U[0];
-    if (dense_) {
-      V = lu_.solve(rhs_);
-    } else {
-      if (!klu_l_solve(symbolic_, numeric_, n, 1, rhs_.data(), &common_)) throw SundialsError("klu_l_solve", -1);
-      V = rhs_;
-    }
-    U += g_ * V;
-  }
-
- private:
-  const FollowerModel& m_;
-  bool dense_;
-  long n_;
-  double g_ = 0, dFdq_ = 0, s_rigid_ = 1;
-  SparseMatrix S_;
-  Eigen::VectorXd rhs_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
-  klu_l_common common_{};
-  klu_l_symbolic* symbolic_ = nullptr;
-  klu_l_numeric* numeric_ = nullptr;
-};
-
 class CvodeEngine final : public Engine {
  public:
   CvodeEngine(std::shared_ptr<const FollowerModel> model, const SolverSpec& spec, LinearSolverKind lsk,
               bool trial, double tol_u)
-      : Engine(std::move(model), spec), schur_(*model_, lsk == LinearSolverKind::Dense),
-        y_(make_nvec(2 * n_, ctx_.ctx)) {
+      : Engine(std::move(model), spec), y_(make_nvec(2 * n_, ctx_.ctx)),
+        sls_(*model_, lsk == LinearSolverKind::Dense, stats_, ctx_.ctx) {
     N_VConst(0.0, y_.get());
     mem_.reset(not_null(CVodeCreate(CV_BDF, ctx_.ctx), "CVodeCreate"));
     void* mem = mem_.get();
@@ -622,22 +560,9 @@ class CvodeEngine final : public Engine {
                  "CVodeSStolerances");
     }
     if (spec.max_step > 0) check_flag(CVodeSetMaxStep(mem, spec.max_step), "CVodeSetMaxStep");
-    // Our own direct solver for (I − γJ) x = b. CVODE hands γ (and the state, for the
-    // penalty Jacobian) to the linear-system function; the SUNMatrix is a 1 × 1
-    // placeholder that CVODE passes along but never reads (the Schur complement is ours).
-    ls_.reset(SUNLinSolNewEmpty(ctx_.ctx));
-    if (!ls_) throw SundialsError("SUNLinSolNewEmpty", -1);
-    ls_->content = this;
-    ls_->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; };
-    ls_->ops->setup = &CvodeEngine::ls_setup;
-    ls_->ops->solve = &CvodeEngine::ls_solve;
-    ls_->ops->free = [](SUNLinearSolver S) {
-      SUNLinSolFreeEmpty(S);
-      return 0;
-    };
-    placeholder_.reset(SUNDenseMatrix(1, 1, ctx_.ctx));
-    if (!placeholder_) throw SundialsError("SUNDenseMatrix", -1);
-    check_flag(CVodeSetLinearSolver(mem, ls_.get(), placeholder_.get()), "CVodeSetLinearSolver");
+    // Our own direct solver for (I − γJ) x = b (SchurLinearSolver); CVODE hands γ (and
+    // the state, for the penalty Jacobian) to the linear-system function.
+    check_flag(CVodeSetLinearSolver(mem, sls_.ls(), sls_.placeholder()), "CVodeSetLinearSolver");
     check_flag(CVodeSetLinSysFn(mem, &CvodeEngine::linsys), "CVodeSetLinSysFn");
   }
   ~CvodeEngine() override {
@@ -710,43 +635,19 @@ class CvodeEngine final : public Engine {
                     double gamma, void* ud, N_Vector, N_Vector, N_Vector) {
     try {
       auto* self = static_cast<CvodeEngine*>(ud);
-      const double* yy = N_VGetArrayPointer(y);
-      self->law_.derivatives(t, yy[0], yy[self->n_], &self->dFdq_, &self->dFdv_);
-      self->gamma_ = gamma;
+      self->sls_.prepare(self->law_, t, N_VGetArrayPointer(y), gamma);
       *jcur = SUNTRUE;
       return 0;
     } catch (...) {
       return -1;
     }
   }
-  static int ls_setup(SUNLinearSolver S, SUNMatrix) {
-    try {
-      auto* self = static_cast<CvodeEngine*>(S->content);
-      self->schur_.setup(self->gamma_, self->dFdq_, self->dFdv_);
-      ++self->stats_.lin_setups;
-      return 0;
-    } catch (...) {
-      return -1;
-    }
-  }
-  static int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, double) {
-    try {
-      auto* self = static_cast<CvodeEngine*>(S->content);
-      N_VScale(1.0, b, x);
-      self->schur_.solve(N_VGetArrayPointer(x));
-      return 0;
-    } catch (...) {
-      return -1;
-    }
-  }
 
-  SchurSolver schur_;
   ContextHolder ctx_;
   NVec y_;
-  Mat placeholder_;
-  LS ls_;
+  SchurLinearSolver sls_;
   std::unique_ptr<void, CvDel> mem_;
-  double hcur_ = 0, first_h_ = 0, gamma_ = 0, dFdq_ = 0, dFdv_ = 0;
+  double hcur_ = 0, first_h_ = 0;
 };
 
 }  // namespace

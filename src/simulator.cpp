@@ -160,6 +160,8 @@ class Runner {
     }
     sum_.t_end = t_;
     sum_.rhs_evals += engine_->stats().rhs_evals;
+    sum_.lin_setups += engine_->stats().lin_setups;
+    sum_.lin_analyses += engine_->stats().lin_analyses;
     sum_.cpu_seconds = clock.cpu();
     sum_.wall_seconds = clock.wall();
     if (!std::isfinite(sum_.min_gap)) sum_.min_gap = 0.0;
@@ -521,6 +523,7 @@ class Runner {
         // from the velocity-level ramp end value to the force the equation of motion
         // demands at t+Δt. Further iterations follow the paper's tol_a = tol_u/Δt².
         Fa = iterate(Fv, 1.0 / Ms, tol_a, sum_.level_a, acc_err, 1);
+        if (obs_) obs_->on_lee_step(t_, hs, Ft, Fv);  // the accepted velocity's ramp
         // accept
         const double Xdot_prev = cam_at(t_).Xdot;
         const double P_prev = dissipation_power();

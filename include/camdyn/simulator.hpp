@@ -55,6 +55,9 @@ struct Summary {
   std::string message;
   double t_end = 0;  ///< time reached
   long steps = 0, rejected_steps = 0, rhs_evals = 0;
+  /// Implicit engines: numeric factorisations of the Newton matrix (redone only when the
+  /// step size changed) and symbolic analyses of its pattern (once per engine).
+  long lin_setups = 0, lin_analyses = 0;
   long contact_iterations = 0;
   LevelStats level_u, level_v, level_a;  ///< Lee's three levels
   long iteration_failures = 0;           ///< steps retried because an iteration failed
@@ -80,6 +83,13 @@ struct Observer {
   virtual void on_event(const ContactEvent&) {}
   /// Called about every 0.2 s of wall time.
   virtual void on_progress(double /*t*/, double /*t_end*/, long /*steps*/) {}
+  /// Lee only: called once per accepted step [t0, t0 + h], before its rows, with the
+  /// contact force ramp F(t) = F0 + (F1 − F0)(t − t0)/h of the velocity level — the ramp
+  /// whose integration gave the accepted velocity (F0 = the previous step's accepted
+  /// force, F1 = the velocity level's end value; the reported contact force at t0 + h
+  /// is the acceleration level's, which starts the next ramp). Integrating the step
+  /// sequence with these ramps and no iteration replays the run (bench/bench_overhead).
+  virtual void on_lee_step(double /*t0*/, double /*h*/, double /*F0*/, double /*F1*/) {}
 };
 
 class Simulator {

@@ -1,0 +1,42 @@
+// camdyn — replay of a Lee step sequence (see replay.hpp).
+#include "replay.hpp"
+
+#include <ctime>
+
+#include "camdyn/cam.hpp"
+#include "engine.hpp"
+
+namespace camdyn {
+
+ReplayResult replay_lee_steps(const Scene& scene, const std::vector<LeeStep>& steps) {
+  const auto model = build_model(scene);
+  const int n = model->n();
+  // The run's initial state (simulator.cpp, Runner::run): q(0) from the model, the
+  // contact face at the cam's velocity if touching.
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n), y1(2 * n);
+  y.head(n) = model->initial_displacement();
+  if (scene.contact.initial_gap == 0.0) {
+    const Cam cam(scene.cam);
+    const CamDrive drive(scene.cam);
+    y[n] = cam.motion(drive.theta(0.0), drive.omega(0.0), drive.omega_dot(0.0)).Xdot;
+  }
+  ReplayResult r;
+  const std::clock_t c0 = std::clock();
+  const auto engine = make_engine(model, scene);
+  ContactLaw& law = engine->law();
+  law.kind = ContactLaw::Kind::Ramp;
+  for (const LeeStep& s : steps) {
+    law.t0 = s.t0;
+    law.h = s.h;
+    law.F0 = s.F0;
+    law.F1 = s.F1;
+    engine->step(s.t0, y, s.h, y1);
+    y.swap(y1);
+  }
+  r.cpu_seconds = double(std::clock() - c0) / CLOCKS_PER_SEC;
+  r.engine_steps = engine->stats().steps;
+  r.y = std::move(y);
+  return r;
+}
+
+}  // namespace camdyn
