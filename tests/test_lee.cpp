@@ -102,6 +102,29 @@ TEST(LeeCaseA, LongStepsPeakForceAndWorkAgainstClosedForm) {
   EXPECT_NEAR(r.rows.back().work_cam, 0.0, 1e-6 * std::abs(W_exact));
 }
 
+TEST(LeeSteps, NoSliverStepsBeforeOutputTimes) {
+  // Steps land on output times. With max_step 1e-4 and output_dt = 3.00003e-4, a step
+  // of 1e-4 would leave a 3e-9 s sliver before each output time; a sliver step cannot
+  // correct even round-off in the gap without a force ∝ gap/Δt² (on B1 this collapsed
+  // Δt to underflow after 44 s). Remainders under two steps are split in two instead.
+  Scene s = paper_case("A");
+  s.run.t_end = 0.05;
+  s.run.output_dt = 3.00003e-4;
+  s.solver.max_step = 1e-4;
+  struct Steps : Observer {
+    double hmin = INFINITY, hmax = 0;
+    void on_lee_step(double, double h, double, double) override {
+      hmin = std::min(hmin, h);
+      hmax = std::max(hmax, h);
+    }
+  } steps;
+  Simulator sim(s);
+  const Summary sum = sim.run(&steps);
+  ASSERT_TRUE(sum.finished) << sum.message;
+  std::printf("steps %ld, h in [%.6g, %.6g]\n", sum.steps, steps.hmin, steps.hmax);
+  EXPECT_GE(steps.hmin, 0.25 * steps.hmax);
+}
+
 TEST(LeeCaseA, MatchesClosedFormWithDefaultTolerances) {
   Scene s = paper_case("A");
   const RunResult r = simulate(s);
