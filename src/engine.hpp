@@ -60,6 +60,8 @@ struct ContactLaw {
   double k10 = 0, c10 = 0, m10 = 0;
 
   double force(double t, double q0, double v0) const;
+  /// The cam's contact-point motion at t (needs cam and drive).
+  CamMotion cam_motion(double t) const;
   /// Penalty only (else 0): the elastic part of the law, F_el(s) = k_p s (linear) or
   /// k_p sⁿ (Hunt–Crossley) for s > 0, and its stored energy V_p(s) = ∫₀ˢ F_el = ½k_p s²
   /// or k_p sⁿ⁺¹/(n+1). The rest of the force, F − F_el, is the damper's: its power

@@ -54,12 +54,11 @@ double ContactLaw::force(double t, double q0, double v0) const {
     case Kind::Ramp:
       return F0 + (F1 - F0) * (t - t0) / h;
     case Kind::Prescribed: {
-      const CamMotion m = cam->motion(drive->theta(t), drive->omega(t), drive->omega_dot(t));
+      const CamMotion m = cam_motion(t);
       return -k10 * m.X - c10 * m.Xdot - m10 * m.Xddot;
     }
     case Kind::Penalty: {
-      const double th = drive->theta(t);
-      const CamMotion m = cam->motion(th, drive->omega(t), drive->omega_dot(t));
+      const CamMotion m = cam_motion(t);
       const double s = m.X - q0;  // penetration
       if (s <= 0.0) return 0.0;
       const double sd = m.Xdot - v0;
@@ -74,23 +73,20 @@ double ContactLaw::force(double t, double q0, double v0) const {
   return 0.0;
 }
 
-namespace {
-double penetration(const ContactLaw& l, double t, double q0) {
-  const CamMotion m = l.cam->motion(l.drive->theta(t), l.drive->omega(t), l.drive->omega_dot(t));
-  return m.X - q0;
+CamMotion ContactLaw::cam_motion(double t) const {
+  return cam->motion(drive->theta(t), drive->omega(t), drive->omega_dot(t));
 }
-}  // namespace
 
 double ContactLaw::elastic_force(double t, double q0) const {
   if (kind != Kind::Penalty) return 0.0;
-  const double s = penetration(*this, t, q0);
+  const double s = cam_motion(t).X - q0;
   if (s <= 0.0) return 0.0;
   return law == PenaltyLaw::Linear ? kp * s : kp * std::pow(s, exponent);
 }
 
 double ContactLaw::stored_energy(double t, double q0) const {
   if (kind != Kind::Penalty) return 0.0;
-  const double s = penetration(*this, t, q0);
+  const double s = cam_motion(t).X - q0;
   if (s <= 0.0) return 0.0;
   return law == PenaltyLaw::Linear ? 0.5 * kp * s * s
                                    : kp * std::pow(s, exponent + 1.0) / (exponent + 1.0);
@@ -100,7 +96,7 @@ void ContactLaw::derivatives(double t, double q0, double v0, double* dFdq, doubl
   *dFdq = 0.0;
   *dFdv = 0.0;
   if (kind != Kind::Penalty) return;
-  const CamMotion m = cam->motion(drive->theta(t), drive->omega(t), drive->omega_dot(t));
+  const CamMotion m = cam_motion(t);
   const double s = m.X - q0;
   if (s <= 0.0) return;
   const double sd = m.Xdot - v0;

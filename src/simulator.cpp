@@ -108,33 +108,8 @@ class Runner {
       F_ = (cm0.Xddot - a_free) / m_.mstar();
       if (!bilateral_ && F_ < 0.0) F_ = 0.0;
     }
-    // Penalty contact starts in its own equilibrium (the fair start for the penalty
-    // baseline): the follower is shifted rigidly into the cam by the penetration s₀ at
-    // which the penalty force carries what the contact must carry at t = 0, i.e. the
-    // force F_req(s₀) = (Ẍ_C − a_free(q − s₀))/M* that gives the contact face the cam's
-    // acceleration. F_req is affine in s₀ (the return spring relaxes by s₀; rigid:
-    // F_req = mẌ_C + kδ₀ − k s₀). Linear law: k_p s₀ = F_req(s₀); Hunt–Crossley:
-    // k_p s₀ⁿ = F_req(s₀) (Newton; ŝ = 0 at t = 0, so c_p plays no part). So
-    // F(0) = F₀·k_p/(k_p + k) for a rigid follower, → F₀ as k_p grows. Without it the
-    // penalty run starts with no force against the preload.
-    if (touching && F_ > 0.0 && sc_.contact.model == ContactModel::Penalty) {
-      Eigen::VectorXd q1 = y_.head(n_).array() - 1.0;  // a unit shift (the model is affine)
-      const double a1 = m_.contact_acceleration(q1.data(), y_.data() + n_, 0.0);
-      const double slope = (cm0.Xddot - a1) / m_.mstar() - F_;  // dF_req/ds₀ (< 0)
-      const double kp = sc_.contact.penalty_stiffness, n = sc_.contact.penalty_exponent;
-      double s0 = F_ / (kp - slope);
-      if (sc_.contact.penalty_law == PenaltyLaw::HuntCrossley) {
-        s0 = std::pow(F_ / kp, 1.0 / n);  // right of the root: Newton falls monotonically
-        for (int i = 0; i < 100; ++i) {
-          const double g = kp * std::pow(s0, n) - F_ - slope * s0;
-          const double ds = g / (n * kp * std::pow(s0, n - 1.0) - slope);
-          s0 -= ds;
-          if (std::abs(ds) <= 1e-15 * s0) break;
-        }
-      }
-      y_.head(n_).array() -= s0;
-    }
     if (sc_.contact.model == ContactModel::Penalty) {
+      if (touching && F_ > 0.0) y_.head(n_).array() -= penalty_start_penetration(cm0.Xddot);
       // ŝ = 0 at t = 0: the force the penalty law gives there (also in the t = 0 row).
       setup_penalty_law();
       F_ = engine_->law().force(0.0, y_[0], y_[n_]);
@@ -348,15 +323,16 @@ class Runner {
     hq_.resize(n);
     hv_.resize(n);
     if (!m_.rigid()) {
-      ha_.resize(n);
-      hb_.resize(n);
-      rbuf_.resize(n);
-      m_.internal_force(ya.data(), ya.data() + n, rbuf_.data());
-      rbuf_[0] += Fa0;
-      m_.solve_mass(rbuf_.data(), ha_.data());
-      m_.internal_force(yb.data(), yb.data() + n, rbuf_.data());
-      rbuf_[0] += Fb1;
-      m_.solve_mass(rbuf_.data(), hb_.data());
+      // v̇ = M⁻¹(f₀ − Kq − Cv + e₀F) at an end state.
+      auto acceleration = [&](const Eigen::VectorXd& y, double F, Eigen::VectorXd& a) {
+        a.resize(n);
+        rbuf_.resize(n);
+        m_.internal_force(y.data(), y.data() + n, rbuf_.data());
+        rbuf_[0] += F;
+        m_.solve_mass(rbuf_.data(), a.data());
+      };
+      acceleration(ya, Fa0, ha_);
+      acceleration(yb, Fb1, hb_);
     }
     auto g = [&](double tau) {
       const CamMotion c = cam_at(tau);
@@ -587,6 +563,32 @@ class Runner {
   }
 
   // ------------------------------------------------------------ native stepping ----
+  // The fair start of the penalty baseline: penalty contact starts in its own equilibrium. The
+  // follower is shifted rigidly into the cam by the penetration s₀ (returned) at
+  // which the penalty force carries what the contact must carry at t = 0, i.e. the
+  // force F_req(s₀) = (Ẍ_C − a_free(q − s₀))/M* that gives the contact face the cam's
+  // acceleration. F_req is affine in s₀ (the return spring relaxes by s₀; rigid:
+  // F_req = mẌ_C + kδ₀ − k s₀). Linear law: k_p s₀ = F_req(s₀); Hunt–Crossley:
+  // k_p s₀ⁿ = F_req(s₀) (Newton; ŝ = 0 at t = 0, so c_p plays no part). So
+  // F(0) = F₀·k_p/(k_p + k) for a rigid follower, → F₀ as k_p grows. Without it the
+  // penalty run starts with no force against the preload.
+  // @pre F_ = the contact force the acceleration level demands at t = 0 (> 0).
+  double penalty_start_penetration(double Xddot0) const {
+    Eigen::VectorXd q1 = y_.head(n_).array() - 1.0;  // a unit shift (the model is affine)
+    const double a1 = m_.contact_acceleration(q1.data(), y_.data() + n_, 0.0);
+    const double slope = (Xddot0 - a1) / m_.mstar() - F_;  // dF_req/ds₀ (< 0)
+    const double kp = sc_.contact.penalty_stiffness, n = sc_.contact.penalty_exponent;
+    if (sc_.contact.penalty_law == PenaltyLaw::Linear) return F_ / (kp - slope);
+    double s0 = std::pow(F_ / kp, 1.0 / n);  // right of the root: Newton falls monotonically
+    for (int i = 0; i < 100; ++i) {
+      const double g = kp * std::pow(s0, n) - F_ - slope * s0;
+      const double ds = g / (n * kp * std::pow(s0, n - 1.0) - slope);
+      s0 -= ds;
+      if (std::abs(ds) <= 1e-15 * s0) break;
+    }
+    return s0;
+  }
+
   void setup_penalty_law() {
     ContactLaw& law = engine_->law();
     law.kind = ContactLaw::Kind::Penalty;
