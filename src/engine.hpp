@@ -46,8 +46,9 @@ LinearSolverKind resolve_linear_solver(const Scene& scene, int nodes);
 struct ContactLaw {
   enum class Kind { None, Ramp, Penalty, Prescribed };
   Kind kind = Kind::None;
-  // Ramp: F(t) = F0 + (F1 − F0)(t − t0)/h on the step [t0, t0 + h].
-  double t0 = 0, h = 1, F0 = 0, F1 = 0;
+  // Ramp: F(t) = F0 + (F1 − F0)x + Fc·4x(1 − x), x = (t − t0)/h on the step [t0, t0 + h]
+  // (Fc = 0: the classic linear ramp; Fc ≠ 0: the located step's two-parameter shape).
+  double t0 = 0, h = 1, F0 = 0, F1 = 0, Fc = 0;
   // Penalty: s = X_C − q₀ (penetration > 0), ŝ = Ẋ_C − v₀.
   //   linear:        F = max(0, k_p s + c_p ŝ)               while s > 0
   //   hunt_crossley: F = max(0, k_p sⁿ (1 + c_p ŝ))          while s > 0
@@ -93,6 +94,16 @@ class Engine {
   /// One step of exactly h from (t, y); y_out = state at t + h. Returns the WRMS norm of
   /// the local error estimate (≤ 1: acceptable), 0 if !estimates_error().
   virtual double step(double t, const Eigen::VectorXd& y, double h, Eigen::VectorXd& y_out) = 0;
+  /// True if step() maps the contact force's shape parameters affinely to the end state
+  /// and to the local error estimate, exactly up to round-off, for a fixed h (one-step
+  /// engines with a fixed stage structure: ERK, and DIRK with its linear stage solves).
+  /// CVODE chooses its internal steps from the solution: not exactly affine.
+  virtual bool affine_steps() const { return estimates_error(); }
+  /// The unweighted local error estimate of the last step() (empty if none).
+  const Eigen::VectorXd& local_error() const { return local_error_; }
+  /// WRMS norm with the engine's tolerances, weights from y.
+  double wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const;
+
   /// Engine's own proposal for the next step after step() (0 = no opinion).
   virtual double suggested_step() const { return 0.0; }
 
@@ -116,7 +127,6 @@ class Engine {
   void rhs(double t, const double* y, double* ydot);
   /// The mass-matrix form (DIRK): fi = [v; f₀ − Kq − Cv + e₀F].
   void rhs_unscaled(double t, const double* y, double* out);
-  double wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const;
 
   Engine(std::shared_ptr<const FollowerModel> model, const SolverSpec& spec)
       : model_(std::move(model)), spec_(spec), n_(model_->n()), work_(model_->n()) {}
@@ -126,7 +136,7 @@ class Engine {
   int n_;
   ContactLaw law_;
   EngineStats stats_;
-  Eigen::VectorXd work_;
+  Eigen::VectorXd work_, local_error_;
   RootFn root_fn_;
   bool hit_root_ = false;
   static int root_callback(double t, const double* y, double* g, void* ud) noexcept;

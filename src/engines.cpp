@@ -51,8 +51,10 @@ double ContactLaw::force(double t, double q0, double v0) const {
   switch (kind) {
     case Kind::None:
       return 0.0;
-    case Kind::Ramp:
-      return F0 + (F1 - F0) * (t - t0) / h;
+    case Kind::Ramp: {
+      const double x = (t - t0) / h;
+      return F0 + (F1 - F0) * x + Fc * 4.0 * x * (1.0 - x);
+    }
     case Kind::Prescribed: {
       const CamMotion m = cam_motion(t);
       return -k10 * m.X - c10 * m.Xdot - m10 * m.Xddot;
@@ -223,7 +225,8 @@ class ErkEngine final : public Engine {
     y_out = map(y_.get());
     check_flag(ERKStepGetEstLocalErrors(mem_.get(), ele_.get()), "ERKStepGetEstLocalErrors");
     ++stats_.steps;
-    return wrms(map(ele_.get()), y);
+    local_error_ = map(ele_.get());
+    return wrms(local_error_, y);
   }
   void reinit(double t, const Eigen::VectorXd& y) override {
     map(y_.get()) = y;
@@ -477,7 +480,8 @@ class DirkEngine final : public Engine {
     y_out = map(y_.get());
     check_flag(ARKStepGetEstLocalErrors(mem_.get(), ele_.get()), "ARKStepGetEstLocalErrors");
     ++stats_.steps;
-    return wrms(map(ele_.get()), y);
+    local_error_ = map(ele_.get());
+    return wrms(local_error_, y);
   }
   void reinit(double t, const Eigen::VectorXd& y) override {
     map(y_.get()) = y;

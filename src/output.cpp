@@ -495,6 +495,9 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
     o.raw("iterations", t);
   }
   o.integer("iteration_failures", s.iteration_failures);
+  o.integer("relocated_steps", s.relocated_steps);
+  o.integer("lin_setups", s.lin_setups);
+  o.integer("lin_analyses", s.lin_analyses);
   if (s.first_tensile_time >= 0) {
     o.num("first_tensile_time", s.first_tensile_time);
   } else {

@@ -44,6 +44,7 @@ constexpr EnumName<ContactModel> kContactNames[] = {{ContactModel::Lee, "lee"},
                                                     {ContactModel::Holonomic, "holonomic"},
                                                     {ContactModel::Event, "event"}};
 constexpr EnumName<ErrorVariant> kVariantNames[] = {{ErrorVariant::Eq12, "eq12"}, {ErrorVariant::Eq17, "eq17"}};
+constexpr EnumName<LeeStepKind> kLeeStepNames[] = {{LeeStepKind::Located, "located"}, {LeeStepKind::Classic, "classic"}};
 constexpr EnumName<PenaltyLaw> kPenaltyNames[] = {{PenaltyLaw::Linear, "linear"},
                                                   {PenaltyLaw::HuntCrossley, "hunt_crossley"}};
 constexpr EnumName<Integrator> kIntegratorNames[] = {{Integrator::ArkodeErk, "arkode-erk"},
@@ -83,6 +84,7 @@ const char* to_string(FollowerKind v) { return enum_to_string(kFollowerNames, v)
 const char* to_string(MassMatrixKind v) { return enum_to_string(kMassNames, v); }
 const char* to_string(ContactModel v) { return enum_to_string(kContactNames, v); }
 const char* to_string(ErrorVariant v) { return enum_to_string(kVariantNames, v); }
+const char* to_string(LeeStepKind v) { return enum_to_string(kLeeStepNames, v); }
 const char* to_string(PenaltyLaw v) { return enum_to_string(kPenaltyNames, v); }
 const char* to_string(Integrator v) { return enum_to_string(kIntegratorNames, v); }
 const char* to_string(LinearSolverKind v) { return enum_to_string(kLinSolNames, v); }
@@ -92,6 +94,7 @@ bool parse_enum(std::string_view s, FollowerKind* out) { return enum_parse(kFoll
 bool parse_enum(std::string_view s, MassMatrixKind* out) { return enum_parse(kMassNames, s, out); }
 bool parse_enum(std::string_view s, ContactModel* out) { return enum_parse(kContactNames, s, out); }
 bool parse_enum(std::string_view s, ErrorVariant* out) { return enum_parse(kVariantNames, s, out); }
+bool parse_enum(std::string_view s, LeeStepKind* out) { return enum_parse(kLeeStepNames, s, out); }
 bool parse_enum(std::string_view s, PenaltyLaw* out) { return enum_parse(kPenaltyNames, s, out); }
 bool parse_enum(std::string_view s, Integrator* out) { return enum_parse(kIntegratorNames, s, out); }
 bool parse_enum(std::string_view s, LinearSolverKind* out) { return enum_parse(kLinSolNames, s, out); }
@@ -138,7 +141,7 @@ bool operator==(const SpringSpec& a, const SpringSpec& b) {
   return a.stiffness == b.stiffness && a.precompression == b.precompression;
 }
 bool operator==(const ContactSpec& a, const ContactSpec& b) {
-  return a.model == b.model && a.error_variant == b.error_variant && a.tol_u == b.tol_u && a.tol_v == b.tol_v &&
+  return a.model == b.model && a.error_variant == b.error_variant && a.lee_step == b.lee_step && a.tol_u == b.tol_u && a.tol_v == b.tol_v &&
          a.tol_a == b.tol_a && a.max_iterations == b.max_iterations && a.separation == b.separation &&
          a.restitution == b.restitution && a.initial_gap == b.initial_gap && a.penalty_law == b.penalty_law &&
          a.penalty_stiffness == b.penalty_stiffness && a.penalty_damping == b.penalty_damping &&
@@ -149,7 +152,8 @@ bool operator==(const SolverSpec& a, const SolverSpec& b) {
          a.linear_solver == b.linear_solver && a.max_step == b.max_step && a.initial_step == b.initial_step;
 }
 bool operator==(const RunSpec& a, const RunSpec& b) {
-  return a.t_end == b.t_end && a.output_dt == b.output_dt && a.max_steps == b.max_steps;
+  return a.t_end == b.t_end && a.output_dt == b.output_dt && a.land_on_output == b.land_on_output &&
+         a.max_steps == b.max_steps;
 }
 bool operator==(const Scene& a, const Scene& b) {
   return a.title == b.title && a.cam == b.cam && a.follower == b.follower && a.spring == b.spring &&
@@ -373,6 +377,7 @@ const std::vector<Field>& fields() {
 
     v.push_back(F_ENUM(contact, model, kContactNames));
     v.push_back(F_ENUM(contact, error_variant, kVariantNames));
+    v.push_back(F_ENUM(contact, lee_step, kLeeStepNames));
     v.push_back(F_REAL(contact, tol_u));
     v.push_back(F_REAL(contact, tol_v));
     v.push_back(F_REAL(contact, tol_a));
@@ -394,6 +399,7 @@ const std::vector<Field>& fields() {
 
     v.push_back(F_REAL(run, t_end));
     v.push_back(F_REAL(run, output_dt));
+    v.push_back(F_BOOL(run, land_on_output));
     v.push_back(F_INT(run, max_steps, 1, LLONG_MAX));
     return v;
   }();

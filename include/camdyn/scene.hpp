@@ -21,6 +21,7 @@ enum class FollowerKind { Rigid, ElasticBar };
 enum class MassMatrixKind { Consistent, Lumped };
 enum class ContactModel { Lee, Penalty, Holonomic, Event };
 enum class ErrorVariant { Eq12, Eq17 };
+enum class LeeStepKind { Located, Classic };
 enum class PenaltyLaw { Linear, HuntCrossley };
 enum class Integrator { ArkodeErk, ArkodeDirk, CvodeBdf };
 enum class LinearSolverKind { Auto, Dense, Klu };
@@ -30,6 +31,7 @@ const char* to_string(FollowerKind v);      // "rigid" | "elastic_bar"
 const char* to_string(MassMatrixKind v);    // "consistent" | "lumped"
 const char* to_string(ContactModel v);      // "lee" | "penalty" | "holonomic" | "event"
 const char* to_string(ErrorVariant v);      // "eq12" | "eq17"
+const char* to_string(LeeStepKind v);           // "located" | "classic"
 const char* to_string(PenaltyLaw v);        // "linear" | "hunt_crossley"
 const char* to_string(Integrator v);        // "arkode-erk" | "arkode-dirk" | "cvode-bdf"
 const char* to_string(LinearSolverKind v);  // "auto" | "dense" | "klu"
@@ -39,6 +41,7 @@ bool parse_enum(std::string_view s, FollowerKind* out);
 bool parse_enum(std::string_view s, MassMatrixKind* out);
 bool parse_enum(std::string_view s, ContactModel* out);
 bool parse_enum(std::string_view s, ErrorVariant* out);
+bool parse_enum(std::string_view s, LeeStepKind* out);
 bool parse_enum(std::string_view s, PenaltyLaw* out);
 bool parse_enum(std::string_view s, Integrator* out);
 bool parse_enum(std::string_view s, LinearSolverKind* out);
@@ -105,6 +108,16 @@ struct SpringSpec {
 struct ContactSpec {
   ContactModel model = ContactModel::Lee;
   ErrorVariant error_variant = ErrorVariant::Eq12;
+  /// Lee's step (model "lee" only).
+  ///  located: one consistent trajectory per step (a two-parameter force shape solved for
+  ///           displacement and velocity compatibility together), separations and impacts
+  ///           located inside the step and landed on, error control that includes the
+  ///           contact force, dense output (the default).
+  ///  classic: the round-1 step (linear force ramp, levels one after the other, q from
+  ///           the displacement level and v from the velocity level, switches found to
+  ///           within a step); error_variant selects eqs. 12–13 or 17–18. Kept for
+  ///           comparison.
+  LeeStepKind lee_step = LeeStepKind::Located;
   /// Displacement-level tolerance [length], > 0. 0 in a scene file means "paper default":
   /// 1e-8 for a rigid follower, 1e-7 for an elastic one (resolved by resolve_defaults()).
   double tol_u = 0.0;
@@ -147,6 +160,11 @@ struct RunSpec {
   double t_end = 1.0;
   /// Output spacing [time], ≥ 0; 0 = one row per accepted step.
   double output_dt = 1e-4;
+  /// true: every step is cut to land on the output times (the round-1 behaviour);
+  /// false: rows are interpolated inside accepted steps with step-end accuracy (dense
+  /// output), so output_dt does not change the solution. Lee "classic", penalty and the
+  /// event-driven method always land on output times.
+  bool land_on_output = false;
   /// Safety bound on accepted + rejected steps, ≥ 1.
   long max_steps = 50'000'000;
 };

@@ -61,6 +61,9 @@ struct Summary {
   long contact_iterations = 0;
   LevelStats level_u, level_v, level_a;  ///< Lee's three levels
   long iteration_failures = 0;           ///< steps retried because an iteration failed
+  /// Lee "located": trial steps retaken shorter to land on a separation or an impact
+  /// found inside them (not counted as rejected steps).
+  long relocated_steps = 0;
   long separations = 0, impacts = 0;
   double max_contact_force = 0;
   double min_gap = 0;          ///< smallest gap (−s) seen
