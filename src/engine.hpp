@@ -99,6 +99,10 @@ class Engine {
   /// engines with a fixed stage structure: ERK, and DIRK with its linear stage solves).
   /// CVODE chooses its internal steps from the solution: not exactly affine.
   virtual bool affine_steps() const { return estimates_error(); }
+  /// true: the right-hand side drops f₀ (the preload), so that a step from y = 0 gives the
+  /// follower's response to the contact force alone (Lee's shape responses, exact also
+  /// for steps whose response is far below the round-off of the state).
+  void set_homogeneous(bool on) { homogeneous_ = on; }
   /// The unweighted local error estimate of the last step() (empty if none).
   const Eigen::VectorXd& local_error() const { return local_error_; }
   /// WRMS norm with the engine's tolerances, weights from y.
@@ -139,6 +143,7 @@ class Engine {
   Eigen::VectorXd work_, local_error_;
   RootFn root_fn_;
   bool hit_root_ = false;
+  bool homogeneous_ = false;
   static int root_callback(double t, const double* y, double* g, void* ud) noexcept;
 };
 

@@ -120,6 +120,8 @@ void Engine::rhs_unscaled(double t, const double* y, double* out) {
   const double* v = y + n_;
   std::copy(v, v + n_, out);
   model_->internal_force(q, v, out + n_);
+  if (homogeneous_)
+    for (int i = 0; i < n_; ++i) out[n_ + i] -= model_->f0()[i];
   out[n_] += law_.force(t, q[0], v[0]);
   ++stats_.rhs_evals;
 }

@@ -622,7 +622,7 @@ class Runner {
     double h = -1;
     Eigen::VectorXd D1, Dc, E1, Ec;
   } resp_;
-  Eigen::VectorXd la_, lb_, le_, col0_;
+  Eigen::VectorXd la_, le_, col0_, zero_;
 
   // Full acceleration M⁻¹(f₀ − Kq − Cv + e₀F).
   void full_acceleration(const Eigen::VectorXd& y, double F, Eigen::VectorXd& a) {
@@ -781,24 +781,29 @@ class Runner {
     law.F0 = F_;
     const CamMotion cm = cam_at(t1);
     const bool affine = engine_->affine_steps();
-    auto integrate = [&](double a, double c, Eigen::VectorXd& out) {
+    auto integrate = [&](double a, double c, Eigen::VectorXd& out, const Eigen::VectorXd& from) {
       law.F1 = a;
       law.Fc = c;
-      return engine_->step(t_, y_, hs, out);
+      return engine_->step(t_, from, hs, out);
     };
     F1 = F_ + slope_prev_ * hs;  // start from the previous step's slope
     Fc = 0.0;
-    double err = integrate(F1, Fc, la_);
+    double err = integrate(F1, Fc, la_, y_);
     if (affine) le_ = engine_->local_error();
-    if (!affine || resp_.h != hs) {
-      const double d = std::max(1.0, std::abs(F_));
-      integrate(F1 + d, Fc, lb_);
-      resp_.D1 = (lb_ - la_) / d;
-      if (affine) resp_.E1 = (engine_->local_error() - le_) / d;
-      integrate(F1, Fc + d, lb_);
-      resp_.Dc = (lb_ - la_) / d;
-      if (affine) resp_.Ec = (engine_->local_error() - le_) / d;
-      resp_.h = affine ? hs : -1.0;
+    if (resp_.h != hs) {
+      // Responses to a unit F₁ and a unit F_c from rest without preload (exact for any h).
+      zero_.setZero(2 * n_);
+      law.F0 = 0.0;
+      engine_->set_homogeneous(true);
+      integrate(1.0, 0.0, resp_.D1, zero_);
+      if (affine) resp_.E1 = engine_->local_error();
+      integrate(0.0, 1.0, resp_.Dc, zero_);
+      if (affine) resp_.Ec = engine_->local_error();
+      engine_->set_homogeneous(false);
+      law.F0 = F_;
+      law.F1 = F1;
+      law.Fc = Fc;
+      resp_.h = hs;
       sum_.contact_iterations += 2;
     }
     const double a11 = resp_.D1[0], a12 = resp_.Dc[0], a21 = resp_.D1[n_], a22 = resp_.Dc[n_];
@@ -828,7 +833,7 @@ class Runner {
         le_ += d1 * resp_.E1 + dc * resp_.Ec;
         err = engine_->wrms(le_, y_);
       } else {
-        err = integrate(F1, Fc, y1);
+        err = integrate(F1, Fc, y1, y_);
       }
     }
     sum_.level_u.total += it;
@@ -905,8 +910,12 @@ class Runner {
         const double err_c = std::abs(Fa - F1) / tolF;
         const double err = std::max(err_e, err_c);
         auto next_h = [&]() {
+          // F̃ − F₁ ∝ h³ (a quadratic shape): against rtol·|F| the error ratio goes as h³,
+          // against the absolute part ∝ h⁻² as h⁵; the exponent blends the two.
+          const double w_rel = rtol * Fscale, w_abs = tolF - w_rel;
+          const double pc = (3.0 * w_rel + 5.0 * w_abs) / tolF;
           const double fe = err_e > 0 ? 0.9 * std::pow(err_e, -1.0 / q) : 5.0;
-          const double fc = err_c > 0 ? 0.9 * std::pow(err_c, -1.0 / 3.0) : 5.0;
+          const double fc = err_c > 0 ? 0.9 * std::pow(err_c, -1.0 / pc) : 5.0;
           return std::min(5.0, std::max(0.2, std::min(fe, fc)));
         };
         if (err > 1.0) {
@@ -917,12 +926,17 @@ class Runner {
         fill_step_data(sd_, t_, y_, F_, t1, y1, Fa, true);
         bool separate = false;
         if (!bilateral_) {
+          // A switch is looked for where the pointwise force falls below zero (a round-off
+          // margin), and declared at the landed step's end once the force there is within
+          // the force tolerance rtol·|F| of zero.
           const double F_thr = 1e-12 * Fscale;
+          F_ref_ = std::max({F_ref_, std::abs(F_), std::abs(Fa)});
+          const double F_sep = rtol * F_ref_;  // a force this close to zero is zero
           const double x = first_switch(sd_, F_thr);
           if (x >= 0.0 && x < 1.0 - 1e-9) {
             // the force reaches zero inside the step: land there
             const double hx = x * hs;
-            if (hx <= 1e-9 * hs || hx <= hmin_rel * std::max(1.0, std::abs(t_))) {
+            if (F_ <= F_sep || hx <= 1e-9 * hs || hx <= hmin_rel * std::max(1.0, std::abs(t_))) {
               // at the step's start: separate now
               ++sum_.separations;
               record_event("separation", 0.0);
@@ -934,7 +948,7 @@ class Runner {
             h_try = hx;
             continue;
           }
-          separate = Fa <= F_thr || x >= 0.0;
+          separate = Fa <= F_sep || x >= 0.0;
         }
         // accept
         sd_.W0 = work_;
@@ -1023,6 +1037,7 @@ class Runner {
     }
   }
   double slope_prev_ = 0.0;
+  double F_ref_ = 0.0;  // largest contact force so far: the scale of the force tolerance
 
   // ------------------------------------------------------------ native stepping ----
   // The fair start of the penalty baseline: penalty contact starts in its own equilibrium. The
