@@ -790,15 +790,31 @@ class Runner {
     Fc = 0.0;
     double err = integrate(F1, Fc, la_, y_);
     if (affine) le_ = engine_->local_error();
-    if (resp_.h != hs) {
-      // Responses to a unit F₁ and a unit F_c from rest without preload (exact for any h).
+    if (!affine) {
+      // CVODE: Lee's constants, the response of the contact mass M* alone
+      // (Δu₀, Δu̇₀) = M*(h²/6, h/2) per unit F₁ and M*(h²/3, 2h/3) per unit F_c; the
+      // iteration converges linearly for a bar (exact for a rigid follower).
+      const double Ms = m_.mstar();
+      resp_.D1.setZero(2 * n_);
+      resp_.Dc.setZero(2 * n_);
+      resp_.D1[0] = Ms * hs * hs / 6.0;
+      resp_.D1[n_] = Ms * hs / 2.0;
+      resp_.Dc[0] = Ms * hs * hs / 3.0;
+      resp_.Dc[n_] = 2.0 * Ms * hs / 3.0;
+      resp_.h = -1.0;
+    } else if (resp_.h != hs) {
+      // Responses to a unit F₁ and a unit F_c from rest without preload (exact for any h
+      // on the affine engines), with an amplitude that makes them of order one.
       zero_.setZero(2 * n_);
       law.F0 = 0.0;
       engine_->set_homogeneous(true);
-      integrate(1.0, 0.0, resp_.D1, zero_);
-      if (affine) resp_.E1 = engine_->local_error();
-      integrate(0.0, 1.0, resp_.Dc, zero_);
-      if (affine) resp_.Ec = engine_->local_error();
+      const double amp = 1.0 / (m_.mstar() * hs * hs);
+      integrate(amp, 0.0, resp_.D1, zero_);
+      resp_.D1 /= amp;
+      resp_.E1 = engine_->local_error() / amp;
+      integrate(0.0, amp, resp_.Dc, zero_);
+      resp_.Dc /= amp;
+      resp_.Ec = engine_->local_error() / amp;
       engine_->set_homogeneous(false);
       law.F0 = F_;
       law.F1 = F1;
