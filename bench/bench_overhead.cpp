@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
     for (Integrator integ : {Integrator::ArkodeErk, Integrator::ArkodeDirk, Integrator::CvodeBdf}) {
       if (engines.find(to_string(integ)) == std::string::npos) continue;
       Scene s = paper_case(name);
+      s.contact.lee_step = LeeStepKind::Classic;  // the replay is of the classic step's ramps
       s.solver.integrator = integ;
       if (std::string(name) != "A") s.run.t_end = t_elastic;
       Simulator sim(s);

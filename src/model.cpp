@@ -170,10 +170,20 @@ void FollowerModel::internal_force(const double* q, const double* v, double* r) 
     r[0] = f0_[0] - k_ * q[0] - c_ * v[0];
     return;
   }
-  Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
+  // r = r₀ − K(q − q(0)) − C v with r₀ = f₀ − K q(0): the same value as f₀ − Kq − Cv,
+  // but its round-off scales with the motion since t = 0, not with |K||q| (a stiff bar
+  // at rest otherwise shows force noise of ~1e-7 of the preload, which Lee's
+  // acceleration level then feeds back as force jumps that ring the mesh).
+  Eigen::Map<const Eigen::VectorXd> V(v, n_);
   Eigen::Map<Eigen::VectorXd> R(r, n_);
-  R = f0_;
-  R.noalias() -= K_ * Q;
+  R = r0_;
+  const long* outer = K_.outerIndexPtr();
+  const long* inner = K_.innerIndexPtr();
+  const double* val = K_.valuePtr();
+  for (long j = 0; j < n_; ++j) {
+    const double dq = q[j] - q0_[j];
+    for (long p = outer[j]; p < outer[j + 1]; ++p) r[inner[p]] -= val[p] * dq;
+  }
   if (damped_) R.noalias() -= C_ * V;
 }
 
@@ -203,12 +213,15 @@ void FollowerModel::contact_coupling() {
   }
   a_q_ = K_ * mass_col0_;
   a_v_ = damped_ ? Eigen::VectorXd(C_ * mass_col0_) : Eigen::VectorXd::Zero(n_);
+  r0_ = f0_ - K_ * q0_;
+  a_r0_ = a_f0_ - a_q_.dot(q0_);
 }
 
 double FollowerModel::contact_acceleration(const double* q, const double* v, double F) const {
   if (rigid_) return (f0_[0] - k_ * q[0] - c_ * v[0] + F) / m_;
-  Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
-  double a = a_f0_ - a_q_.dot(Q) + mstar_ * F;
+  Eigen::Map<const Eigen::VectorXd> V(v, n_);
+  double a = a_r0_ + mstar_ * F;  // shifted by q(0) as in internal_force
+  for (long i = 0; i < n_; ++i) a -= a_q_[i] * (q[i] - q0_[i]);
   if (damped_) a -= a_v_.dot(V);
   return a;
 }

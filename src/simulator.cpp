@@ -719,7 +719,9 @@ class Runner {
       if (k < K && f[k] <= f[k - 1] && f[k] <= f[k + 1]) {
         const double den = f[k - 1] - 2 * f[k] + f[k + 1];
         const double vert = den > 0 ? f[k] - (f[k + 1] - f[k - 1]) * (f[k + 1] - f[k - 1]) / (8 * den) : f[k];
-        if (vert < thr) {  // close to zero: refine the minimum on the function itself
+        // close to zero compared with the variation around it (the parabola's own error):
+        // refine the minimum on the function itself
+        if (vert < thr + std::abs(f[k - 1] - f[k]) + std::abs(f[k + 1] - f[k])) {
           double a = double(k - 1) / K, b = double(k + 1) / K;
           const double gr = 0.6180339887498949;
           double c = b - gr * (b - a), d = a + gr * (b - a);
@@ -881,7 +883,13 @@ class Runner {
       m_.solve_mass(e0.data(), col0_.data());  // M⁻¹e₀ (node 0 entry = M*)
     }
     if (!bilateral_ && contact_ && !(F_ > 0.0)) {
-      contact_ = false;  // touching but not pressed: free flight from the start
+      // Touching but the cam would have to pull: the follower leaves at t = 0.
+      contact_ = false;
+      const CamMotion c0 = cam_at(t_);
+      if (c0.Xddot - m_.contact_acceleration(y_.data(), y_.data() + n_, 0.0) < 0.0) {
+        ++sum_.separations;
+        record_event("separation", 0.0);
+      }
       F_ = 0.0;
     }
     double h = initial_step();

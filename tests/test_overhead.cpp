@@ -29,8 +29,9 @@ struct RowsAndSteps : LeeStepRecorder {
   }
 };
 
-TEST(LeeOverhead, HookReportsTheRampOfEachAcceptedVelocity) {
+TEST(LeeOverhead, HookReportsTheRampOfEachAcceptedVelocity) {  // classic step (the hook reports its ramps)
   Scene s = paper_case("A");
+  s.contact.lee_step = LeeStepKind::Classic;  // the hook and the replay are the classic step's ramps
   s.solver.integrator = Integrator::ArkodeErk;
   s.run.output_dt = 0.0;  // a row per accepted step: the rigid follower's full state
   s.run.t_end = 0.3;
@@ -77,6 +78,7 @@ TEST(LeeOverhead, HookReportsTheRampOfEachAcceptedVelocity) {
 
 TEST(LeeOverhead, ReplayOfCaseAReproducesTheLeeRun) {
   Scene s = paper_case("A");
+  s.contact.lee_step = LeeStepKind::Classic;
   s.solver.integrator = Integrator::ArkodeErk;
   s.run.t_end = 0.1;  // before the lift: the chained replay drifts on it (see the header)
   Simulator sim(s);

@@ -107,6 +107,8 @@ class FollowerModel {
   Eigen::VectorXd f0_, q0_, Mdiag_inv_, mass_col0_;  // mass_col0_ = M⁻¹ e₀
   double a_f0_ = 0;                 // node-0 acceleration = a_f0_ − a_q_·q − a_v_·v + M*F
   Eigen::VectorXd a_q_, a_v_;
+  Eigen::VectorXd r0_;              // f₀ − K q(0) (bar): the shifted internal force's origin
+  double a_r0_ = 0;                 // a_f0_ − a_q_·q(0)
   void contact_coupling();          // mass_col0_, mstar_, a_f0_, a_q_, a_v_ (after M, K, C, f₀)
   struct Factor;
   std::unique_ptr<Factor> factor_;  // consistent mass: tridiagonal LDLᵀ
