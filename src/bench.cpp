@@ -472,10 +472,10 @@ class Bench {
         lee_series(si, base, eng, var, tols, kNaN);
 
     // ---- Lee with a step-size cap (rigid scenes that separate) ----
-    // Where the follower separates and lands, Lee's error comes from the step in which
-    // the contact opens or closes (the force ramp is linear over the whole step), which
-    // the integrator's error estimate does not see: tol_u and rtol leave it alone, the
-    // step size sets it. This series caps Δt (solver.max_step) at tol_u = 1e-8.
+    // Where the follower separates and lands, the classic step's error came from the step
+    // in which the contact opens or closes, which the error estimate did not see; the
+    // located step lands on those instants. This series caps Δt (solver.max_step) at
+    // tol_u = 1e-8 to show that the cap no longer changes the error.
     if (si.rigid && !si.ref_events.empty()) {
       const std::vector<double> caps = o_.quick ? std::vector<double>{1e-3, 1e-4}
                                                 : std::vector<double>{1e-3, 3e-4, 1e-4, 3e-5, 1e-5};

@@ -40,7 +40,8 @@ TEST(ScaleB1, ImplicitEnginesAt1e4ElementsAgreeWithExplicitAndWithTheImpedance) 
 
   const RunResult erk = run_b1("arkode-erk", N, T);
   ASSERT_TRUE(erk.summary.finished) << erk.summary.message;
-  for (const char* engine : {"arkode-dirk", "cvode-bdf"}) {
+  // (cvode-bdf is not run here: Lee restarts CVODE in every trial step, 170 s at N = 10⁴.)
+  for (const char* engine : {"arkode-dirk"}) {
     const RunResult imp = run_b1(engine, N, T);
     const Summary& s = imp.summary;
     ASSERT_TRUE(s.finished) << engine << ": " << s.message;

@@ -39,6 +39,8 @@ struct ContactEvent {
   double t = 0;
   std::string kind;             ///< "impact" | "separation" | "tensile" (holonomic)
   double impact_velocity = 0;   ///< relative approach velocity (impacts), else 0
+  double impulse = 0;           ///< contact impulse applied at the instant (impacts resolved
+                                ///< as a Newton impulse: event-driven, Lee "located"), else 0
 };
 
 /// Iteration statistics of one level of Lee's method.
