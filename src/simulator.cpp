@@ -184,11 +184,11 @@ class Runner {
 
   void emit_row() { emit_row_at(t_, y_, F_, contact_, potential(), work_, dissipated_); }
   void emit_row_at(double t, const Eigen::VectorXd& y, double F, bool contact, double V,
-                   double W, double D) {
+                   double W, double D, const CamMotion* c = nullptr) {
     HistoryRow r;
     r.t = t;
     r.theta = drive_.theta(t);
-    const CamMotion cm = cam_at(t);
+    const CamMotion cm = c ? *c : cam_at(t);
     r.u_c = y[0];
     r.v_c = y[n_];
     r.a_c = m_.contact_acceleration(y.data(), y.data() + n_, F);
@@ -614,8 +614,9 @@ class Runner {
     Eigen::VectorXd y0, y1, a0, a1;    // end states and full accelerations
     double F0 = 0, F1 = 0;             // forces at the ends
     double W0 = 0, D0 = 0, P0 = 0;     // work, dissipation, damping power at t0
+    double t_row = 0, W_row = 0, g_row = 0;  // dense rows: last row's time, work, F·Ẋ_C
   };
-  const StepData* dense_ = nullptr;
+  StepData* dense_ = nullptr;
   StepData sd_;
   // Responses of the end state and of the local error estimate to F₁ and F_c (per unit).
   struct ShapeResponse {
@@ -646,7 +647,7 @@ class Runner {
   }
   // State at τ inside the step: other nodes cubic Hermite; node 0 on the cam (held) or
   // quintic Hermite (free). Returns the contact force there (held: pointwise; free: 0).
-  double interpolate(const StepData& s, double tau, Eigen::VectorXd& y) {
+  double interpolate(const StepData& s, double tau, Eigen::VectorXd& y, CamMotion* cm = nullptr) {
     const int n = n_;
     const double h = s.t1 - s.t0, x = (tau - s.t0) / h;
     y.resize(2 * n);
@@ -658,6 +659,7 @@ class Runner {
       y.tail(n) = h00 * s.y0.tail(n) + h10 * s.a0 + h01 * s.y1.tail(n) + h11 * s.a1;
     }
     const CamMotion c = cam_at(tau);
+    if (cm) *cm = c;
     if (s.held) {
       y[0] = c.X;
       y[n] = c.Xdot;
@@ -764,15 +766,26 @@ class Runner {
     const double tol = 1e-8 * (std::abs(S) + h * std::max(std::abs(ga), std::abs(gb)));
     return adaptive_simpson(g, ta, tb, ga, gm, gb, S, tol, 12);
   }
-  // One interpolated output row at τ inside the accepted step s.
-  void dense_row(const StepData& s, double tau) {
-    Eigen::VectorXd y;
-    const double F = interpolate(s, tau, y);
-    const double W = s.W0 + (s.held ? held_work(s, tau) : 0.0);
+  // One interpolated output row at τ inside the accepted step s. The work column is
+  // accumulated row to row by Simpson's rule on F·Ẋ_C over [previous row, τ] (O(Δτ⁵) per
+  // interval; the step's own work, booked at its end, is the adaptive quadrature above).
+  void dense_row(StepData& s, double tau) {
+    Eigen::VectorXd& y = dense_y_;
+    CamMotion c, cmid;
+    const double F = interpolate(s, tau, y, &c);
+    if (s.held) {
+      const double ta = s.t_row, tm = 0.5 * (ta + tau);
+      const double gm = interpolate(s, tm, hv_, &cmid) * cmid.Xdot;
+      const double gb = F * c.Xdot;
+      s.W_row += (tau - ta) / 6.0 * (s.g_row + 4.0 * gm + gb);
+      s.t_row = tau;
+      s.g_row = gb;
+    }
     const double P = m_.damping_power(y.data() + n_);
     const double D = s.D0 + 0.5 * (tau - s.t0) * (s.P0 + P);
-    emit_row_at(tau, y, F, s.held, m_.potential_energy(y.data()), W, D);
+    emit_row_at(tau, y, F, s.held, m_.potential_energy(y.data()), s.held ? s.W_row : s.W0, D, &c);
   }
+  Eigen::VectorXd dense_y_;
 
   // Solve the contact step's force shape for a step of hs (from t_, y_, F_): returns the
   // end state in y1 and the engine's local error norm; (F1, Fc) the shape.
@@ -979,9 +992,11 @@ class Runner {
           separate = Fa <= F_sep || x >= 0.0;
         }
         // accept
-        sd_.W0 = work_;
+        sd_.W0 = sd_.W_row = work_;
         sd_.D0 = dissipated_;
         sd_.P0 = P_prev;
+        sd_.t_row = t_;
+        sd_.g_row = F_ * cam_at(t_).Xdot;
         const double dW = held_work(sd_, t1);
         slope_prev_ = (Fa - F_) / hs;
         y_ = y1;
