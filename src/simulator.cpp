@@ -622,7 +622,25 @@ class Runner {
   struct ShapeResponse {
     double h = -1;
     Eigen::VectorXd D1, Dc, E1, Ec;
-  } resp_;
+  };
+  // A few step sizes' responses: the step-size controller proposes sizes on a geometric
+  // grid 2^(k/8), so that a run revisits the same few sizes and the responses (two
+  // integrations) are reused instead of recomputed whenever the size changes.
+  static constexpr int kResponses = 12;
+  ShapeResponse resp_cache_[kResponses];
+  int resp_next_ = 0;
+  ShapeResponse& response_slot(double hs, bool* hit) {
+    for (ShapeResponse& r : resp_cache_)
+      if (r.h == hs) {
+        *hit = true;
+        return r;
+      }
+    *hit = false;
+    ShapeResponse& r = resp_cache_[resp_next_];
+    resp_next_ = (resp_next_ + 1) % kResponses;
+    return r;
+  }
+  static double grid_step(double h) { return std::exp2(std::floor(std::log2(h) * 8.0) / 8.0); }
   Eigen::VectorXd la_, le_, col0_, zero_;
 
   // Full acceleration M⁻¹(f₀ − Kq − Cv + e₀F).
@@ -796,6 +814,8 @@ class Runner {
     law.F0 = F_;
     const CamMotion cm = cam_at(t1);
     const bool affine = engine_->affine_steps();
+    bool hit = false;
+    ShapeResponse& resp_ = affine ? response_slot(hs, &hit) : resp_cache_[0];
     auto integrate = [&](double a, double c, Eigen::VectorXd& out, const Eigen::VectorXd& from) {
       law.F1 = a;
       law.Fc = c;
@@ -821,7 +841,7 @@ class Runner {
       resp_.Dc[0] = Ms * hs * hs / 3.0;
       resp_.Dc[n_] = 2.0 * Ms * hs / 3.0;
       resp_.h = -1.0;
-    } else if (resp_.h != hs) {
+    } else if (!hit) {
       // Responses to a unit F₁ and a unit F_c from rest without preload (exact for any h
       // on the affine engines), with an amplitude that makes them of order one.
       zero_.setZero(2 * n_);
@@ -961,7 +981,7 @@ class Runner {
         };
         if (err > 1.0) {
           ++sum_.rejected_steps;
-          h = hs * std::min(0.9, next_h());
+          h = grid_step(hs * std::min(0.9, next_h()));
           continue;
         }
         fill_step_data(sd_, t_, y_, F_, t1, y1, Fa, true);
@@ -1013,8 +1033,10 @@ class Runner {
         after_step(hs, dW, P_prev);
         dense_ = nullptr;
         if (!relocating) {
+          // grow only with a margin (a rejected step costs two integrations more than a
+          // step on the same grid size), shrink at once
           const double fac = next_h();
-          if (!(fac >= 1.0 && fac <= 1.5)) h = hs * fac;  // keep h (and its responses) if close
+          h = fac >= 1.25 ? grid_step(hs * std::min(fac / 1.1, 5.0)) : grid_step(hs * std::min(fac, 1.0));
         }
         continue;
       }
