@@ -25,13 +25,18 @@ ReplayResult replay_lee_steps(const Scene& scene, const std::vector<LeeStep>& st
   const auto engine = make_engine(model, scene);
   ContactLaw& law = engine->law();
   law.kind = ContactLaw::Kind::Ramp;
+  Eigen::VectorXd col0 = Eigen::VectorXd::Zero(n), e0 = Eigen::VectorXd::Zero(n);
+  e0[0] = 1.0;
+  model->solve_mass(e0.data(), col0.data());  // M⁻¹e₀: an impulse's velocity change
   for (const LeeStep& s : steps) {
     law.t0 = s.t0;
     law.h = s.h;
     law.F0 = s.F0;
     law.F1 = s.F1;
+    law.Fc = s.Fc;
     engine->step(s.t0, y, s.h, y1);
     y.swap(y1);
+    if (s.impulse != 0.0) y.tail(n) += s.impulse * col0;
   }
   r.cpu_seconds = double(std::clock() - c0) / CLOCKS_PER_SEC;
   r.engine_steps = engine->stats().steps;

@@ -14,9 +14,10 @@
 
 namespace camdyn {
 
-/// One accepted Lee step: the contact force ramp F0 → F1 over [t0, t0 + h].
+/// One accepted Lee step: the contact force F0 + (F1 − F0)x + Fc·4x(1 − x) over
+/// [t0, t0 + h] (classic: Fc = 0), then an impulse on node 0 at t0 + h (located impacts).
 struct LeeStep {
-  double t0, h, F0, F1;
+  double t0, h, F0, F1, Fc = 0.0, impulse = 0.0;
 };
 
 /// Records the accepted steps of a Lee run (and the last output row).
@@ -26,6 +27,9 @@ struct LeeStepRecorder : Observer {
   void on_row(const HistoryRow& r) override { last_row = r; }
   void on_lee_step(double t0, double h, double F0, double F1) override {
     steps.push_back({t0, h, F0, F1});
+  }
+  void on_lee_shape(double t0, double h, double F0, double F1, double Fc, double P) override {
+    steps.push_back({t0, h, F0, F1, Fc, P});
   }
 };
 

@@ -1012,6 +1012,7 @@ class Runner {
           }
           separate = Fa <= F_sep || x >= 0.0;
         }
+        if (obs_) obs_->on_lee_shape(t_, hs, F_, F1, Fc, 0.0);
         // accept
         sd_.W0 = sd_.W_row = work_;
         sd_.D0 = dissipated_;
@@ -1065,6 +1066,7 @@ class Runner {
       t_ = t1;
       F_ = 0.0;
       const double P_end = dissipation_power();  // before the impulse
+      double P_applied = 0.0;
       if (impact_now) {
         const double approach = cm.Xdot - y_[n_];  // ŝ⁻ > 0: closing
         y_[0] = cm.X;                               // the root is located to tolerance
@@ -1075,6 +1077,7 @@ class Runner {
         const double ap = std::max(approach, 0.0);
         const double P = (stick ? 1.0 : 1.0 + e_rest) * ap / Ms;
         y_.tail(n_) += P * col0_;
+        P_applied = P;
         if (stick) y_[n_] = cm.Xdot;
         work_ += P * cm.Xdot;
         dissipated_ += 0.5 * (stick ? 1.0 : 1.0 - e_rest * e_rest) * ap * ap / Ms;
@@ -1091,6 +1094,7 @@ class Runner {
           }
         }
       }
+      if (obs_) obs_->on_lee_shape(sd_.t0, hs, 0.0, 0.0, 0.0, P_applied);
       dense_ = land ? nullptr : &sd_;
       after_step(hs, 0.0, P_prev, P_end);
       dense_ = nullptr;

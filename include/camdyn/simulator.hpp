@@ -95,6 +95,13 @@ struct Observer {
   /// is the acceleration level's, which starts the next ramp). Integrating the step
   /// sequence with these ramps and no iteration replays the run (bench/bench_overhead).
   virtual void on_lee_step(double /*t0*/, double /*h*/, double /*F0*/, double /*F1*/) {}
+  /// Lee "located" only: called once per accepted step [t0, t0 + h], before its rows, with
+  /// the force shape F(t) = F0 + (F1 − F0)x + Fc·4x(1 − x), x = (t − t0)/h, whose single
+  /// integration gave the accepted state (F ≡ 0 in free flight), and the impact impulse
+  /// applied on node 0 at t0 + h (0 if none). Integrating the step sequence with these
+  /// shapes and impulses replays the run (bench/bench_overhead).
+  virtual void on_lee_shape(double /*t0*/, double /*h*/, double /*F0*/, double /*F1*/,
+                            double /*Fc*/, double /*impulse*/) {}
 };
 
 class Simulator {
