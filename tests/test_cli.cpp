@@ -380,7 +380,10 @@ TEST(Output, FullPrecisionCsv) {
   EXPECT_EQ(std::strtod(f[5].c_str(), nullptr), row.contact_force);
   EXPECT_EQ(std::strtod(f[6].c_str(), nullptr), row.gap);
   EXPECT_EQ(f[7], "1");
-  EXPECT_EQ(camdyn::events_csv(w.events()), "t,kind,impact_velocity\n0.25,impact,-0.125\n");
+  w.on_event({0.5, "separation", 0.0, 7.5});
+  // issue 15: the cam angle is a new last column
+  EXPECT_EQ(camdyn::events_csv(w.events()),
+            "t,kind,impact_velocity,theta\n0.25,impact,-0.125,0\n0.5,separation,0,7.5\n");
 }
 
 TEST(Output, AtomicFileRenamesOnlyOnCommit) {
