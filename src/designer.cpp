@@ -119,7 +119,7 @@ JumpResult jump_closed_form(const Scene& s, const JumpOptions& o, double dir) {
 bool separates(const Scene& base, double speed, double* theta_deg) {
   Scene s = base;
   s.cam.speed_rev_s = speed;
-  s.run.output_dt = s.run.t_end;  // rows are not needed
+  // run.output_dt is kept: Lee lands its steps on output times, so it shapes the run.
   Simulator sim(s);
   const Summary r = sim.run();
   if (!r.finished)
