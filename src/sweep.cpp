@@ -144,7 +144,10 @@ SweepAxis make_sweep_axis(const Scene& scene, const std::string& key, double fro
       throw SceneError("--log", 0, "from", num(from), "--log needs --from > 0 (geometric spacing)");
     for (long i = 0; i < points; ++i) {
       const double x = double(i) / double(points - 1);
-      double v = log ? std::exp(std::log(from) + x * (std::log(to) - std::log(from))) : from + x * (to - from);
+      // (A (N−1−i) + B i)/(N−1): decimal bounds give decimal-looking values (14.6, not
+      // 14.600000000000001 as A + x (B − A) gives)
+      double v = log ? std::exp(std::log(from) + x * (std::log(to) - std::log(from)))
+                     : (from * double(points - 1 - i) + to * double(i)) / double(points - 1);
       if (i == 0) v = from;
       if (i == points - 1) v = to;
       ax.values.push_back(v);
