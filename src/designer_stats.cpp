@@ -60,40 +60,47 @@ void DesignerStats::event(const ContactEvent& e) {
 
 void DesignerStats::step(double t, double theta, double u, double v, double a, double gap) {
   max_gap_ = std::max(max_gap_, gap);
-  const double w = std::abs(drive_.omega(t));
-  max_omega_ = std::max(max_omega_, w);
+  if (!drive_.constant_speed() || !have_prev_) max_omega_ = std::max(max_omega_, std::abs(drive_.omega(t)));
+  // Section crossings in revolution units: x = (φ − φ_s)/2π, φ = dir (θ − θ₀); revolution
+  // k is sampled the first time x ≥ k (one expression for x throughout, so no crossing is
+  // missed or taken twice by round-off).
+  const double pb = dir_ * (theta - theta0_);
+  const double xb = (pb - phi_s_) / kTwoPi;
   if (!have_prev_) {
+    next_k_ = settle_;
     // The start: a section exactly at θ₀ is revolution 0, sampled here.
-    if (phi_s_ == 0.0 && settle_ == 0 && dir_ * (theta - theta0_) == 0.0)
+    if (settle_ == 0 && xb >= 0.0) {
       poincare_.push_back({0, t, u, v});
-  } else if (t > t0_) {
-    const double pa = dir_ * (th0_ - theta0_), pb = dir_ * (theta - theta0_);
-    if (pb > pa) {
-      const long k_lo = static_cast<long>(std::floor((pa - phi_s_) / kTwoPi)) + 1;
-      const long k_hi = static_cast<long>(std::floor((pb - phi_s_) / kTwoPi));
-      for (long k = std::max(k_lo, 0L); k <= k_hi; ++k) {
-        if (k < settle_) continue;
-        const double target = phi_s_ + kTwoPi * double(k);
-        // Crossing time: bisection on the drive's θ(t) (monotone within the step).
+      next_k_ = 1;
+    }
+  } else if (xb >= double(next_k_) && t > t0_) {
+    const double pa = dir_ * (th0_ - theta0_);
+    const long k_hi = static_cast<long>(std::floor(xb));
+    for (long k = next_k_; k <= k_hi; ++k) {
+      const double target = phi_s_ + kTwoPi * double(k);
+      // Crossing time: linear in θ at constant speed, else bisection on the drive's θ(t)
+      // (monotone within the step).
+      double tc = pb > pa ? t0_ + (target - pa) / (pb - pa) * (t - t0_) : t;
+      if (!drive_.constant_speed()) {
         double lo = t0_, hi = t;
         for (int i = 0; i < 200 && hi - lo > 4e-16 * std::max(1.0, std::abs(hi)); ++i) {
           const double mid = 0.5 * (lo + hi);
           (dir_ * (drive_.theta(mid) - theta0_) < target ? lo : hi) = mid;
         }
-        double tc = 0.5 * (lo + hi);
-        if (drive_.constant_speed() && pb > pa)  // exact for a linear θ(t)
-          tc = t0_ + (target - pa) / (pb - pa) * (t - t0_);
-        const double h = t - t0_, x = (tc - t0_) / h, x2 = x * x, x3 = x2 * x;
-        const double h00 = 2 * x3 - 3 * x2 + 1, h10 = (x3 - 2 * x2 + x) * h;
-        const double h01 = -2 * x3 + 3 * x2, h11 = (x3 - x2) * h;
-        PoincareSample s;
-        s.revolution = k;
-        s.t = tc;
-        s.u_c = h00 * u0_ + h10 * v0_ + h01 * u + h11 * v;
-        s.v_c = h00 * v0_ + h10 * a0_ + h01 * v + h11 * a;
-        poincare_.push_back(s);
+        tc = 0.5 * (lo + hi);
       }
+      tc = std::min(t, std::max(t0_, tc));
+      const double h = t - t0_, x = (tc - t0_) / h, x2 = x * x, x3 = x2 * x;
+      const double h00 = 2 * x3 - 3 * x2 + 1, h10 = (x3 - 2 * x2 + x) * h;
+      const double h01 = -2 * x3 + 3 * x2, h11 = (x3 - x2) * h;
+      PoincareSample s;
+      s.revolution = k;
+      s.t = tc;
+      s.u_c = h00 * u0_ + h10 * v0_ + h01 * u + h11 * v;
+      s.v_c = h00 * v0_ + h10 * a0_ + h01 * v + h11 * a;
+      poincare_.push_back(s);
     }
+    next_k_ = std::max(next_k_, k_hi + 1);
   }
   have_prev_ = true;
   t0_ = t;

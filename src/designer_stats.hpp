@@ -46,6 +46,7 @@ class DesignerStats {
   double lift_ = 1.0;
   double theta0_ = 0, dir_ = 1, phi_s_ = 0;  // section: progress φ = dir (θ − θ₀) = φ_s + 2πk
   long settle_ = 0;
+  long next_k_ = 0;  // the next revolution to sample
   double tol_ = 1e-3;
   double max_omega_ = 0;
   bool have_prev_ = false;

@@ -118,7 +118,7 @@ class Runner {
     V0_ = potential();
     E0_ = m_.kinetic_energy(y_.data() + n_) + V0_;
     emit_row();
-    designer_step();
+    designer_step(cm0.X);
     next_out_ = 1;
     try {
       if (sc_.contact.model == ContactModel::Penalty)
@@ -224,7 +224,7 @@ class Runner {
     sum_.max_contact_force = std::max(sum_.max_contact_force, F_);
     sum_.min_gap = std::min(sum_.min_gap, gap);
     sum_.max_penetration = std::max(sum_.max_penetration, -gap);
-    designer_step();
+    designer_step(cm.X);
     if (bilateral_ && F_ < 0.0 && sum_.first_tensile_time < 0) {
       sum_.first_tensile_time = t_;
       record_event("tensile", 0.0);
@@ -253,10 +253,11 @@ class Runner {
 
   // Designer results (designer_stats.hpp) at an accepted state: the step end, and the
   // contact force while in contact.
-  void designer_step() {
+  // `X_C`: the cam's X at t_ (the caller has it).
+  void designer_step(double X_C) {
     const double th = drive_.theta(t_);
     designer_.step(t_, th, y_[0], y_[n_], m_.contact_acceleration(y_.data(), y_.data() + n_, F_),
-                   y_[0] - cam_at(t_).X);
+                   y_[0] - X_C);
     if (contact_) designer_.sample_force(t_, th, F_);
   }
 

@@ -141,14 +141,14 @@ void expect_no_temp_files(const fs::path& d) {
 TEST_F(CliTest, HelpListsEveryCommand) {
   const auto r = camdyn("--help");
   EXPECT_EQ(r.status, 0) << r.err;
-  for (const char* cmd : {"run", "cam", "scene", "plot"}) {
+  for (const char* cmd : {"run", "cam", "scene", "plot", "jump", "sweep"}) {
     EXPECT_NE(r.out.find(cmd), std::string::npos) << "--help does not list " << cmd << "\n"
                                                   << r.out;
   }
 }
 
 TEST_F(CliTest, EveryCommandHasHelp) {
-  for (const char* cmd : {"run", "cam", "scene", "plot"}) {
+  for (const char* cmd : {"run", "cam", "scene", "plot", "jump", "sweep"}) {
     const auto r = camdyn(std::string(cmd) + " --help");
     EXPECT_EQ(r.status, 0) << cmd << ": " << r.err;
     EXPECT_NE(r.out.find(cmd), std::string::npos) << r.out;
