@@ -412,6 +412,11 @@ TEST_F(SweepTest, BadInputExitsTwoWithTheRule) {
       {"--key cam.speed_rev_s --from 1 --to 2", "give exactly one of --step S and --points N"},
       {"--key cam.speed_rev_s --from 1 --to 2 --step 0.5 --points 3", "give exactly one of --step S and --points N"},
       {"--key cam.speed_rev_s --from 1 --to 2 --points 3 --jobs -1", "must be >= 1 (0: all cores)"},
+      {"--key cam.speed_rev_s --from 1 --to 2 --points 3 --key2 spring.stiffness --from2 5 --to2 4 --points2 2",
+       "--to2: key 'to2' = 4: must be > --from = 5 (empty or reversed range)"},
+      {"--key cam.speed_rev_s --from 1 --to 2 --points 3 --from2 5", "--from2/--to2/--step2/--points2/--log2 need --key2 KEY"},
+      {"--key cam.speed_rev_s --from 1 --to 2 --points 3 --key2 cam.speed_rev_s --from2 1 --to2 2 --points2 2",
+       "key 'key2' = cam.speed_rev_s: must differ from --key"},
   };
   for (const auto& c : cases) {
     const R r = camdyn("sweep " + sc + c.args);

@@ -463,8 +463,16 @@ int cmd_sweep(const SweepOpts& o) {
   if (o.jobs < 0) throw SceneError("--jobs", 0, "jobs", std::to_string(o.jobs), "must be >= 1 (0: all cores)");
   SweepOptions so;
   so.axes.push_back(make_sweep_axis(sc, o.a1.key, o.a1.from, o.a1.to, o.a1.step, o.a1.points, o.a1.log));
-  if (!o.a2.key.empty())
-    so.axes.push_back(make_sweep_axis(sc, o.a2.key, o.a2.from, o.a2.to, o.a2.step, o.a2.points, o.a2.log));
+  if (!o.a2.key.empty()) {
+    try {
+      so.axes.push_back(make_sweep_axis(sc, o.a2.key, o.a2.from, o.a2.to, o.a2.step, o.a2.points, o.a2.log));
+    } catch (const SceneError& e) {  // name the second axis' options: --from2, key 'to2', ...
+      throw SceneError(e.file() + "2", 0, e.key() + "2", e.value(), e.rule());
+    }
+  } else if (!std::isnan(o.a2.from) || !std::isnan(o.a2.to) || !std::isnan(o.a2.step) || o.a2.points != 0 ||
+             o.a2.log) {
+    throw SceneError("--key2", 0, "key2", "", "--from2/--to2/--step2/--points2/--log2 need --key2 KEY");
+  }
   so.jobs = o.jobs;
   so.out_dir = o.out;
   so.resume = o.resume;
