@@ -6,6 +6,9 @@
 #include <string>
 
 #ifdef CAMDYN_WITH_MPI
+// The C API only (the deprecated C++ bindings' header does not compile warning-free).
+#define OMPI_SKIP_MPICXX 1
+#define MPICH_SKIP_MPICXX 1
 #include <mpi.h>
 
 #include <atomic>
