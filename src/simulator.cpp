@@ -197,8 +197,11 @@ class Runner {
     if (obs_) obs_->on_row(r);
   }
 
-  void record_event(const char* kind, double v) {
-    ContactEvent e{t_, kind, v, drive_.theta(t_)};
+  // t_event: the located event time when the caller knows it (NaN: the current time t_);
+  // the event's cam angle is taken there.
+  void record_event(const char* kind, double v, double t_event = NAN) {
+    const double te = std::isnan(t_event) ? t_ : t_event;
+    ContactEvent e{te, kind, v, drive_.theta(te)};
     designer_.event(e);
     sum_.events.push_back(e);
     if (obs_) obs_->on_event(e);
