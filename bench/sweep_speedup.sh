@@ -12,28 +12,31 @@ work=$(mktemp -d /tmp/camdyn_sweep_bench.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 args=("$here/examples/case_A7.toml" --key cam.speed_rev_s --from 5 --to 9 --points 200
       --set run.t_end="$t_end" --no-timing --quiet)
-wall() {  # wall seconds of a command
-  local t0 t1
-  t0=$(date +%s.%N); "$@"; t1=$(date +%s.%N)
-  echo "$t1 - $t0" | bc -l
+TIMEFORMAT='%R %U %S'
+wall() {  # "wall cpu" seconds of a command (cpu = user + sys of it and its children)
+  local out
+  out=$( { time "$@" >/dev/null 2>&1; } 2>&1 | tail -1 )
+  set -- $out
+  echo "$1 $(echo "$2 + $3" | bc -l)"
 }
 echo "camdyn sweep speed-up: 200 points, case A7 scene, cam.speed_rev_s 5..9, t_end = $t_end s"
 echo "cores: $(nproc); load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
-w1=$(wall "$camdyn" sweep "${args[@]}" --jobs 1 --out "$work/j1")
-w2=$(wall "$camdyn" sweep "${args[@]}" --jobs 2 --out "$work/j2")
+read -r w1 c1 < <(wall "$camdyn" sweep "${args[@]}" --jobs 1 --out "$work/j1")
+read -r w2 c2 < <(wall "$camdyn" sweep "${args[@]}" --jobs 2 --out "$work/j2")
 if command -v mpirun >/dev/null; then
-  wm=$(wall mpirun --allow-run-as-root --oversubscribe -np 2 "$camdyn" sweep "${args[@]}" --out "$work/m2")
+  read -r wm cm < <(wall mpirun --allow-run-as-root --oversubscribe -np 2 "$camdyn" sweep "${args[@]}" --out "$work/m2")
   cmp "$work/j1/sweep.csv" "$work/m2/sweep.csv"
 else
-  wm=nan
+  wm=nan; cm=nan
 fi
 cmp "$work/j1/sweep.csv" "$work/j2/sweep.csv"
 sep=$(awk -F, 'NR>1 && $3>0' "$work/j1/sweep.csv" | wc -l)
-printf '%-16s %10s %9s\n' run "wall [s]" speed-up
-printf '%-16s %10.2f %9.2f\n' "--jobs 1" "$w1" 1
-printf '%-16s %10.2f %9.2f\n' "--jobs 2" "$w2" "$(echo "$w1 / $w2" | bc -l)"
+printf '%-16s %10s %10s %9s\n' run "wall [s]" "cpu [s]" speed-up
+printf '%-16s %10.2f %10.2f %9.2f\n' "--jobs 1" "$w1" "$c1" 1
+printf '%-16s %10.2f %10.2f %9.2f\n' "--jobs 2" "$w2" "$c2" "$(echo "$w1 / $w2" | bc -l)"
 if [ "$wm" != nan ]; then
-  printf '%-16s %10.2f %9.2f\n' "mpirun -np 2" "$wm" "$(echo "$w1 / $wm" | bc -l)"
+  printf '%-16s %10.2f %10.2f %9.2f\n' "mpirun -np 2" "$wm" "$cm" "$(echo "$w1 / $wm" | bc -l)"
 fi
+echo "cpu = user + sys of the command and its children (equal cpu and halved wall = perfect scaling)"
 echo "rows identical (--no-timing): yes; points that separate: $sep of 200"
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
