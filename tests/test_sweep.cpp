@@ -579,3 +579,20 @@ TEST(JumpSpeed, ElasticFollowerBySimulationKeepsItsBracket) {
   EXPECT_GT(sh.separations, 0);
   EXPECT_DOUBLE_EQ(r.theta_deg, sh.first_separation_theta_deg);
 }
+
+TEST_F(SweepTest, TimeoutStopsAPointAndTheSweepGoesOn) {
+  // Case B2 (elastic, chaotic) for 1 s takes ≈ 15 s of CPU: with --timeout 0.3 each point is
+  // stopped after about 0.3 CPU seconds and recorded with the reason.
+  const R r = camdyn("sweep --case B2 --key cam.speed_rev_s --from 4.9 --to 5 --points 2 --timeout 0.3 "
+                     "--jobs 2 --quiet --out T");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Csv c = read_csv(dir_ / "T" / "sweep.csv");
+  ASSERT_EQ(c.rows.size(), 2u);
+  const std::string text = slurp(dir_ / "T" / "sweep.csv");
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(c.num(i, "finished"), 0);
+    EXPECT_LT(c.num(i, "t_end"), 1.0);
+    EXPECT_LT(c.num(i, "cpu_seconds"), 3.0);
+  }
+  EXPECT_NE(text.find("timeout: the point took more than 0.3 CPU seconds"), std::string::npos) << text;
+}
