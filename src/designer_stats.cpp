@@ -19,12 +19,7 @@ double angle_deg_mod360(double theta) {
   return d;
 }
 
-DesignerStats::DesignerStats(const Scene& scene) : drive_(scene.cam) {
-  try {
-    lift_ = Cam(scene.cam).lift();
-  } catch (...) {
-    lift_ = 1.0;
-  }
+DesignerStats::DesignerStats(const Scene& scene, double lift) : drive_(scene.cam), lift_(lift) {
   if (!(lift_ > 0)) lift_ = 1.0;
   theta0_ = drive_.theta(0.0);
   const double th_end = drive_.theta(scene.run.t_end);

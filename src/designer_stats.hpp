@@ -24,7 +24,8 @@ double angle_deg_mod360(double theta);
 
 class DesignerStats {
  public:
-  explicit DesignerStats(const Scene& scene);
+  /// `lift`: the cam's lift (Cam::lift(), the period detector's length scale).
+  DesignerStats(const Scene& scene, double lift);
 
   /// A contact force sample F ≥ 0 at time t, cam angle θ, while in contact.
   void sample_force(double t, double theta, double F);

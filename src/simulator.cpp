@@ -80,7 +80,7 @@ class Runner {
   Runner(const Scene& sc, std::shared_ptr<const FollowerModel> model, Observer* obs,
          const std::atomic<bool>* stop)
       : sc_(sc), model_(std::move(model)), m_(*model_), cam_(sc.cam), drive_(sc.cam),
-        obs_(obs), stop_(stop), n_(m_.n()), designer_(sc) {
+        obs_(obs), stop_(stop), n_(m_.n()), designer_(sc, cam_.lift()) {
     engine_ = make_engine(model_, sc_);
     sum_.scene = sc.title;
     sum_.integrator = to_string(sc.solver.integrator);
