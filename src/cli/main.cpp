@@ -1007,7 +1007,17 @@ int real_main(int argc, char** argv) {
   if (plot->parsed()) return cmd_plot(po);
   if (bench->parsed()) return cmd_bench(bo);
   if (jump->parsed()) return cmd_jump(jo);
-  if (sweep->parsed()) return cmd_sweep(swo);
+  if (sweep->parsed()) {
+    // Under mpirun every rank parses the same command line: report bad input once (rank 0).
+    if (camdyn_cli::launched_under_mpi() && camdyn_cli::mpi_rank_from_env() != 0) {
+      try {
+        return cmd_sweep(swo);
+      } catch (const SceneError&) {
+        return kExitBadInput;
+      }
+    }
+    return cmd_sweep(swo);
+  }
   std::fprintf(stderr, "camdyn: no command given (allowed: run, cam, scene, plot, bench, jump, sweep)\n");
   return kExitBadInput;
 }

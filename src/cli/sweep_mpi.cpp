@@ -22,6 +22,14 @@
 
 namespace camdyn_cli {
 
+int mpi_rank_from_env() {
+  for (const char* v : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"}) {
+    const char* s = std::getenv(v);
+    if (s && *s) return std::atoi(s);
+  }
+  return 0;
+}
+
 bool launched_under_mpi() {
   for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"}) {
     const char* s = std::getenv(v);
@@ -90,21 +98,20 @@ camdyn::SweepResult run_sweep_mpi(const camdyn::Scene& base, const camdyn::Sweep
 
   // ---- master
   std::unique_ptr<SweepJournal> journal;
+  std::unique_ptr<SceneError> bad_input;
   std::string setup_error;
-  bool setup_bad_input = false;
   try {
     ensure_output_dir(o.out_dir);
     journal = std::make_unique<SweepJournal>(plan, o.out_dir, o.resume);
   } catch (const SceneError& e) {
-    setup_error = e.what();
-    setup_bad_input = true;
+    bad_input = std::make_unique<SceneError>(e);
   } catch (const std::exception& e) {
     setup_error = e.what();
   }
   int ok = journal ? 1 : 0;
   MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
   if (!ok) {
-    if (setup_bad_input) throw SceneError("--resume", 0, "resume", o.out_dir, setup_error);
+    if (bad_input) throw *bad_input;
     throw std::runtime_error(setup_error);
   }
   res.skipped = journal->done_count();

@@ -10,6 +10,10 @@ namespace camdyn_cli {
 /// (OMPI_COMM_WORLD_SIZE, PMI_SIZE or PMIX_SIZE > 1 in the environment).
 bool launched_under_mpi();
 
+/// This process's rank from the launcher's environment (0 when not under mpirun), for
+/// printing input errors on rank 0 only.
+int mpi_rank_from_env();
+
 /// True when the tool was built with MPI.
 bool mpi_available();
 
