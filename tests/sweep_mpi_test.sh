@@ -22,4 +22,12 @@ col=$(head -1 j1/sweep.csv | tr ',' '\n' | grep -n '^cpu_seconds$' | cut -d: -f1
 diff <(cut -d, -f"$col" --complement j1/sweep.csv) <(cut -d, -f"$col" --complement m2t/sweep.csv)
 rows=$(($(wc -l < j1/sweep.csv) - 1))
 [ "$rows" -eq 9 ] || { echo "expected 9 rows, got $rows"; exit 1; }
-echo "sweep_mpi: --jobs 1, --jobs 2 and mpirun -np 2 agree ($rows rows)"
+# --resume on another sweep's directory under mpirun: exit 2, the message printed once
+set +e
+"$mpiexec" --allow-run-as-root --oversubscribe -np 2 "$camdyn" sweep "$src/examples/case_A7.toml" \
+  --key spring.stiffness --from 400 --to 500 --points 3 --quiet --out m2 --resume > bad.txt 2>&1
+rc=$?
+set -e
+[ "$rc" -eq 2 ] || { echo "mpirun --resume on another sweep: exit $rc, expected 2"; cat bad.txt; exit 1; }
+[ "$(grep -c 'is from another sweep' bad.txt)" -eq 1 ] || { echo "message not printed once:"; cat bad.txt; exit 1; }
+echo "sweep_mpi: --jobs 1, --jobs 2 and mpirun -np 2 agree ($rows rows); bad --resume exits 2"
