@@ -27,6 +27,12 @@ def num(s):
         return math.nan
 
 
+def legend(ax):
+    """A legend only when something is labelled (all points failed: none)."""
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8)
+
+
 def main(argv):
     args = [a for a in argv[1:] if not a.startswith("--")]
     quiet = "--quiet" in argv
@@ -79,9 +85,9 @@ def main(argv):
     ax[0].set_ylabel("min contact force (margin)")
     ax[1].set_ylabel("max contact force")
     ax[1].set_xlabel(key)
-    ax[0].legend(fontsize=8)
+    legend(ax[0])
     if key2:
-        ax[1].legend(fontsize=8)
+        legend(ax[1])
     ax[0].set_title("Force margin and peak force")
     fig.tight_layout()
     p = os.path.join(d, "sweep_force.png")
@@ -120,7 +126,7 @@ def main(argv):
         ax[1].plot(x, [num(r["max_impact_velocity"]) for r in rs], ".-", label=label(g))
     ax[0].set_ylabel("cam angle [deg]")
     ax[0].set_ylim(0, 360)
-    ax[0].legend(fontsize=8)
+    legend(ax[0])
     ax[1].set_ylabel("largest impact velocity")
     ax[1].set_xlabel(key)
     ax[0].set_title("Impact map")
