@@ -596,3 +596,14 @@ TEST_F(SweepTest, TimeoutStopsAPointAndTheSweepGoesOn) {
   }
   EXPECT_NE(text.find("timeout: the point took more than 0.3 CPU seconds"), std::string::npos) << text;
 }
+
+TEST_F(SweepTest, PlotDrawsTheThreeFigures) {
+  if (std::system("/usr/bin/python3 -c 'import numpy, matplotlib' >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "python3-matplotlib not installed";
+  const R r = camdyn("sweep '" + example("circle_cam.toml") +
+                     "' --key cam.speed_rev_s --from 12 --to 15 --points 4 --set run.t_end=0.3 "
+                     "--set run.output_dt=0.001 --quiet --plot --out P");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* f : {"sweep_force.png", "sweep_bifurcation.png", "sweep_impacts.png"})
+    EXPECT_GT(fs::file_size(dir_ / "P" / f), 10000u) << f;
+}
