@@ -360,7 +360,7 @@ std::string history_csv(const std::vector<HistoryRow>& rows) {
 }
 
 std::string events_csv(const std::vector<ContactEvent>& events) {
-  std::string out = "t,kind,impact_velocity\n";
+  std::string out = "t,kind,impact_velocity,theta,impulse\n";
   for (const auto& e : events) {
     append_double(out, e.t);
     out += ',';
@@ -377,6 +377,10 @@ std::string events_csv(const std::vector<ContactEvent>& events) {
     }
     out += ',';
     append_double(out, e.impact_velocity);
+    out += ',';
+    append_double(out, e.theta);
+    out += ',';
+    append_double(out, e.impulse);
     out += '\n';
   }
   return out;
@@ -504,6 +508,29 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
     o.raw("first_tensile_time", "null");
   }
   o.num("energy_residual", s.energy_residual);
+  // designer results (issue 15); NaN → null
+  o.num("min_contact_force", s.min_contact_force);
+  o.num("min_force_theta_deg", s.min_force_theta_deg);
+  o.num("first_separation_theta_deg", s.first_separation_theta_deg);
+  o.num("first_impact_theta_deg", s.first_impact_theta_deg);
+  o.num("max_impact_velocity", s.max_impact_velocity);
+  o.num("max_impact_theta_deg", s.max_impact_theta_deg);
+  o.num("max_gap", s.max_gap);
+  o.integer("period", s.period);
+  o.str("period_kind", s.period_kind);
+  {
+    std::string t = "[";
+    for (size_t i = 0; i < s.poincare.size(); ++i) {
+      const PoincareSample& p = s.poincare[i];
+      t += i ? ",\n    " : "\n    ";
+      t += "{\"revolution\": " + std::to_string(p.revolution) + ", \"t\": " + json_number(p.t) +
+           ", \"u_c\": " + json_number(p.u_c) + ", \"v_c\": " + json_number(p.v_c) + "}";
+    }
+    t += s.poincare.empty() ? "]" : "\n  ]";
+    o.raw("poincare", t);
+  }
+  o.integer("lin_setups", s.lin_setups);
+  o.integer("lin_analyses", s.lin_analyses);
   o.raw("model", model_json(s.model, o.child_indent()));
   o.integer("events", static_cast<long long>(s.events.size()));
   {

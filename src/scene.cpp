@@ -153,7 +153,8 @@ bool operator==(const SolverSpec& a, const SolverSpec& b) {
 }
 bool operator==(const RunSpec& a, const RunSpec& b) {
   return a.t_end == b.t_end && a.output_dt == b.output_dt && a.land_on_output == b.land_on_output &&
-         a.max_steps == b.max_steps;
+         a.max_steps == b.max_steps && a.poincare_angle_deg == b.poincare_angle_deg &&
+         a.settle_revolutions == b.settle_revolutions && a.period_tol == b.period_tol;
 }
 bool operator==(const Scene& a, const Scene& b) {
   return a.title == b.title && a.cam == b.cam && a.follower == b.follower && a.spring == b.spring &&
@@ -401,6 +402,9 @@ const std::vector<Field>& fields() {
     v.push_back(F_REAL(run, output_dt));
     v.push_back(F_BOOL(run, land_on_output));
     v.push_back(F_INT(run, max_steps, 1, LLONG_MAX));
+    v.push_back(F_REAL(run, poincare_angle_deg));
+    v.push_back(F_INT(run, settle_revolutions, 0, 1000000000));
+    v.push_back(F_REAL(run, period_tol));
     return v;
   }();
   return kFields;
@@ -749,6 +753,11 @@ class Validator {
     if (!(s.run.output_dt <= s.run.t_end))
       fail_at("run.output_dt", fmt_num(s.run.output_dt), "must be <= run.t_end = " + fmt_num(s.run.t_end));
     int_in("run.max_steps", s.run.max_steps, 1, LLONG_MAX);
+    finite("run.poincare_angle_deg", s.run.poincare_angle_deg);
+    int_in("run.settle_revolutions", s.run.settle_revolutions, 0, 1000000000);
+    finite("run.period_tol", s.run.period_tol);
+    if (!(s.run.period_tol > 0.0 && s.run.period_tol <= 1.0))
+      fail_at("run.period_tol", fmt_num(s.run.period_tol), "must be > 0 and <= 1");
   }
 
  private:

@@ -41,6 +41,7 @@
 #include <sstream>
 
 #include "camdyn/cam.hpp"
+#include "designer_stats.hpp"
 #include "engine.hpp"
 
 namespace camdyn {
@@ -84,7 +85,7 @@ class Runner {
   Runner(const Scene& sc, std::shared_ptr<const FollowerModel> model, Observer* obs,
          const std::atomic<bool>* stop)
       : sc_(sc), model_(std::move(model)), m_(*model_), cam_(sc.cam), drive_(sc.cam),
-        obs_(obs), stop_(stop), n_(m_.n()) {
+        obs_(obs), stop_(stop), n_(m_.n()), designer_(sc, cam_.lift()) {
     engine_ = make_engine(model_, sc_);
     sum_.scene = sc.title;
     sum_.integrator = to_string(sc.solver.integrator);
@@ -122,6 +123,7 @@ class Runner {
     V0_ = potential();
     E0_ = m_.kinetic_energy(y_.data() + n_) + V0_;
     emit_row();
+    designer_step(cm0.X);
     next_out_ = 1;
     try {
       if (sc_.contact.model == ContactModel::Penalty)
@@ -148,6 +150,7 @@ class Runner {
     sum_.wall_seconds = clock.wall();
     if (!std::isfinite(sum_.min_gap)) sum_.min_gap = 0.0;
     sum_.energy_residual = std::abs(energy_residual());
+    designer_.finish(sum_);
     return sum_;
   }
 
@@ -203,8 +206,12 @@ class Runner {
     if (obs_) obs_->on_row(r);
   }
 
-  void record_event(const char* kind, double v, double impulse = 0.0) {
-    ContactEvent e{t_, kind, v, impulse};
+  // impulse: the impact impulse applied at the instant (0: none); t_event: the event time
+  // when it is not the current time t_ (NaN); the event's cam angle is taken there.
+  void record_event(const char* kind, double v, double impulse = 0.0, double t_event = NAN) {
+    const double te = std::isnan(t_event) ? t_ : t_event;
+    ContactEvent e{te, kind, v, drive_.theta(te), impulse};
+    designer_.event(e);
     sum_.events.push_back(e);
     if (obs_) obs_->on_event(e);
   }
@@ -229,6 +236,7 @@ class Runner {
     sum_.max_contact_force = std::max(sum_.max_contact_force, F_);
     sum_.min_gap = std::min(sum_.min_gap, gap);
     sum_.max_penetration = std::max(sum_.max_penetration, -gap);
+    designer_step(cm.X);
     if (bilateral_ && F_ < 0.0 && sum_.first_tensile_time < 0) {
       sum_.first_tensile_time = t_;
       record_event("tensile", 0.0);
@@ -257,6 +265,16 @@ class Runner {
         obs_->on_progress(t_, sc_.run.t_end, sum_.steps);
       }
     }
+  }
+
+  // Designer results (designer_stats.hpp) at an accepted state: the step end, and the
+  // contact force while in contact.
+  // `X_C`: the cam's X at t_ (the caller has it).
+  void designer_step(double X_C) {
+    const double th = drive_.theta(t_);
+    designer_.step(t_, th, y_[0], y_[n_], m_.contact_acceleration(y_.data(), y_.data() + n_, F_),
+                   y_[0] - X_C);
+    if (contact_) designer_.sample_force(t_, th, F_);
   }
 
   double initial_step() const {
@@ -362,6 +380,7 @@ class Runner {
       if (!bilateral_ && F < 0.0) F = 0.0;
       // The samples also show the force between step ends (a peak inside a long step).
       sum_.max_contact_force = std::max(sum_.max_contact_force, F);
+      designer_.sample_force(tau, drive_.theta(tau), F);
       return F * c.Xdot;
     };
     const double ga = Fa0 * cam_at(t0).Xdot, gb = Fb1 * cam_at(t1).Xdot;
@@ -751,6 +770,10 @@ class Runner {
             else { a = c; c = d; fc = fd; d = a + gr * (b - a); fd = switching_function(s, d); }
           }
           const double xm = fc < fd ? c : d, fm = std::min(fc, fd);
+          if (s.held) {  // the force's minimum inside the step: the contact margin
+            const double tm = s.t0 + xm * (s.t1 - s.t0);
+            designer_.sample_force(tm, drive_.theta(tm), std::max(fm, 0.0));
+          }
           if (fm < -thr) {
             lo = double(k - 1) / K;
             hi = xm;
@@ -775,6 +798,7 @@ class Runner {
     auto g = [&](double tau) {
       const double F = interpolate(s, tau, hv_);
       sum_.max_contact_force = std::max(sum_.max_contact_force, F);
+      designer_.sample_force(tau, drive_.theta(tau), F);
       return F * cam_at(tau).Xdot;
     };
     const double ta = s.t0, h = tb - ta;
@@ -1290,6 +1314,7 @@ class Runner {
           // step (the trapezoid's O(h²) error reached 3.5e-3 of the work on a fast
           // speed ramp with 1e-4 steps).
           const double tm = 0.5 * (t_prev + t_);
+          designer_.sample_force(tm, drive_.theta(tm), reaction_rigid(tm));
           dW_override = (t_ - t_prev) / 6.0 *
                         (Ft * Xdot_prev + 4.0 * reaction_rigid(tm) * cam_at(tm).Xdot +
                          reaction_rigid(t_) * cam_at(t_).Xdot);
@@ -1378,6 +1403,7 @@ class Runner {
   const std::atomic<bool>* stop_;
   int n_;
   std::unique_ptr<Engine> engine_;
+  detail::DesignerStats designer_;
   Summary sum_;
   bool bilateral_ = false, contact_ = false;
   double tol_u_ = 1e-8;

@@ -141,14 +141,14 @@ void expect_no_temp_files(const fs::path& d) {
 TEST_F(CliTest, HelpListsEveryCommand) {
   const auto r = camdyn("--help");
   EXPECT_EQ(r.status, 0) << r.err;
-  for (const char* cmd : {"run", "cam", "scene", "plot"}) {
+  for (const char* cmd : {"run", "cam", "scene", "plot", "jump", "sweep"}) {
     EXPECT_NE(r.out.find(cmd), std::string::npos) << "--help does not list " << cmd << "\n"
                                                   << r.out;
   }
 }
 
 TEST_F(CliTest, EveryCommandHasHelp) {
-  for (const char* cmd : {"run", "cam", "scene", "plot"}) {
+  for (const char* cmd : {"run", "cam", "scene", "plot", "jump", "sweep"}) {
     const auto r = camdyn(std::string(cmd) + " --help");
     EXPECT_EQ(r.status, 0) << cmd << ": " << r.err;
     EXPECT_NE(r.out.find(cmd), std::string::npos) << r.out;
@@ -380,7 +380,11 @@ TEST(Output, FullPrecisionCsv) {
   EXPECT_EQ(std::strtod(f[5].c_str(), nullptr), row.contact_force);
   EXPECT_EQ(std::strtod(f[6].c_str(), nullptr), row.gap);
   EXPECT_EQ(f[7], "1");
-  EXPECT_EQ(camdyn::events_csv(w.events()), "t,kind,impact_velocity\n0.25,impact,-0.125\n");
+  w.on_event({0.5, "separation", 0.0, 7.5});
+  // issue 15: the cam angle is a new column; issue 13: the impact impulse applied at the
+  // instant the last
+  EXPECT_EQ(camdyn::events_csv(w.events()),
+            "t,kind,impact_velocity,theta,impulse\n0.25,impact,-0.125,0,0\n0.5,separation,0,7.5,0\n");
 }
 
 TEST(Output, AtomicFileRenamesOnlyOnCommit) {

@@ -68,7 +68,7 @@ std::string json_string(std::string_view s);
 
 /// history.csv text: header from history_columns(), one line per row.
 std::string history_csv(const std::vector<HistoryRow>& rows);
-/// events.csv text: header "t,kind,impact_velocity", one line per event.
+/// events.csv text: header "t,kind,impact_velocity,theta,impulse", one line per event.
 std::string events_csv(const std::vector<ContactEvent>& events);
 
 /// An Observer that keeps every row and event in memory as they arrive, so a run that

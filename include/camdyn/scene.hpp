@@ -167,6 +167,17 @@ struct RunSpec {
   bool land_on_output = false;
   /// Safety bound on accepted + rejected steps, ≥ 1.
   long max_steps = 50'000'000;
+  /// Poincaré section: the cam angle [deg], finite, at which the follower's (u_c, v_c) is
+  /// sampled once per revolution (Summary::poincare; sweep bifurcation diagrams). Taken
+  /// modulo 360 relative to cam.theta0_deg: the k-th sample (k = 0, 1, …) is at
+  /// θ = θ₀ + ((poincare_angle_deg − theta0_deg) mod 360)° + 360°·k.
+  double poincare_angle_deg = 0.0;
+  /// Revolutions left out of the Poincaré samples and the period detection (transient),
+  /// 0 ≤ n ≤ 10⁹: samples k < settle_revolutions are not kept.
+  long settle_revolutions = 0;
+  /// Relative tolerance of the period detector, 0 < tol ≤ 1: samples p revolutions apart
+  /// are "equal" when |Δu_c| ≤ tol·lift and |Δv_c| ≤ tol·lift·|ω|.
+  double period_tol = 1e-3;
 };
 
 struct Scene {

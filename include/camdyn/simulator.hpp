@@ -9,6 +9,7 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
@@ -39,8 +40,17 @@ struct ContactEvent {
   double t = 0;
   std::string kind;             ///< "impact" | "separation" | "tensile" (holonomic)
   double impact_velocity = 0;   ///< relative approach velocity (impacts), else 0
+  double theta = 0;             ///< cam angle at the event [rad] (as history.csv's theta)
   double impulse = 0;           ///< contact impulse applied at the instant (impacts resolved
                                 ///< as a Newton impulse: event-driven, Lee "located"), else 0
+};
+
+/// One Poincaré sample: the follower's contact face when the cam passes the section angle
+/// (run.poincare_angle_deg) in revolution k (k = 0, 1, …; k ≥ run.settle_revolutions).
+/// u_c, v_c are cubic Hermite interpolants between the accepted steps around the crossing.
+struct PoincareSample {
+  long revolution = 0;
+  double t = 0, u_c = 0, v_c = 0;
 };
 
 /// Iteration statistics of one level of Lee's method.
@@ -72,6 +82,24 @@ struct Summary {
   double max_penetration = 0;  ///< max(0, −gap)
   double first_tensile_time = -1;  ///< holonomic: first time the constraint force pulls
   double energy_residual = 0;      ///< |W − ΔT − ΔV − D| at the end
+  // ---- designer results (issue 15). Angles are cam angles in degrees in [0, 360);
+  // ---- NaN (null in summary.json) when the thing did not happen.
+  /// Smallest contact force while in contact (the margin; 0 if the follower separated:
+  /// the force reaches zero at a separation). NaN if never in contact.
+  double min_contact_force = NAN;
+  double min_force_theta_deg = NAN;    ///< cam angle of min_contact_force
+  double first_separation_theta_deg = NAN;
+  double first_impact_theta_deg = NAN;
+  double max_impact_velocity = 0;      ///< largest approach velocity at an impact
+  double max_impact_theta_deg = NAN;   ///< cam angle of that impact
+  double max_gap = 0;                  ///< largest gap (−s) seen at step ends, ≥ 0
+  /// Per-revolution samples at run.poincare_angle_deg after run.settle_revolutions.
+  std::vector<PoincareSample> poincare;
+  /// Period of the Poincaré samples in revolutions (smallest p ≤ 16 with every sample
+  /// equal to the one p before within run.period_tol, needing ≥ 2p + 1 samples); 0 = none.
+  int period = 0;
+  /// "period-1", "period-2", …, "not periodic", or "too few samples" (< 3 samples).
+  std::string period_kind = "too few samples";
   double cpu_seconds = 0, wall_seconds = 0;
   std::string integrator, contact_model;
   ModelDescription model;

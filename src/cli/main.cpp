@@ -5,6 +5,9 @@
 //   camdyn scene [SCENE.toml] [--resolved] [--set KEY=VALUE]...
 //   camdyn plot  DIR [--zoom T0 T1]
 //   camdyn bench [SCENE ...] [--out DIR] [--quick] [--repeats N]
+//   camdyn jump  SCENE [--set KEY=VALUE]... [--out DIR] [--simulate] [--rel-tol R]
+//   camdyn sweep SCENE --key KEY --from A --to B (--step S | --points N [--log])
+//                [--key2 ...] [--jobs N] [--resume] [--out DIR] [--plot] [--quiet]
 //
 // Exit status: 0 success; 1 the simulation (or a figure) failed; 2 bad input.
 #include <CLI/CLI.hpp>
@@ -30,9 +33,11 @@
 
 #include "camdyn/bench.hpp"
 #include "camdyn/cam.hpp"
+#include "camdyn/designer.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/simulator.hpp"
+#include "sweep_mpi.hpp"
 
 #ifndef CAMDYN_PLOT_SCRIPT_BUILD
 #define CAMDYN_PLOT_SCRIPT_BUILD ""
@@ -213,6 +218,18 @@ std::string bench_plot_script_path() {
   return {};
 }
 
+/// scripts/camdyn_sweep_plot.py: $CAMDYN_SWEEP_PLOT_SCRIPT, else next to camdyn_plot.py.
+std::string sweep_plot_script_path() {
+  if (const char* env = std::getenv("CAMDYN_SWEEP_PLOT_SCRIPT"); env && *env) return env;
+  std::error_code ec;
+  for (const char* p : {CAMDYN_PLOT_SCRIPT_INSTALL, CAMDYN_PLOT_SCRIPT_BUILD}) {
+    if (!p || !*p) continue;
+    const fs::path cand = fs::path(p).parent_path() / "camdyn_sweep_plot.py";
+    if (fs::is_regular_file(cand, ec)) return cand.string();
+  }
+  return {};
+}
+
 /// Run the plot script (`script_override`, or camdyn_plot.py) with `args`. Returns its
 /// exit status, or −1 if it could not start.
 int run_plot_script(const std::vector<std::string>& args, std::string* why,
@@ -310,6 +327,192 @@ struct BenchOpts {
   bool quiet = false;
   bool no_plot = false;
 };
+
+struct JumpOpts {
+  CommonOpts c;
+  std::string out = "camdyn-out";
+  bool simulate = false;
+  double rel_tol = 1e-4;
+  double lo = 0, hi = 0;
+  bool quiet = false;
+};
+
+struct SweepCliAxis {
+  std::string key;
+  double from = NAN, to = NAN, step = NAN;
+  long points = 0;
+  bool log = false;
+};
+
+struct SweepOpts {
+  CommonOpts c;
+  SweepCliAxis a1, a2;
+  int jobs = 0;
+  bool resume = false;
+  std::string out = "camdyn-sweep";
+  bool quiet = false;
+  bool plot = false;
+  bool no_timing = false;
+  double timeout = 0;
+};
+
+int cmd_jump(const JumpOpts& o) {
+  if (o.c.scene_file.empty() && o.c.case_name.empty())
+    throw SceneError("jump", 0, "SCENE", "", "give a scene file (or --case A|B1|B2)");
+  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
+  resolve_defaults(sc);
+  validate(sc);
+  JumpOptions jo;
+  jo.rel_tol = o.rel_tol;
+  jo.lo_rev_s = o.lo;
+  jo.hi_rev_s = o.hi;
+  jo.force_simulation = o.simulate;
+  if (!o.quiet)
+    jo.log = [](double sp, bool sep) {
+      std::fprintf(stderr, "  %.10g rev/s: %s\n", sp, sep ? "separates" : "keeps contact");
+      std::fflush(stderr);
+    };
+  ensure_output_dir(o.out);
+  JumpResult r;
+  {
+    SigintGuard guard;
+    r = jump_speed(sc, jo);  // SceneError → exit 2; a failing run is reported as such
+  }
+  const std::string path = join_path(o.out, "jump.json");
+  std::string j = "{\n  \"scene\": " + json_string(sc.title) +
+                  ",\n  \"jump_speed_rev_s\": " + json_number(r.jump_speed_rev_s) +
+                  ",\n  \"method\": " + json_string(r.method) +
+                  ",\n  \"theta_deg\": " + json_number(r.theta_deg);
+  if (r.method == "simulation") {
+    j += ",\n  \"lo_rev_s\": " + json_number(r.lo_rev_s) + ",\n  \"hi_rev_s\": " +
+         json_number(r.hi_rev_s) + ",\n  \"rel_tol\": " + json_number(o.rel_tol) +
+         ",\n  \"simulations\": " + std::to_string(r.simulations) + ",\n  \"t_end\": " +
+         json_number(sc.run.t_end);
+  }
+  j += "\n}\n";
+  int rc = kExitOk;
+  try {
+    write_file_atomic(path, j);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "camdyn: cannot write '%s': %s\n", path.c_str(), e.what());
+    rc = kExitFailed;
+  }
+  if (!o.quiet) {
+    std::printf("%s: %s, margin reaches zero at cam angle %s deg", sc.title.c_str(),
+                r.method.c_str(), fmt_g(r.theta_deg, 10).c_str());
+    if (r.method == "simulation")
+      std::printf(" (bracket %.10g .. %.10g rev/s, %d runs to t = %g)", r.lo_rev_s, r.hi_rev_s,
+                  r.simulations, sc.run.t_end);
+    std::printf("\noutput: %s\n", path.c_str());
+  }
+  std::printf("jump_speed_rev_s = %.17g\n", r.jump_speed_rev_s);
+  std::fflush(stdout);
+  return rc;
+}
+
+class SweepProgress {
+ public:
+  explicit SweepProgress(bool on) : on_(on), tty_(::isatty(STDERR_FILENO) != 0) {}
+  void operator()(long done, long total, long failed, double elapsed) {
+    if (!on_) return;
+    if (first_ < 0) first_ = done - 1;
+    const long computed = done - first_;
+    const double now = elapsed;
+    if (tty_ && now - last_ < 0.2 && done < total) return;
+    if (!tty_ && done * 10 / total == last_decile_ && done < total) return;
+    last_ = now;
+    last_decile_ = done * 10 / total;
+    char eta[48] = "?";
+    if (computed > 0 && done < total) {
+      const double rest = now / double(computed) * double(total - done);
+      if (rest < 120) std::snprintf(eta, sizeof eta, "%.0f s", rest);
+      else if (rest < 7200) std::snprintf(eta, sizeof eta, "%.0f min", rest / 60);
+      else std::snprintf(eta, sizeof eta, "%.1f h", rest / 3600);
+    } else if (done >= total) {
+      std::snprintf(eta, sizeof eta, "done");
+    }
+    char line[200];
+    const int n = std::snprintf(line, sizeof line, " sweep: %ld/%ld points, %ld failed, ETA %s",
+                                done, total, failed, eta);
+    if (tty_) {
+      std::fprintf(stderr, "\r%s%*s", line, std::max(0, width_ - n), "");
+      width_ = std::max(width_, n);
+    } else {
+      std::fprintf(stderr, "%s\n", line);
+    }
+    std::fflush(stderr);
+  }
+  void finish() {
+    if (tty_ && width_ > 0) std::fprintf(stderr, "\r%*s\r", width_, "");
+    std::fflush(stderr);
+  }
+
+ private:
+  bool on_, tty_;
+  long first_ = -1, last_decile_ = -1;
+  double last_ = -1;
+  int width_ = 0;
+};
+
+int cmd_sweep(const SweepOpts& o) {
+  if (o.c.scene_file.empty() && o.c.case_name.empty())
+    throw SceneError("sweep", 0, "SCENE", "", "give a scene file (or --case A|B1|B2)");
+  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
+  resolve_defaults(sc);
+  validate(sc);
+  if (o.jobs < 0) throw SceneError("--jobs", 0, "jobs", std::to_string(o.jobs), "must be >= 1 (0: all cores)");
+  SweepOptions so;
+  so.axes.push_back(make_sweep_axis(sc, o.a1.key, o.a1.from, o.a1.to, o.a1.step, o.a1.points, o.a1.log));
+  if (!o.a2.key.empty()) {
+    try {
+      so.axes.push_back(make_sweep_axis(sc, o.a2.key, o.a2.from, o.a2.to, o.a2.step, o.a2.points, o.a2.log));
+    } catch (const SceneError& e) {  // name the second axis' options: --from2, key 'to2', ...
+      throw SceneError(e.file() + "2", 0, e.key() + "2", e.value(), e.rule());
+    }
+  } else if (!std::isnan(o.a2.from) || !std::isnan(o.a2.to) || !std::isnan(o.a2.step) || o.a2.points != 0 ||
+             o.a2.log) {
+    throw SceneError("--key2", 0, "key2", "", "--from2/--to2/--step2/--points2/--log2 need --key2 KEY");
+  }
+  so.jobs = o.jobs;
+  so.out_dir = o.out;
+  so.resume = o.resume;
+  so.timing = !o.no_timing;
+  so.point_timeout_seconds = o.timeout;
+  so.stop = &g_stop;
+  SweepProgress progress(!o.quiet);
+  so.progress = [&progress](long d, long t, long f, double e) { progress(d, t, f, e); };
+  so.validate();
+  SweepResult res;
+  bool master = true;
+  {
+    SigintGuard guard;
+    if (camdyn_cli::launched_under_mpi())
+      res = camdyn_cli::run_sweep_mpi(sc, so, &master);
+    else
+      res = run_sweep(sc, so);
+  }
+  progress.finish();
+  if (!master) return kExitOk;
+  if (!o.quiet) {
+    std::printf("sweep: %ld points (%ld computed, %ld from the journal), %ld failed%s\n", res.total,
+                res.computed, res.skipped, res.failed,
+                res.interrupted ? " — INTERRUPTED (run again with --resume)" : "");
+    std::printf("output: %s, %s\n", res.csv_path.c_str(), res.poincare_path.c_str());
+    std::fflush(stdout);
+  }
+  if (o.plot) {
+    std::string why;
+    const std::string script = sweep_plot_script_path();
+    if (script.empty()) {
+      std::fprintf(stderr, "camdyn: warning: no figures drawn: camdyn_sweep_plot.py not found\n");
+    } else if (run_plot_script({o.out, "--quiet"}, &why, script) != 0) {
+      std::fprintf(stderr, "camdyn: warning: no figures drawn: %s\n", why.c_str());
+    } else if (!o.quiet) {
+      std::printf("figures: %s\n", join_path(o.out, "sweep_*.png").c_str());
+    }
+  }
+  return res.interrupted ? kExitFailed : kExitOk;
+}
 
 int cmd_run(const RunOpts& o) {
   // Input stage: every error here is bad input (exit 2, raised to main()).
@@ -594,7 +797,7 @@ void add_common(CLI::App* sub, CommonOpts& c, const char* scene_help) {
       ->allow_extra_args(false);
 }
 
-const std::vector<std::string> kCommands{"run", "cam", "scene", "plot", "bench"};
+const std::vector<std::string> kCommands{"run", "cam", "scene", "plot", "bench", "jump", "sweep"};
 
 int real_main(int argc, char** argv) {
   CLI::App app{
@@ -610,6 +813,8 @@ int real_main(int argc, char** argv) {
       "  camdyn cam --out out                # cam.csv + cam figures\n"
       "  camdyn scene scene.toml --resolved  # the scene with every default filled in\n"
       "  camdyn bench --quick                # work–precision: Lee vs penalty vs baselines\n"
+      "  camdyn jump examples/circle_cam.toml # jump (separation) speed\n"
+      "  camdyn sweep examples/case_A7.toml --key cam.speed_rev_s --from 5 --to 8 --points 31\n"
       "Run 'camdyn COMMAND --help' for the options of a command.");
 
   RunOpts ro;
@@ -708,14 +913,70 @@ int real_main(int argc, char** argv) {
   bench->add_flag("-q,--quiet", bo.quiet, "Print nothing but errors");
   bench->add_flag("--no-plot", bo.no_plot, "Write the CSV and Markdown only, no figures");
 
+  JumpOpts jo;
+  auto* jump = app.add_subcommand(
+      "jump",
+      "Jump (separation) speed at constant cam speed: closed form for a rigid follower "
+      "(min over the cam angle of the required contact force reaches 0), bisection over "
+      "cam.speed_rev_s on 'the run separates' otherwise; writes DIR/jump.json and prints "
+      "'jump_speed_rev_s = <value>' as the last line");
+  add_common(jump, jo.c, "Scene file (TOML)");
+  jump->add_option("-o,--out", jo.out, "Output directory (created if missing)")
+      ->type_name("DIR")
+      ->capture_default_str();
+  jump->add_flag("--simulate", jo.simulate, "Bisection by simulation also for a rigid follower");
+  jump->add_option("--rel-tol", jo.rel_tol, "Simulation: relative width of the final bracket")
+      ->type_name("R")
+      ->capture_default_str();
+  jump->add_option("--lo", jo.lo, "Simulation: lower bracket speed [rev/s] (0: automatic)")->type_name("REV_S");
+  jump->add_option("--hi", jo.hi, "Simulation: upper bracket speed [rev/s] (0: automatic)")->type_name("REV_S");
+  jump->add_flag("-q,--quiet", jo.quiet, "Print only the last line");
+
+  SweepOpts swo;
+  auto* sweep = app.add_subcommand(
+      "sweep",
+      "Parameter sweep over one numeric scene key (or a grid of two): one run per point, "
+      "in parallel (--jobs, or mpirun -np N camdyn sweep ...); DIR/sweep.csv (one row per "
+      "point: the key values, then finished,separations,impacts,max_contact_force,"
+      "min_contact_force,... cpu_seconds,message) and DIR/poincare.csv (per-revolution "
+      "samples). Finished points are journalled (DIR/sweep.journal, fsync): a killed sweep "
+      "loses nothing and --resume skips the points done");
+  add_common(sweep, swo.c, "Scene file (TOML)");
+  auto add_axis = [&](SweepCliAxis& a, const std::string& sfx) {
+    sweep->add_option("--key" + sfx, a.key, "Scene key to sweep, e.g. cam.speed_rev_s")->type_name("KEY");
+    sweep->add_option("--from" + sfx, a.from, "First value")->type_name("A");
+    sweep->add_option("--to" + sfx, a.to, "Last value (> A)")->type_name("B");
+    sweep->add_option("--step" + sfx, a.step, "Spacing (values A, A+S, ... <= B)")->type_name("S");
+    sweep->add_option("--points" + sfx, a.points, "Number of values from A to B inclusive (>= 2)")->type_name("N");
+    sweep->add_flag("--log" + sfx, a.log, "Geometric spacing with --points (A > 0)");
+  };
+  add_axis(swo.a1, "");
+  add_axis(swo.a2, "2");
+  sweep->get_option("--key")->required();
+  sweep->add_option("-j,--jobs", swo.jobs, "Worker threads (0: all cores)")->type_name("N")->capture_default_str();
+  sweep->add_flag("--resume", swo.resume, "Keep the points already in DIR/sweep.journal (same sweep only)");
+  sweep->add_option("-o,--out", swo.out, "Output directory (created if missing)")
+      ->type_name("DIR")
+      ->capture_default_str();
+  sweep->add_flag("--no-timing", swo.no_timing, "Write cpu_seconds as 0 (byte-comparable files)");
+  sweep->add_option("--timeout", swo.timeout, "CPU seconds per point before it is stopped and recorded as failed (0: none)")
+      ->type_name("SECONDS");
+  sweep->add_flag("-q,--quiet", swo.quiet, "No progress line or report");
+  sweep->add_flag("--plot", swo.plot,
+                  "Draw sweep_force.png, sweep_bifurcation.png and sweep_impacts.png in DIR "
+                  "(python3 + matplotlib)");
+  sweep->footer("Exit status: 0 every point done (failed points are rows with finished = 0), "
+                "1 interrupted or I/O error, 2 bad input. Under mpirun rank 0 hands out the "
+                "points and computes too; --jobs is ignored there (one thread per rank).");
+
   // A clear message for a mistyped command (CLI11 would only say "not expected").
   if (argc >= 2 && argv[1][0] != '-') {
     bool known = false;
     for (const auto& c : kCommands) known = known || c == argv[1];
     if (!known) {
       std::fprintf(stderr,
-                   "camdyn: unknown command '%s' (allowed: run, cam, scene, plot, bench; see "
-                   "camdyn --help)\n",
+                   "camdyn: unknown command '%s' (allowed: run, cam, scene, plot, bench, jump, "
+                   "sweep; see camdyn --help)\n",
                    argv[1]);
       return kExitBadInput;
     }
@@ -730,7 +991,7 @@ int real_main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
     std::string what = e.what();
-    if (argc < 2) what = "no command given (allowed: run, cam, scene, plot, bench)";
+    if (argc < 2) what = "no command given (allowed: run, cam, scene, plot, bench, jump, sweep)";
     std::fprintf(stderr, "camdyn: %s\nRun 'camdyn --help' for the commands and options.\n",
                  what.c_str());
     return kExitBadInput;
@@ -745,7 +1006,19 @@ int real_main(int argc, char** argv) {
   if (scene->parsed()) return cmd_scene(so);
   if (plot->parsed()) return cmd_plot(po);
   if (bench->parsed()) return cmd_bench(bo);
-  std::fprintf(stderr, "camdyn: no command given (allowed: run, cam, scene, plot, bench)\n");
+  if (jump->parsed()) return cmd_jump(jo);
+  if (sweep->parsed()) {
+    // Under mpirun every rank parses the same command line: report bad input once (rank 0).
+    if (camdyn_cli::launched_under_mpi() && camdyn_cli::mpi_rank_from_env() != 0) {
+      try {
+        return cmd_sweep(swo);
+      } catch (const SceneError&) {
+        return kExitBadInput;
+      }
+    }
+    return cmd_sweep(swo);
+  }
+  std::fprintf(stderr, "camdyn: no command given (allowed: run, cam, scene, plot, bench, jump, sweep)\n");
   return kExitBadInput;
 }
 

@@ -1,0 +1,192 @@
+// camdyn — what cam designers do all day (issue 15): the contact force a rigid follower
+// needs, the jump (separation) speed, and speed sweeps run in parallel.
+//
+//   Required contact force of a rigid follower riding the cam (METHOD.md §1–2):
+//     F_req(θ, ω, ω̇) = m Ẍ_C + c Ẋ_C + k δ₀ + k (X_C(θ) − x₀),   x₀ = X_C(θ₀) + initial_gap
+//   (the return spring's force on the follower is −(k δ₀ + k (u − x₀)), model.cpp), with
+//   X_C = h(θ), Ẋ_C = h′ω, Ẍ_C = h″ω² + h′ω̇. At constant speed F_req is a quadratic
+//   in ω per cam angle; the follower leaves the cam at the smallest ω where
+//   min_θ F_req(θ, ω, 0) reaches zero: the jump speed.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "camdyn/scene.hpp"
+#include "camdyn/simulator.hpp"
+
+namespace camdyn {
+
+// ---- required force and jump speed ----------------------------------------------------
+
+/// The contact force [force] a rigid follower needs to stay on the cam at cam angle θ [rad]
+/// with speed ω [rad/s] and acceleration ω̇ [rad/s²] (formula above; follower.damping is c).
+/// Negative: the spring cannot hold the follower there (it separates).
+/// @pre follower.kind = "rigid". @throws SceneError for an elastic follower or a bad cam.
+double required_contact_force(const Scene& scene, double theta, double omega, double omega_dot);
+
+/// Same at the scene's constant speed cam.speed_rev_s (ω̇ = 0).
+/// @throws SceneError as above, and when the scene has a speed table.
+double required_contact_force(const Scene& scene, double theta);
+
+/// Options of jump_speed(). Defaults in brackets; validate() names field, value and rule.
+struct JumpOptions {
+  /// Closed form (rigid follower): cam angles of the scan before the local refinement
+  /// (golden section to 1e-12 rad) [7200], ≥ 16.
+  int scan_points = 7200;
+  /// Simulation (elastic follower): relative width of the final bracket [1e-4],
+  /// 1e-12 ≤ rel_tol ≤ 0.5. The result is the bracket's midpoint.
+  double rel_tol = 1e-4;
+  /// Simulation: initial bracket [rev/s]; 0 = automatic [0, 0]: the rigid-body closed
+  /// form (total mass) × 0.5 and × 1.5, widened (lower bound halved, upper doubled, up to
+  /// 12 times each) until the lower speed keeps contact and the upper one separates.
+  double lo_rev_s = 0.0, hi_rev_s = 0.0;
+  /// Simulation: force "simulation" also for a rigid follower [false].
+  bool force_simulation = false;
+  /// Simulation: called after each run with (speed, separated).
+  std::function<void(double, bool)> log;
+  /// @throws SceneError naming the field, its value and the rule.
+  void validate() const;
+};
+
+struct JumpResult {
+  /// The jump speed [rev/s], with the sign of cam.speed_rev_s (+ if 0); +inf if the
+  /// follower never separates at constant speed (no cam angle with F_req reaching 0).
+  double jump_speed_rev_s = 0;
+  /// "closed-form" (rigid follower) or "simulation" (bisection on "separations > 0").
+  std::string method;
+  /// Cam angle [deg, in [0, 360)] where the margin min_θ F_req first reaches zero
+  /// (closed form), or of the first separation just above the jump speed (simulation).
+  double theta_deg = 0;
+  /// Simulation: final bracket [rev/s] (lo keeps contact, hi separates) and runs made.
+  double lo_rev_s = 0, hi_rev_s = 0;
+  int simulations = 0;
+};
+
+/// The jump speed of `scene` at constant cam speed: closed form for a rigid follower,
+/// else bisection over cam.speed_rev_s on whether a run to run.t_end separates.
+/// @throws SceneError on bad input (speed table given, bad options, no bracket found).
+JumpResult jump_speed(const Scene& scene, const JumpOptions& options = JumpOptions{});
+
+// ---- batch runs -------------------------------------------------------------------------
+
+/// Run every scene, `threads` at a time (≤ 0: std::thread::hardware_concurrency()), from
+/// a dynamic queue (an atomic next index: a slow scene does not hold up the others).
+/// Runs are independent and deterministic, so results do not depend on `threads`
+/// (except cpu/wall seconds). An invalid scene gives a Summary with finished = false and
+/// the error as message. `on_done(i, summary)` (may be empty) is called under a mutex.
+/// Summary::cpu_seconds is the run's own thread CPU time.
+std::vector<Summary> run_batch(const std::vector<Scene>& scenes, int threads = 0,
+                               const std::function<void(std::size_t, const Summary&)>& on_done = {},
+                               const std::atomic<bool>* stop = nullptr);
+
+/// Thread CPU time of the calling thread [s] (CLOCK_THREAD_CPUTIME_ID).
+double thread_cpu_seconds();
+
+// ---- sweeps -------------------------------------------------------------------------------
+
+/// One swept key and its values.
+struct SweepAxis {
+  std::string key;            ///< dotted scene key, e.g. "cam.speed_rev_s"
+  std::vector<double> values;
+};
+
+/// The values of an axis: from A to B by `step` (A, A+S, …, ≤ B(1+1e-12)) or in
+/// `points` equal steps (linear, or geometric with log). Integer keys are rounded.
+/// @throws SceneError ("--from"/"--step"/"--points"/"--log") naming the rule: A < B,
+/// finite, step > 0, points ≥ 2, ≤ 10⁶ points, log needs A > 0.
+SweepAxis make_sweep_axis(const Scene& scene, const std::string& key, double from, double to,
+                          double step, long points, bool log);
+
+/// @throws SceneError("--key") unless `key` is a numeric (real or integer) scene key.
+void check_sweep_key(const Scene& scene, const std::string& key);
+
+/// Options of a sweep. Defaults in brackets.
+struct SweepOptions {
+  /// One axis, or two (a grid; the first key varies slowest) [none].
+  std::vector<SweepAxis> axes;
+  /// Worker threads; ≤ 0: std::thread::hardware_concurrency() [0].
+  int jobs = 0;
+  /// Output directory [camdyn-sweep].
+  std::string out_dir = "camdyn-sweep";
+  /// Keep the points already in DIR/sweep.journal (same sweep only) [false].
+  bool resume = false;
+  /// false: cpu_seconds written as 0, so whole files compare byte for byte [true].
+  bool timing = true;
+  /// CPU seconds a point may take before it is stopped and recorded as failed; 0 = no
+  /// limit [0].
+  double point_timeout_seconds = 0.0;
+  /// Polled between and inside points (Ctrl-C); may be null.
+  const std::atomic<bool>* stop = nullptr;
+  /// Progress after every finished point: (done, total, failed, elapsed wall seconds).
+  std::function<void(long, long, long, double)> progress;
+  /// @throws SceneError naming field, value and rule (no axis, > 2 axes, > 10⁶ points).
+  void validate() const;
+};
+
+/// A prepared sweep: points, header and fingerprint (shared by the threaded driver and the
+/// MPI driver of the CLI).
+struct SweepPlan {
+  Scene base;                      ///< resolved base scene
+  std::vector<SweepAxis> axes;
+  long total = 0;                  ///< number of points
+  std::string header;              ///< sweep.csv header line (with '\n')
+  std::string fingerprint;         ///< hash of the resolved scene TOML, keys and values
+  /// The key values of point i (grid: first axis slowest).
+  std::vector<double> values(long index) const;
+};
+
+/// @throws SceneError on bad options.
+SweepPlan plan_sweep(const Scene& base, const SweepOptions& options);
+
+/// The result of one point as journal text: lines "R\tI\tROW", "Q\tI\tPOINCARE_ROW"…,
+/// "E\tI" (the E line marks a complete point). Never throws for a failing run or an
+/// invalid swept value (recorded with finished = 0 and the message).
+std::string run_sweep_point(const SweepPlan& plan, long index, bool timing,
+                            double timeout_seconds, const std::atomic<bool>* stop);
+
+/// The journal DIR/sweep.journal and metadata DIR/sweep.meta.json of a sweep.
+class SweepJournal {
+ public:
+  /// Opens (resume: reads and keeps complete points, checking sweep.meta.json's
+  /// fingerprint; else starts empty). @throws SceneError("--resume") for another sweep's
+  /// files; std::runtime_error on I/O errors.
+  SweepJournal(const SweepPlan& plan, const std::string& dir, bool resume);
+  ~SweepJournal();
+  SweepJournal(const SweepJournal&) = delete;
+  SweepJournal& operator=(const SweepJournal&) = delete;
+  bool done(long index) const { return done_[static_cast<std::size_t>(index)] != 0; }
+  long done_count() const { return n_done_; }
+  long failed_count() const { return n_failed_; }
+  /// Append one point's journal text (from run_sweep_point) and fsync. Not thread-safe.
+  void append(const std::string& block);
+  /// Write DIR/sweep.csv and DIR/poincare.csv sorted by point index (atomic rename).
+  void write_outputs() const;
+
+ private:
+  void take(const std::string& block, bool write);
+  const SweepPlan& plan_;
+  std::string dir_;
+  int fd_ = -1;
+  std::vector<char> done_;
+  std::vector<std::string> rows_;
+  std::vector<std::string> pc_;
+  long n_done_ = 0, n_failed_ = 0;
+};
+
+struct SweepResult {
+  long total = 0, computed = 0, skipped = 0, failed = 0;
+  bool interrupted = false;
+  std::string csv_path, poincare_path;
+};
+
+/// Run a sweep: plan, journal, `jobs` threads from a dynamic queue, sorted outputs.
+/// @throws SceneError on bad input; std::runtime_error on I/O errors.
+SweepResult run_sweep(const Scene& base, const SweepOptions& options);
+
+/// The sweep.csv columns after the keys.
+const std::vector<std::string>& sweep_result_columns();
+
+}  // namespace camdyn
