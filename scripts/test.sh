@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # camdyn — build and run the test suite (from any directory):
-#   scripts/test.sh [CTEST ARGS...]      e.g. scripts/test.sh -L stability
+#   scripts/test.sh [CTEST ARGS...]      the default suite (every test but the label "long"),
+#                                        e.g. scripts/test.sh -L stability
+#   scripts/test.sh --long [CTEST ARGS]  only the long runs (label "long": B1 for 100
+#                                        revolutions, ~5–10 min of one core)
 # Installs missing Debian packages first (no apt at all when nothing is missing), builds
 # build/ (Release, Ninja) and runs ctest; exits non-zero on any failure.
 set -euo pipefail
@@ -9,4 +12,8 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
 
 "$ROOT/scripts/setup.sh" --build-only
-ctest --test-dir build --output-on-failure -j2 "$@"
+if [[ "${1:-}" == "--long" ]]; then
+  shift
+  exec ctest --test-dir build --output-on-failure -j2 -L long "$@"
+fi
+exec ctest --test-dir build --output-on-failure -j2 -LE long "$@"

@@ -329,7 +329,9 @@ TEST(LeeCaseB1, EnginesAgree) {
 }
 
 TEST(LeeCaseB2, SeparatesAndRestrikesEveryRevolution) {
-  for (ErrorVariant ev : {ErrorVariant::Eq12, ErrorVariant::Eq17}) {
+  // (eq12/eq17 select the classic step's error definitions; the located step's active set
+  // does not depend on them, so one variant suffices.)
+  for (ErrorVariant ev : {ErrorVariant::Eq12}) {
     Scene s = paper_case("B2");
     s.contact.error_variant = ev;
     s.run.t_end = 0.6;     // three revolutions of 0.2 s
