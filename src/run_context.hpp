@@ -1,0 +1,319 @@
+// camdyn (private) — the run machinery shared by every contact method, and the registry
+// that makes the method a scene asks for.
+//
+//   scene → FollowerModel (only the effects asked for) → Engine (SUNDIALS) + contact
+//   method (a RunContext subclass, one file each under src/contact/) → HistoryRow stream
+//   (Observer) + Summary.
+//
+// Adding a contact method: one file under src/contact/ with a subclass of RunContext that
+// implements run_method(), and one line in the registry (src/contact/registry.cpp).
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camdyn/cam.hpp"
+#include "camdyn/simulator.hpp"
+#include "designer_stats.hpp"
+#include "engine.hpp"
+
+namespace camdyn {
+namespace detail {
+
+inline std::string fmt(double x) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.6g", x);
+  return b;
+}
+
+/// A step that cannot be completed; the run ends (finished = false) with its message.
+class StepFailure : public std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+/// A contact iteration that did not converge: recoverable, the step is retried with Δt/2.
+class IterationFailure : public StepFailure {
+ public:
+  IterationFailure() : StepFailure("contact iteration did not converge") {}
+};
+
+struct Clock {
+  std::clock_t c0 = std::clock();
+  std::chrono::steady_clock::time_point w0 = std::chrono::steady_clock::now();
+  double cpu() const { return double(std::clock() - c0) / CLOCKS_PER_SEC; }
+  double wall() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+  }
+};
+
+/// The run machinery every contact method shares: the initial state, output times and
+/// rows (dense rows through dense_row_at), the energy ledger, statistics, events, the
+/// designer results, stop and failure handling. A contact method derives from it and
+/// implements run_method(), the loop over its accepted steps, calling after_step() once
+/// per accepted step (docs: README "One data path").
+class RunContext {
+ public:
+  RunContext(const Scene& sc, std::shared_ptr<const FollowerModel> model, Observer* obs,
+             const std::atomic<bool>* stop)
+      : sc_(sc), model_(std::move(model)), m_(*model_), cam_(sc.cam), drive_(sc.cam),
+        obs_(obs), stop_(stop), n_(m_.n()), designer_(sc, cam_.lift()) {
+    engine_ = make_engine(model_, sc_);
+    sum_.scene = sc.title;
+    sum_.integrator = to_string(sc.solver.integrator);
+    sum_.contact_model = to_string(sc.contact.model);
+    sum_.model = m_.description();
+    sum_.min_gap = INFINITY;
+    bilateral_ = !sc.contact.separation || sc.contact.model == ContactModel::Holonomic;
+    tol_u_ = sc.contact.tol_u;
+  }
+
+  virtual ~RunContext() = default;
+  RunContext(const RunContext&) = delete;
+  RunContext& operator=(const RunContext&) = delete;
+
+  Summary run() {
+    Clock clock;
+    // Initial state: q(0) from the model; node 0 at the cam's velocity if touching.
+    const double th0 = drive_.theta(0.0);
+    const CamMotion cm0 = cam_.motion(th0, drive_.omega(0.0), drive_.omega_dot(0.0));
+    y_ = Eigen::VectorXd::Zero(2 * n_);
+    y_.head(n_) = m_.initial_displacement();
+    const bool touching = sc_.contact.initial_gap == 0.0;
+    if (touching) y_[n_] = cm0.Xdot;
+    t_ = 0.0;
+    contact_ = touching;
+    // Initial contact force from the acceleration level (eq. 16 at t = 0).
+    F_ = 0.0;
+    if (touching) {
+      const double a_free = m_.contact_acceleration(y_.data(), y_.data() + n_, 0.0);
+      F_ = (cm0.Xddot - a_free) / m_.mstar();
+      if (!bilateral_ && F_ < 0.0) F_ = 0.0;
+    }
+    prepare_start(cm0, touching);
+    V0_ = potential();
+    E0_ = m_.kinetic_energy(y_.data() + n_) + V0_;
+    emit_row();
+    designer_step(cm0.X);
+    next_out_ = 1;
+    try {
+      run_method();
+      sum_.finished = true;
+      sum_.message = "finished";
+    } catch (const std::exception& e) {
+      sum_.finished = false;
+      sum_.message = "at t = " + fmt(t_) + ": " + e.what();
+      if (last_row_t_ < t_) emit_row();  // keep the last accepted state
+    }
+    sum_.t_end = t_;
+    sum_.rhs_evals += engine_->stats().rhs_evals;
+    sum_.lin_setups += engine_->stats().lin_setups;
+    sum_.lin_analyses += engine_->stats().lin_analyses;
+    sum_.cpu_seconds = clock.cpu();
+    sum_.wall_seconds = clock.wall();
+    if (!std::isfinite(sum_.min_gap)) sum_.min_gap = 0.0;
+    sum_.energy_residual = std::abs(energy_residual());
+    designer_.finish(sum_);
+    return sum_;
+  }
+
+ protected:
+  /// The method's loop over accepted steps from (t_, y_, F_, contact_) to t_end.
+  virtual void run_method() = 0;
+  /// Method-specific start after the common initial state (e.g. the penalty baseline
+  /// starts in its own equilibrium). Default: nothing.
+  virtual void prepare_start(const CamMotion& /*cm0*/, bool /*touching*/) {}
+  /// Dense output: write the row at output time `to` inside the step just accepted and
+  /// return true; false (default): the row is the step-end state (steps land on outputs).
+  virtual bool dense_row_at(double /*to*/) { return false; }
+
+  double out_dt() const { return sc_.run.output_dt; }
+  double next_output_time() const {
+    return out_dt() > 0 ? std::min(sc_.run.t_end, double(next_out_) * out_dt()) : sc_.run.t_end;
+  }
+  CamMotion cam_at(double t) const {
+    return cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
+  }
+  double energy_residual() const {
+    const double E = m_.kinetic_energy(y_.data() + n_) + potential();
+    return work_ - (E - E0_) - dissipated_;
+  }
+  // Energy bookkeeping of the history columns (all methods):
+  //   work_cam   W = ∫ F Ẋ_C dt         the cam's work on the follower through the contact
+  //   kinetic    T = ½ vᵀ M v
+  //   potential  V = ½ qᵀ K q − f₀ᵀ q (strain + return spring) + V_p(s) (penalty spring)
+  //   dissipated D = ∫ vᵀ C v dt + ∫ (F − F_el) ŝ dt (penalty damper) + impact losses
+  // and W = ΔT + ΔV + D is the balance checked by the stability suite.
+  double potential() const {
+    return m_.potential_energy(y_.data()) + engine_->law().stored_energy(t_, y_[0]);
+  }
+  // Power dissipated at the current state: damping, plus the penalty damper's
+  // (F − F_el)·ŝ (zero for the other methods, whose contact losses are impacts).
+  double dissipation_power() const {
+    double P = m_.damping_power(y_.data() + n_);
+    const ContactLaw& law = engine_->law();
+    if (law.kind == ContactLaw::Kind::Penalty)
+      P += (F_ - law.elastic_force(t_, y_[0])) * (cam_at(t_).Xdot - y_[n_]);
+    return P;
+  }
+
+  void emit_row() { emit_row_at(t_, y_, F_, contact_, potential(), work_, dissipated_); }
+  void emit_row_at(double t, const Eigen::VectorXd& y, double F, bool contact, double V,
+                   double W, double D, const CamMotion* c = nullptr) {
+    HistoryRow r;
+    r.t = t;
+    r.theta = drive_.theta(t);
+    const CamMotion cm = c ? *c : cam_at(t);
+    r.u_c = y[0];
+    r.v_c = y[n_];
+    r.a_c = m_.contact_acceleration(y.data(), y.data() + n_, F);
+    r.contact_force = F;
+    r.gap = y[0] - cm.X;
+    r.in_contact = contact ? 1 : 0;
+    r.kinetic = m_.kinetic_energy(y.data() + n_);
+    r.potential = V - V0_;
+    r.work_cam = W;
+    r.dissipated = D;
+    last_row_t_ = t;
+    if (obs_) obs_->on_row(r);
+  }
+
+  // impulse: the impact impulse applied at the instant (0: none); t_event: the event time
+  // when it is not the current time t_ (NaN); the event's cam angle is taken there.
+  void record_event(const char* kind, double v, double impulse = 0.0, double t_event = NAN) {
+    const double te = std::isnan(t_event) ? t_ : t_event;
+    ContactEvent e{te, kind, v, drive_.theta(te), impulse};
+    designer_.event(e);
+    sum_.events.push_back(e);
+    if (obs_) obs_->on_event(e);
+  }
+
+  // Work of the contact force over the step just taken by the trapezoid rule on F·Ẋ_C
+  // (state already updated to the step's end).
+  double trapezoid_work(double h, double F_prev, double Xdot_prev) const {
+    return 0.5 * h * (F_prev * Xdot_prev + F_ * cam_at(t_).Xdot);
+  }
+
+  // Statistics and output after an accepted step (state already updated); dW is the
+  // work the contact force did over the step.
+  // P_end: dissipated power at the end of the step if it differs from the current
+  // state's (the pre-impact state of a free flight ended by an impact); NaN: the state's.
+  void after_step(double h, double dW, double P_prev, double P_end = NAN) {
+    ++sum_.steps;
+    const CamMotion cm = cam_at(t_);
+    const double P = std::isnan(P_end) ? dissipation_power() : P_end;
+    work_ += dW;
+    dissipated_ += 0.5 * h * (P_prev + P);
+    const double gap = y_[0] - cm.X;
+    sum_.max_contact_force = std::max(sum_.max_contact_force, F_);
+    sum_.min_gap = std::min(sum_.min_gap, gap);
+    sum_.max_penetration = std::max(sum_.max_penetration, -gap);
+    designer_step(cm.X);
+    if (bilateral_ && F_ < 0.0 && sum_.first_tensile_time < 0) {
+      sum_.first_tensile_time = t_;
+      record_event("tensile", 0.0);
+    }
+    if (out_dt() <= 0.0) {
+      emit_row();
+    } else {
+      while (next_out_ * out_dt() <= t_ * (1 + 1e-12) + 1e-300 && next_out_ * out_dt() <= sc_.run.t_end * (1 + 1e-12)) {
+        const double to = double(next_out_) * out_dt();
+        ++next_out_;
+        if (!(to < t_ && dense_row_at(to))) emit_row();  // inside the step: dense output
+      }
+      if (t_ >= sc_.run.t_end && last_row_t_ < t_) emit_row();
+    }
+    if (stop_ && stop_->load()) throw StepFailure("interrupted (SIGINT)");
+    if (sum_.steps + sum_.rejected_steps > sc_.run.max_steps)
+      throw StepFailure("run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
+    if (!y_.allFinite() || !std::isfinite(F_)) throw StepFailure("non-finite state");
+    if (obs_ && (sum_.steps & 255) == 0) {
+      const double w = progress_clock_.wall();
+      if (w - last_progress_ > 0.2) {
+        last_progress_ = w;
+        obs_->on_progress(t_, sc_.run.t_end, sum_.steps);
+      }
+    }
+  }
+
+  // Designer results (designer_stats.hpp) at an accepted state: the step end, and the
+  // contact force while in contact.
+  // `X_C`: the cam's X at t_ (the caller has it).
+  void designer_step(double X_C) {
+    const double th = drive_.theta(t_);
+    designer_.step(t_, th, y_[0], y_[n_], m_.contact_acceleration(y_.data(), y_.data() + n_, F_),
+                   y_[0] - X_C);
+    if (contact_) designer_.sample_force(t_, th, F_);
+  }
+
+  double initial_step() const {
+    if (sc_.solver.initial_step > 0) return sc_.solver.initial_step;
+    double h = std::min(1e-4, sc_.run.t_end / 100.0);
+    return h;
+  }
+
+  template <class G>
+  static double adaptive_simpson(G& g, double a, double b, double fa, double fm, double fb,
+                                 double S, double tol, int depth) {
+    const double m = 0.5 * (a + b), lm = 0.5 * (a + m), rm = 0.5 * (m + b);
+    const double flm = g(lm), frm = g(rm);
+    const double Sl = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
+    const double Sr = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
+    const double S2 = Sl + Sr;
+    if (depth <= 0 || std::abs(S2 - S) <= 15.0 * tol) return S2 + (S2 - S) / 15.0;
+    return adaptive_simpson(g, a, m, fa, flm, fm, Sl, 0.5 * tol, depth - 1) +
+           adaptive_simpson(g, m, b, fm, frm, fb, Sr, 0.5 * tol, depth - 1);
+  }
+
+  std::shared_ptr<const FollowerModel> held_;
+  ContactLaw* held_law_ = nullptr;
+  double v_impact_ref_ = 0.0;
+  Eigen::VectorXd rbuf_, abuf_;
+  Eigen::VectorXd y_prev_, hq_, hv_, ha_, hb_;  // Lee's contact-work quadrature and interpolation
+
+  const Scene& sc_;
+  std::shared_ptr<const FollowerModel> model_;
+  const FollowerModel& m_;
+  Cam cam_;
+  CamDrive drive_;
+  Observer* obs_;
+  const std::atomic<bool>* stop_;
+  int n_;
+  std::unique_ptr<Engine> engine_;
+  detail::DesignerStats designer_;
+  Summary sum_;
+  bool bilateral_ = false, contact_ = false;
+  double tol_u_ = 1e-8;
+  double t_ = 0, F_ = 0, E0_ = 0, V0_ = 0, work_ = 0, dissipated_ = 0, last_row_t_ = -1;
+  long next_out_ = 1;
+  Eigen::VectorXd y_;
+  Clock progress_clock_;
+  double last_progress_ = 0;
+};
+
+/// One contact method of the registry: its name (reports), which scenes it runs, and its
+/// factory.
+struct ContactMethodEntry {
+  const char* name;
+  bool (*selects)(const Scene&);
+  std::unique_ptr<RunContext> (*make)(const Scene&, std::shared_ptr<const FollowerModel>,
+                                      Observer*, const std::atomic<bool>*);
+};
+/// The registry, in order of precedence (src/contact/registry.cpp).
+const std::vector<ContactMethodEntry>& contact_methods();
+/// Adds a method in front of the registry (tests: a method defined outside the library).
+/// Not thread-safe: register before running.
+void register_contact_method(const ContactMethodEntry& entry);
+/// The first registered method that selects `scene`. @throws std::logic_error if none.
+std::unique_ptr<RunContext> make_contact_method(const Scene& scene,
+                                                std::shared_ptr<const FollowerModel> model,
+                                                Observer* obs, const std::atomic<bool>* stop);
+
+}  // namespace detail
+}  // namespace camdyn
