@@ -1,4 +1,4 @@
-// camdyn — cam geometry and kinematics (METHOD.md §2). See include/camdyn/cam.hpp.
+// camdyn — cam geometry and kinematics (docs/method.md §2). See include/camdyn/cam.hpp.
 //
 // Profiles
 //   points — periodic cubic splines x(α), y(α) (period 2π) through the knots

@@ -1,4 +1,4 @@
-// camdyn — follower model builder (METHOD.md §1, §5).
+// camdyn — follower model builder (docs/method.md §1, §5).
 //
 //   M q̈ + C q̇ + K q = f₀ + e₀ F(t)
 //

@@ -892,7 +892,7 @@ std::string to_toml(const Scene& scene_in) {
   Scene resolved = scene_in;
   resolve_defaults(resolved);
   std::ostringstream os;
-  os << "# camdyn scene (every key written; see INTERFACE.md)\n";
+  os << "# camdyn scene (every key written; see docs/interface.md)\n";
   std::string current;
   for_each_scene_entry(resolved, [&](const SceneEntry& e) {
     if (!e.table.empty() && e.table != current) {

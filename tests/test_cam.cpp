@@ -1,4 +1,4 @@
-// Tests of camdyn::Cam and camdyn::CamDrive (METHOD.md §2, §5) against independent truth:
+// Tests of camdyn::Cam and camdyn::CamDrive (docs/method.md §2, §5) against independent truth:
 // closed forms (eccentric circle), brute-force scans of the profile, finite differences,
 // the paper's own kinematic formulas, and exact integrals of the drive.
 #include <gtest/gtest.h>
@@ -92,14 +92,14 @@ TEST(CamCircle, MatchesClosedForm) {
   }
 }
 
-// ---- the paper cam (METHOD.md §5) ------------------------------------------------------
+// ---- the paper cam (docs/method.md §5) ------------------------------------------------------
 TEST(CamPaper, ShapeNumbers) {
   const Cam cam{CamSpec{}};
   std::printf("paper cam: min rho = %.6f, lift = %.6f, X_C(0) = %.15f\n",
               cam.min_radius_of_curvature(), cam.lift(), cam.evaluate(0.0).X_C);
-  EXPECT_GT(cam.min_radius_of_curvature(), 0.45);  // METHOD.md: ≈ 0.53 at the nose
+  EXPECT_GT(cam.min_radius_of_curvature(), 0.45);  // docs/method.md: ≈ 0.53 at the nose
   EXPECT_LT(cam.min_radius_of_curvature(), 0.60);
-  EXPECT_GT(cam.lift(), 0.95);  // METHOD.md: about 1.03
+  EXPECT_GT(cam.lift(), 0.95);  // docs/method.md: about 1.03
   EXPECT_LT(cam.lift(), 1.10);
   EXPECT_NEAR(cam.evaluate(0.0).X_C, 2.0, 1e-3);  // base circle at θ = 0
   // Symmetric about the x axis → h(θ) = h(−θ).

@@ -1,4 +1,4 @@
-// The command-line tool and the output files (INTERFACE.md), driven as a user would:
+// The command-line tool and the output files (docs/interface.md), driven as a user would:
 // the camdyn binary is run through the shell in a fresh temporary directory.
 #include <gtest/gtest.h>
 #include "test_support.hpp"

@@ -342,7 +342,7 @@ TEST(LeeCaseB2, SeparatesAndRestrikesEveryRevolution) {
     EXPECT_GT(r.summary.separations, 3);
     EXPECT_GT(r.summary.impacts, 3);
     // Contact impulse per revolution: the pattern repeats each 0.2 s (robust statistic of
-    // a chaotic response; METHOD.md: ≈ 712.7 per revolution).
+    // a chaotic response; docs/method.md: ≈ 712.7 per revolution).
     std::vector<double> imp(3, 0.0);
     for (size_t i = 1; i < r.rows.size(); ++i) {
       const int rev = std::min(2, int(r.rows[i].t / 0.2));

@@ -3,7 +3,7 @@
 //
 // Truths used here:
 //  * Eccentric circle cam (centre (e, 0), radius R), θ₀ = 0: X_C = R + e cos θ,
-//    h″ = −e cos θ, so with the spring convention of METHOD.md §1 (spring force on the
+//    h″ = −e cos θ, so with the spring convention of docs/method.md §1 (spring force on the
 //    follower −(kδ₀ + k(u − X_C(θ₀)))) a rigid follower needs
 //      F_req(θ, ω) = −m e ω² cos θ + kδ₀ + k e (cos θ − 1),
 //    smallest at θ = 0 when δ₀ > e, and the jump speed is √(kδ₀/(m e))/(2π) rev/s.
@@ -368,7 +368,7 @@ TEST(Designer, LiftCamMarginMatchesClosedForm) {
     s.run.t_end = 1.0 / speed;  // one revolution
     s.run.output_dt = 0;
     s.solver.rtol = 1e-7;
-    // F_req = m h″ω² + kδ₀ + k (h(θ) − h(0)) (METHOD.md §1–2) on a 0.01° grid, from the
+    // F_req = m h″ω² + kδ₀ + k (h(θ) − h(0)) (docs/method.md §1–2) on a 0.01° grid, from the
     // cam's support function; required_contact_force must agree at the minimum.
     const Cam cam(s.cam);
     const double w = 2 * kPi * speed, h0 = cam.evaluate(0).X_C;

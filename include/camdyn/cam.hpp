@@ -1,4 +1,4 @@
-// camdyn — cam geometry and kinematics (METHOD.md §2).
+// camdyn — cam geometry and kinematics (docs/method.md §2).
 //
 //   Cam frame (x, y) turns with angle θ; a cam point sits at
 //     X = x cos θ − y sin θ,   Y = x sin θ + y cos θ.

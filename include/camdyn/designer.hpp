@@ -1,7 +1,7 @@
 // camdyn — what cam designers do all day (issue 15): the contact force a rigid follower
 // needs, the jump (separation) speed, and speed sweeps run in parallel.
 //
-//   Required contact force of a rigid follower riding the cam (METHOD.md §1–2):
+//   Required contact force of a rigid follower riding the cam (docs/method.md §1–2):
 //     F_req(θ, ω, ω̇) = m Ẍ_C + c Ẋ_C + k δ₀ + k (X_C(θ) − x₀),   x₀ = X_C(θ₀) + initial_gap
 //   (the return spring's force on the follower is −(k δ₀ + k (u − x₀)), model.cpp), with
 //   X_C = h(θ), Ẋ_C = h′ω, Ẍ_C = h″ω² + h′ω̇. At constant speed F_req is a quadratic

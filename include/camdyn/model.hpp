@@ -1,4 +1,4 @@
-// camdyn — follower models (METHOD.md §1, §5).
+// camdyn — follower models (docs/method.md §1, §5).
 //
 //   Linear follower, n nodes, displacement q (node 0 = contact face, u_c = q₀):
 //     M q̈ + C q̇ + K q = f₀ + e₀ F(t),          F = −p ≥ 0 (compressive contact force)

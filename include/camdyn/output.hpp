@@ -1,4 +1,4 @@
-// camdyn — output files: history.csv, events.csv, summary.json, cam.csv (INTERFACE.md).
+// camdyn — output files: history.csv, events.csv, summary.json, cam.csv (docs/interface.md).
 //
 // Every file is written to "PATH.tmp.<pid>" and renamed onto PATH when complete, so a
 // reader never sees a half-written file. Numbers are written with full precision (the

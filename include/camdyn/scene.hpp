@@ -1,6 +1,6 @@
 // camdyn — scene description (what the user asks to simulate).
 //
-// A Scene is the resolved, validated content of a TOML scene file (INTERFACE.md): every
+// A Scene is the resolved, validated content of a TOML scene file (docs/interface.md): every
 // field has a default and a comment with units and valid range. The model builder
 // (model.hpp) turns a Scene into the smallest model with exactly the effects it asks for.
 #pragma once
@@ -209,7 +209,7 @@ class SceneError : public std::runtime_error {
 
 /// The paper's case B2 (elastic follower, 5 rev/s), the built-in default scene.
 Scene default_scene();
-/// The paper's reference cases: "A", "B1", "B2" (METHOD.md §5). @throws std::invalid_argument
+/// The paper's reference cases: "A", "B1", "B2" (docs/method.md §5). @throws std::invalid_argument
 Scene paper_case(const std::string& name);
 
 /// Parse TOML text. Keys missing from the text keep the defaults of Scene{}.

@@ -2,7 +2,7 @@
 //
 // One step loop (simulator.cpp) drives every contact method:
 //   lee        Lee (1997): augmented-multiplier iteration at displacement, velocity and
-//              acceleration level around each integrator step (METHOD.md §3–4).
+//              acceleration level around each integrator step (docs/method.md §3–4).
 //   penalty    spring–damper contact force inside the right-hand side.
 //   holonomic  node 0 constrained to the cam at all times.
 //   event      exact event-driven: contact / free phases switched by rootfinding.
@@ -20,7 +20,7 @@
 
 namespace camdyn {
 
-/// One output row (INTERFACE.md history.csv, then energy columns).
+/// One output row (docs/interface.md history.csv, then energy columns).
 struct HistoryRow {
   double t = 0, theta = 0, u_c = 0, v_c = 0, a_c = 0;
   double contact_force = 0;  ///< −p ≥ 0

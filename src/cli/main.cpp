@@ -1,4 +1,4 @@
-// camdyn — command-line tool (INTERFACE.md "Command line").
+// camdyn — command-line tool (docs/interface.md "Command line").
 //
 //   camdyn run   [SCENE.toml] [--out DIR] [--set KEY=VALUE]... [--quiet] [--plot]
 //   camdyn cam   [SCENE.toml] [--out DIR] [--points N] [--set KEY=VALUE]...

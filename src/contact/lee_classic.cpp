@@ -1,6 +1,6 @@
 // camdyn — Lee's method, the classic step (contact.lee_step = "classic").
 //
-// Lee's method (METHOD.md §3–4), one step t → t+Δt from the accepted state (q, v, F):
+// Lee's method (docs/method.md §3–4), one step t → t+Δt from the accepted state (q, v, F):
 //   F = −p ≥ 0 is the compressive contact force; within the step F is linear in time
 //   from the accepted Fᵗ to the trial end value.
 //   1. displacement level  p^m = min(0, p^{m−1} − b v^{m−1}),  b = 6/(M*Δt²)

@@ -196,9 +196,9 @@ TEST(Stability, B2ElasticFiveRevsTwoSeconds) {
   // 3 %, their mean within 1 %.
   const double ref = rigid_impulse_per_revolution(s);
   std::printf("[ rev      ] momentum-balance reference %.6g; first revolution without the impact "
-              "impulses %.6g (METHOD.md: ≈ 712.7)\n", ref, force_only.impulse[0]);
+              "impulses %.6g (docs/method.md: ≈ 712.7)\n", ref, force_only.impulse[0]);
   EXPECT_NEAR(st.impulse[0], ref, 0.01 * ref);
-  // METHOD.md's ≈ 712.7 is the first revolution's force integral without the impulses.
+  // docs/method.md's ≈ 712.7 is the first revolution's force integral without the impulses.
   EXPECT_NEAR(force_only.impulse[0], 712.7, 0.01 * 712.7);
   double mean = 0;
   for (double j : st.impulse) {
