@@ -254,7 +254,7 @@ class Runner {
       }
       if (t_ >= sc_.run.t_end && last_row_t_ < t_) emit_row();
     }
-    if (stop_ && stop_->load()) throw StepFailure("interrupted (SIGINT)");
+    if (stop_ && stop_->load()) throw StepFailure(stop_reason_);
     if (sum_.steps + sum_.rejected_steps > sc_.run.max_steps)
       throw StepFailure("run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
     if (!y_.allFinite() || !std::isfinite(F_)) throw StepFailure("non-finite state");
@@ -1401,6 +1401,9 @@ class Runner {
   CamDrive drive_;
   Observer* obs_;
   const std::atomic<bool>* stop_;
+ public:
+  std::string stop_reason_ = "interrupted (SIGINT)";  ///< message when *stop_ is set
+ private:
   int n_;
   std::unique_ptr<Engine> engine_;
   detail::DesignerStats designer_;
@@ -1424,8 +1427,10 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
 
 Simulator::~Simulator() = default;
 
-Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop) {
+Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
+                       const std::string& stop_reason) {
   Runner r(scene_, model_, observer, stop);
+  r.stop_reason_ = stop_reason;
   return r.run();
 }
 
