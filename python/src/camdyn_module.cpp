@@ -278,7 +278,8 @@ PYBIND11_MODULE(_camdyn, m) {
       if (p) std::rethrow_exception(p);
     } catch (const SceneError& e) {
       // The CLI's message (what() after "camdyn: "), plus its parts as attributes.
-      py::object inst = scene_error(py::str(e.what()));
+      py::object type = py::reinterpret_borrow<py::object>(scene_error);
+      py::object inst = type(py::str(e.what()));
       inst.attr("file") = e.file();
       inst.attr("line") = e.line();
       inst.attr("key") = e.key();
