@@ -75,6 +75,8 @@ class RunContext {
   }
 
   virtual ~RunContext() = default;
+  /// The message of a run ended by the caller's stop flag ("interrupted (SIGINT)" by default).
+  void set_stop_reason(std::string reason) { stop_reason_ = std::move(reason); }
   RunContext(const RunContext&) = delete;
   RunContext& operator=(const RunContext&) = delete;
 
@@ -229,7 +231,7 @@ class RunContext {
       }
       if (t_ >= sc_.run.t_end && last_row_t_ < t_) emit_row();
     }
-    if (stop_ && stop_->load()) throw StepFailure("interrupted (SIGINT)");
+    if (stop_ && stop_->load()) throw StepFailure(stop_reason_);
     if (sum_.steps + sum_.rejected_steps > sc_.run.max_steps)
       throw StepFailure("run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
     if (!y_.allFinite() || !std::isfinite(F_)) throw StepFailure("non-finite state");
@@ -284,6 +286,7 @@ class RunContext {
   CamDrive drive_;
   Observer* obs_;
   const std::atomic<bool>* stop_;
+  std::string stop_reason_ = "interrupted (SIGINT)";
   int n_;
   std::unique_ptr<Engine> engine_;
   detail::DesignerStats designer_;

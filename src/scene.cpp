@@ -815,7 +815,11 @@ Scene load_scene_file(const std::string& path) {
   return parse_scene(ss.str(), path);
 }
 
-void apply_override(Scene& scene, const std::string& assignment) {
+namespace {
+
+// Put one "dotted.key=value" into `root` (the scene as a TOML table); returns the key.
+// Only the key's place is checked here; the value is checked when the table is parsed.
+std::string insert_override(toml::table& root, const std::string& assignment) {
   static const std::string kFile = "--set";
   const auto eq = assignment.find('=');
   if (eq == std::string::npos)
@@ -854,20 +858,34 @@ void apply_override(Scene& scene, const std::string& assignment) {
     if (!is_table_name(table))
       throw SceneError(kFile, 0, key, fmt_node(*value), "unknown key; " + allowed_top());
   }
+  toml::table* dst = table.empty() ? &root : root.get_as<toml::table>(table);
+  value->visit([&](const auto& v) { dst->insert_or_assign(leaf, v); });
+  return key;
+}
 
+}  // namespace
+
+void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) {
+  static const std::string kFile = "--set";
+  if (assignments.empty()) return;
   // tol_u that is "automatic" (0, or the paper default of the current follower kind) is
-  // re-derived after the override, so follower.kind=elastic_bar gets 1e-7, not rigid's 1e-8.
+  // re-derived after the overrides, so follower.kind=elastic_bar gets 1e-7, not rigid's 1e-8.
   const double tol_u = scene.contact.tol_u;
   const bool tol_u_auto = tol_u == 0.0 || tol_u == paper_tol_u(scene.follower.kind);
 
   toml::table root = to_table(scene);
-  toml::table* dst = table.empty() ? &root : root.get_as<toml::table>(table);
-  value->visit([&](const auto& v) { dst->insert_or_assign(leaf, v); });
-  if (tol_u_auto && key != "contact.tol_u") root.get_as<toml::table>("contact")->insert_or_assign("tol_u", 0.0);
+  bool sets_tol_u = false;
+  for (const auto& a : assignments) sets_tol_u |= insert_override(root, a) == "contact.tol_u";
+  if (tol_u_auto && !sets_tol_u) root.get_as<toml::table>("contact")->insert_or_assign("tol_u", 0.0);
 
+  // One parse and one validation of the result: the order of the overrides does not matter.
   Scene out = from_table(root, kFile, false);
   out.source = scene.source;
   scene = std::move(out);
+}
+
+void apply_override(Scene& scene, const std::string& assignment) {
+  apply_overrides(scene, {assignment});
 }
 
 void for_each_scene_entry(const Scene& scene, const std::function<void(const SceneEntry&)>& visit) {

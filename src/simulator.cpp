@@ -29,8 +29,11 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
 
 Simulator::~Simulator() = default;
 
-Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop) {
-  return detail::make_contact_method(scene_, model_, observer, stop)->run();
+Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
+                       const std::string& stop_reason) {
+  auto method = detail::make_contact_method(scene_, model_, observer, stop);
+  method->set_stop_reason(stop_reason);
+  return method->run();
 }
 
 namespace {

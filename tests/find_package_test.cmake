@@ -1,24 +1,81 @@
-# Installs the built camdyn into a fresh prefix, then configures, builds and runs the
-# downstream example (examples/downstream) against that installation only.
+# Installs camdyn into a fresh prefix, then configures, builds and runs the downstream
+# examples (examples/downstream, examples/library: find_package(camdyn 0.1 REQUIRED))
+# against that installation only, and builds examples/library once more with pkg-config.
+#
+#   -DCAMDYN_BINARY_DIR=  the build to install (static: the main build)
+#   -DSHARED=ON           instead: build the library alone with BUILD_SHARED_LIBS=ON from
+#                         CAMDYN_SOURCE_DIR into WORK_DIR/camdyn-build (generator GENERATOR)
+#                         and install that; the consumers must then link libcamdyn.so (ldd)
+#   static: the consumers must not depend on libcamdyn.so.
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
-execute_process(COMMAND ${CMAKE_COMMAND} --install ${CAMDYN_BINARY_DIR} --prefix ${prefix}
-                RESULT_VARIABLE rc)
-if(rc)
-  message(FATAL_ERROR "install failed: ${rc}")
+
+function(run what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc)
+    message(FATAL_ERROR "${what} failed (${rc}):\n${out}\n${err}")
+  endif()
+  set(run_out "${out}" PARENT_SCOPE)
+endfunction()
+
+if(SHARED)
+  set(gen)
+  if(GENERATOR)
+    set(gen -G ${GENERATOR})
+  endif()
+  run("shared configure" ${CMAKE_COMMAND} -S ${CAMDYN_SOURCE_DIR} -B ${WORK_DIR}/camdyn-build ${gen}
+      -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON -DCAMDYN_BUILD_TESTS=OFF
+      -DCAMDYN_BUILD_BENCH=OFF -DCAMDYN_BUILD_CLI=OFF -DCAMDYN_BUILD_PYTHON=OFF)
+  run("shared build" ${CMAKE_COMMAND} --build ${WORK_DIR}/camdyn-build -j2)
+  set(CAMDYN_BINARY_DIR ${WORK_DIR}/camdyn-build)
 endif()
-execute_process(COMMAND ${CMAKE_COMMAND} -S ${CAMDYN_SOURCE_DIR}/examples/downstream
-                        -B ${WORK_DIR}/build -DCMAKE_PREFIX_PATH=${prefix}
-                        -DCMAKE_BUILD_TYPE=Release
-                RESULT_VARIABLE rc)
-if(rc)
-  message(FATAL_ERROR "downstream configure failed: ${rc}")
-endif()
-execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR}/build RESULT_VARIABLE rc)
-if(rc)
-  message(FATAL_ERROR "downstream build failed: ${rc}")
-endif()
-execute_process(COMMAND ${WORK_DIR}/build/downstream RESULT_VARIABLE rc)
-if(rc)
-  message(FATAL_ERROR "downstream run failed: ${rc}")
+
+run("install" ${CMAKE_COMMAND} --install ${CAMDYN_BINARY_DIR} --prefix ${prefix})
+
+foreach(example downstream library)
+  set(exe ${example})
+  if(example STREQUAL "library")
+    set(exe library_example)
+  endif()
+  run("${example} configure" ${CMAKE_COMMAND} -S ${CAMDYN_SOURCE_DIR}/examples/${example}
+      -B ${WORK_DIR}/${example} -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
+  run("${example} build" ${CMAKE_COMMAND} --build ${WORK_DIR}/${example})
+  run("${example} run" ${WORK_DIR}/${example}/${exe})
+  message(STATUS "${example}: ${run_out}")
+  run("ldd ${example}" ldd ${WORK_DIR}/${example}/${exe})
+  if(SHARED AND NOT run_out MATCHES "libcamdyn\\.so\\.[0-9]+ => ${prefix}/")
+    message(FATAL_ERROR "${example} does not link the installed libcamdyn.so:\n${run_out}")
+  elseif(NOT SHARED AND run_out MATCHES "libcamdyn\\.so")
+    message(FATAL_ERROR "static build, yet ${example} needs libcamdyn.so:\n${run_out}")
+  endif()
+  if(SHARED)
+    message(STATUS "ldd ${example}: libcamdyn from the prefix:\n${run_out}")
+  endif()
+endforeach()
+
+# pkg-config (camdyn.pc): the library example once more, compiled and linked by hand.
+find_program(PKG_CONFIG pkg-config)
+find_program(CXX_COMPILER NAMES c++ g++)
+if(PKG_CONFIG AND CXX_COMPILER)
+  file(GLOB_RECURSE pc ${prefix}/*/camdyn.pc)
+  if(NOT pc)
+    message(FATAL_ERROR "camdyn.pc not installed under ${prefix}")
+  endif()
+  get_filename_component(pcdir ${pc} DIRECTORY)
+  get_filename_component(libdir ${pcdir} DIRECTORY)
+  set(ENV{PKG_CONFIG_PATH} ${pcdir})
+  run("pkg-config version" ${PKG_CONFIG} --print-errors "camdyn >= 0.1")
+  set(static)
+  if(NOT SHARED)
+    set(static --static)
+  endif()
+  run("pkg-config flags" ${PKG_CONFIG} ${static} --cflags --libs camdyn)
+  string(STRIP "${run_out}" flags)
+  separate_arguments(flags UNIX_COMMAND "${flags}")
+  run("pkg-config build" ${CXX_COMPILER} -O1 ${CAMDYN_SOURCE_DIR}/examples/library/main.cpp
+      ${flags} -Wl,-rpath,${libdir} -o ${WORK_DIR}/library_pc)
+  run("pkg-config program run" ${WORK_DIR}/library_pc)
+  message(STATUS "pkg-config build (${static} ${flags}) runs")
+else()
+  message(STATUS "pkg-config or c++ not found: camdyn.pc not checked")
 endif()

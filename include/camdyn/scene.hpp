@@ -231,6 +231,12 @@ Scene load_scene_file(const std::string& path);
 /// rigid scene gives 1e-7. (An explicit tol_u equal to that default is treated the same.)
 /// @throws SceneError with file "--set".
 void apply_override(Scene& scene, const std::string& assignment);
+/// Apply several "dotted.key=value" overrides at once: each is set in the scene's TOML
+/// table, then the table is parsed and validated once, so the result does not depend on
+/// their order (run.t_end=5e-7 with run.output_dt=5e-7 works either way round). Keys are
+/// checked as by apply_override; later assignments of the same key win.
+/// @throws SceneError with file "--set"; on error the scene is unchanged.
+void apply_overrides(Scene& scene, const std::vector<std::string>& assignments);
 /// Fill "0 = automatic" defaults: contact.tol_u = 0 → 1e-8 (rigid) / 1e-7 (elastic_bar).
 /// Nothing else is changed (tol_v/tol_a = 0 keep meaning "per step"). Idempotent.
 void resolve_defaults(Scene& scene);

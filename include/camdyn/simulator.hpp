@@ -138,8 +138,11 @@ class Simulator {
   explicit Simulator(Scene scene);
   ~Simulator();
   /// Run to t_end. Never throws for a simulation failure: the summary says
-  /// finished = false and why. `stop` (may be null) is polled each step (Ctrl-C).
-  Summary run(Observer* observer = nullptr, const std::atomic<bool>* stop = nullptr);
+  /// finished = false and why. `stop` (may be null) is polled each step (Ctrl-C); once it
+  /// is set the run ends with finished = false and message "at t = T: <stop_reason>"
+  /// (the CLI's Ctrl-C keeps the default; a library caller passes e.g. "stopped by caller").
+  Summary run(Observer* observer = nullptr, const std::atomic<bool>* stop = nullptr,
+              const std::string& stop_reason = "interrupted (SIGINT)");
   const Scene& scene() const { return scene_; }
   const FollowerModel& model() const { return *model_; }
 

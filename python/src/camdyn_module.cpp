@@ -1,0 +1,305 @@
+// camdyn._camdyn — the compiled part of the Python package `camdyn` (issue 17).
+//
+// A thin layer over the C++ library: scenes come in as (kind, text, source, overrides) —
+// a file path, TOML text or the built-in default, plus "dotted.key=value" overrides — and
+// go through exactly the CLI's path (load_scene_file / parse_scene, apply_overrides, the
+// cam check, resolve_defaults, validate), so errors carry the CLI's message. The Python
+// side (python/camdyn/__init__.py) turns dicts into TOML, keyword overrides into
+// assignments, and the summary JSON text into a dict.
+//
+// Threads: the GIL is released while C++ integrates and reacquired only to call a Python
+// observer and to poll for signals (PyErr_CheckSignals, every row with an observer and in
+// the ~0.2 s progress callback), so Ctrl-C stops a run and raises KeyboardInterrupt.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camdyn/cam.hpp"
+#include "camdyn/designer.hpp"
+#include "camdyn/output.hpp"
+#include "camdyn/scene.hpp"
+#include "camdyn/simulator.hpp"
+
+#ifndef CAMDYN_VERSION
+#define CAMDYN_VERSION "unknown"
+#endif
+
+namespace py = pybind11;
+using namespace camdyn;
+
+namespace {
+
+/// The scene a call works on, built as the CLI's build_scene() does (src/cli/main.cpp):
+/// kind "file" (text = path), "toml" (text = TOML, named `source` in messages) or
+/// "default" (the built-in scene, paper case B2); then the overrides, validated once.
+/// @throws SceneError with the CLI's message.
+Scene build_scene(const std::string& kind, const std::string& text, const std::string& source,
+                  const std::vector<std::string>& overrides) {
+  Scene sc;
+  if (kind == "file") {
+    sc = load_scene_file(text);
+  } else if (kind == "toml") {
+    sc = parse_scene(text, source);
+  } else if (kind == "default") {
+    sc = default_scene();
+  } else {
+    throw std::invalid_argument("camdyn._camdyn: unknown scene kind '" + kind + "'");
+  }
+  apply_overrides(sc, overrides);
+  // Cam geometry is checked by the Cam itself; name the scene or --set, as the CLI does.
+  try {
+    const Cam cam(sc.cam);
+  } catch (const SceneError& e) {
+    if (e.file() != "<cam>") throw;
+    bool from_set = false;
+    for (const auto& s : overrides)
+      if (s.rfind("cam.", 0) == 0) from_set = true;
+    throw SceneError(from_set ? std::string("--set") : sc.source, 0, e.key(), e.value(),
+                     e.rule());
+  }
+  resolve_defaults(sc);
+  validate(sc);
+  return sc;
+}
+
+/// The Simulator of a scene; model-building failures become SceneError as in the CLI.
+std::unique_ptr<Simulator> make_simulator(const Scene& sc) {
+  try {
+    return std::make_unique<Simulator>(sc);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw SceneError(sc.source, 0, "scene", sc.title,
+                     std::string("cannot build the model: ") + e.what());
+  }
+}
+
+/// The values of one history row in history_columns() order.
+void row_values(const HistoryRow& r, double* v) {
+  v[0] = r.t;
+  v[1] = r.theta;
+  v[2] = r.u_c;
+  v[3] = r.v_c;
+  v[4] = r.a_c;
+  v[5] = r.contact_force;
+  v[6] = r.gap;
+  v[7] = double(r.in_contact);
+  v[8] = r.kinetic;
+  v[9] = r.potential;
+  v[10] = r.work_cam;
+  v[11] = r.dissipated;
+}
+constexpr std::size_t kColumns = 12;
+
+/// Keeps every row; calls the Python observer (GIL taken) for each one; polls signals.
+class PyObserver : public Observer {
+ public:
+  PyObserver(py::object callback, std::atomic<bool>* stop)
+      : callback_(std::move(callback)), stop_(stop) {
+    if (!callback_.is_none()) {
+      for (const auto& c : history_columns()) keys_.emplace_back(py::str(c));
+    }
+  }
+  ~PyObserver() override {
+    py::gil_scoped_acquire gil;  // py::object members are released under the GIL
+    keys_.clear();
+    callback_ = py::object();
+    pending_.reset();
+  }
+
+  void on_row(const HistoryRow& r) override {
+    rows_.push_back(r);
+    if (callback_.is_none() || pending_) return;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) return fail();
+    try {
+      double v[kColumns];
+      row_values(r, v);
+      py::dict d;
+      for (std::size_t i = 0; i < kColumns; ++i) d[keys_[i]] = py::float_(v[i]);
+      const py::object res = callback_(d);
+      if (res.ptr() == Py_False) stop_->store(true);  // "return False" stops the run
+    } catch (py::error_already_set& e) {
+      e.restore();
+      fail();
+    }
+  }
+
+  void on_progress(double, double, long) override {
+    if (pending_) return;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) fail();
+  }
+
+  const std::vector<HistoryRow>& rows() const { return rows_; }
+  /// Re-raise a Python exception caught during the run (KeyboardInterrupt, or one raised
+  /// by the observer). Call with the GIL held.
+  void rethrow_pending() {
+    if (pending_) {
+      std::unique_ptr<py::error_already_set> p = std::move(pending_);
+      throw py::error_already_set(std::move(*p));
+    }
+  }
+
+ private:
+  // With the GIL held and a Python error set: keep it for later and stop the run.
+  void fail() {
+    pending_ = std::make_unique<py::error_already_set>();  // fetches and clears the error
+    stop_->store(true);
+  }
+
+  py::object callback_;
+  std::atomic<bool>* stop_;
+  std::vector<py::str> keys_;
+  std::vector<HistoryRow> rows_;
+  std::unique_ptr<py::error_already_set> pending_;
+};
+
+/// run(): (summary JSON text, {column: float64 array}, [event dicts]).
+py::tuple run_scene(const std::string& kind, const std::string& text, const std::string& source,
+                    const std::vector<std::string>& overrides, py::object observer) {
+  const Scene sc = build_scene(kind, text, source, overrides);
+  std::unique_ptr<Simulator> sim = make_simulator(sc);
+  std::atomic<bool> stop{false};
+  PyObserver obs(std::move(observer), &stop);
+  Summary summary;
+  {
+    py::gil_scoped_release nogil;
+    try {
+      summary = sim->run(&obs, &stop, "stopped by caller");
+    } catch (const std::exception& e) {  // as the CLI: keep what was computed
+      summary = Summary{};
+      summary.finished = false;
+      summary.message = std::string("internal error: ") + e.what();
+      summary.t_end = obs.rows().empty() ? 0.0 : obs.rows().back().t;
+    }
+  }
+  if (summary.scene.empty()) summary.scene = sc.title;
+  obs.rethrow_pending();
+
+  const auto& rows = obs.rows();
+  const auto n = static_cast<py::ssize_t>(rows.size());
+  std::vector<py::array_t<double>> cols;
+  std::vector<double*> ptr;
+  for (std::size_t c = 0; c < kColumns; ++c) {
+    cols.emplace_back(n);
+    ptr.push_back(cols.back().mutable_data());
+  }
+  double v[kColumns];
+  for (py::ssize_t i = 0; i < n; ++i) {
+    row_values(rows[static_cast<std::size_t>(i)], v);
+    for (std::size_t c = 0; c < kColumns; ++c) ptr[c][i] = v[c];
+  }
+  py::dict history;
+  for (std::size_t c = 0; c < kColumns; ++c) history[py::str(history_columns()[c])] = cols[c];
+
+  py::list events;
+  for (const auto& e : summary.events) {
+    py::dict d;
+    d["t"] = e.t;
+    d["kind"] = e.kind;
+    d["impact_velocity"] = e.impact_velocity;
+    d["theta"] = e.theta;
+    d["impulse"] = e.impulse;
+    events.append(d);
+  }
+  return py::make_tuple(summary_json(summary, sc), history, events);
+}
+
+py::dict jump(const std::string& kind, const std::string& text, const std::string& source,
+              const std::vector<std::string>& overrides, const py::dict& options) {
+  const Scene sc = build_scene(kind, text, source, overrides);
+  JumpOptions jo;
+  for (const auto& item : options) {
+    const std::string k = py::str(item.first);
+    if (k == "scan_points") jo.scan_points = item.second.cast<int>();
+    else if (k == "rel_tol") jo.rel_tol = item.second.cast<double>();
+    else if (k == "lo_rev_s") jo.lo_rev_s = item.second.cast<double>();
+    else if (k == "hi_rev_s") jo.hi_rev_s = item.second.cast<double>();
+    else if (k == "force_simulation") jo.force_simulation = item.second.cast<bool>();
+    else
+      throw SceneError("jump_speed", 0, k, py::str(item.second), 
+                       "unknown option; allowed: scan_points, rel_tol, lo_rev_s, hi_rev_s, "
+                       "force_simulation");
+  }
+  jo.validate();
+  JumpResult r;
+  {
+    py::gil_scoped_release nogil;
+    r = jump_speed(sc, jo);
+  }
+  py::dict d;
+  d["jump_speed_rev_s"] = r.jump_speed_rev_s;
+  d["method"] = r.method;
+  d["theta_deg"] = r.theta_deg;
+  d["lo_rev_s"] = r.lo_rev_s;
+  d["hi_rev_s"] = r.hi_rev_s;
+  d["simulations"] = r.simulations;
+  return d;
+}
+
+py::tuple cam_motion(const std::string& kind, const std::string& text, const std::string& source,
+                     const std::vector<std::string>& overrides,
+                     const py::array_t<double, py::array::c_style | py::array::forcecast>& t) {
+  const Scene sc = build_scene(kind, text, source, overrides);
+  const Cam cam(sc.cam);
+  const CamDrive drive(sc.cam);
+  const auto n = t.size();
+  py::array_t<double> X(n), Xd(n), Xdd(n);
+  const double* tp = t.data();
+  double *x = X.mutable_data(), *xd = Xd.mutable_data(), *xdd = Xdd.mutable_data();
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const CamMotion m = cam.motion(drive.theta(tp[i]), drive.omega(tp[i]), drive.omega_dot(tp[i]));
+    x[i] = m.X;
+    xd[i] = m.Xdot;
+    xdd[i] = m.Xddot;
+  }
+  return py::make_tuple(X, Xd, Xdd);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_camdyn, m) {
+  m.doc() = "camdyn: cam-follower dynamics (compiled part; use the package `camdyn`)";
+  m.attr("__version__") = CAMDYN_VERSION;
+
+  static py::exception<SceneError> scene_error(m, "SceneError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const SceneError& e) {
+      // The CLI's message (what() after "camdyn: "), plus its parts as attributes.
+      py::object type = py::reinterpret_borrow<py::object>(scene_error);
+      py::object inst = type(py::str(e.what()));
+      inst.attr("file") = e.file();
+      inst.attr("line") = e.line();
+      inst.attr("key") = e.key();
+      inst.attr("value") = e.value();
+      inst.attr("rule") = e.rule();
+      PyErr_SetObject(scene_error.ptr(), inst.ptr());
+    }
+  });
+
+  m.def("history_columns", &history_columns, "History column names, in order.");
+  m.def("resolved_scene",
+        [](const std::string& kind, const std::string& text, const std::string& source,
+           const std::vector<std::string>& overrides) {
+          return to_toml(build_scene(kind, text, source, overrides));
+        },
+        py::arg("kind"), py::arg("text"), py::arg("source"), py::arg("overrides"));
+  m.def("run", &run_scene, py::arg("kind"), py::arg("text"), py::arg("source"),
+        py::arg("overrides"), py::arg("observer"));
+  m.def("jump_speed", &jump, py::arg("kind"), py::arg("text"), py::arg("source"),
+        py::arg("overrides"), py::arg("options"));
+  m.def("cam_motion", &cam_motion, py::arg("kind"), py::arg("text"), py::arg("source"),
+        py::arg("overrides"), py::arg("t"));
+}
