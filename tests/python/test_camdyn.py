@@ -140,6 +140,13 @@ def test_overrides_in_either_order():
         camdyn.resolved_scene(CASE_A, **o1)
 
 
+def test_cli_overrides_in_either_order_equal_bindings():
+    for order in (("run.t_end=5e-7", "run.output_dt=5e-7"), ("run.output_dt=5e-7", "run.t_end=5e-7")):
+        r = cli("scene", CASE_A, "--resolved", "--set", order[0], "--set", order[1])
+        assert r.returncode == 0, r.stderr
+        assert r.stdout == camdyn.resolved_scene(CASE_A, **{"run.t_end": 5e-7, "run.output_dt": 5e-7})
+
+
 def test_resolved_scene_equals_cli():
     r = cli("scene", CASE_A, "--resolved", "--set", "cam.speed_rev_s=3")
     assert r.returncode == 0, r.stderr
