@@ -291,3 +291,30 @@ def test_version_and_columns():
     assert camdyn.history_columns[:8] == ("t", "theta", "u_c", "v_c", "a_c", "contact_force",
                                           "gap", "in_contact")
     assert issubclass(camdyn.SceneError, ValueError)
+
+
+# ---- batches and sweeps ------------------------------------------------------------------
+
+def test_sweep_separates_exactly_above_the_closed_form_jump_speed():
+    """Case A over cam speeds around its closed-form jump speed: no separation below it,
+    separations above it; 1 and 2 threads give the same results."""
+    j = camdyn.jump_speed(CASE_A)["jump_speed_rev_s"]
+    speeds = [0.5 * j, 0.9 * j, 0.99 * j, 1.01 * j, 1.1 * j]
+    ov = {"run.t_end": 1.0 / j * 1.2}  # more than one revolution at every speed
+    s2 = camdyn.sweep(CASE_A, "cam.speed_rev_s", speeds, threads=2, **ov)
+    s1 = camdyn.sweep(CASE_A, "cam.speed_rev_s", speeds, threads=1, **ov)
+    np.testing.assert_array_equal(s2["cam.speed_rev_s"], speeds)
+    assert list(s2["finished"]) == [1.0] * 5
+    assert list(s2["separations"] > 0) == [False, False, False, True, True]
+    for c in camdyn.SWEEP_COLUMNS:
+        if c != "cpu_seconds":
+            np.testing.assert_array_equal(s1[c], s2[c], err_msg=c)
+    # run_batch: the same summaries as run() one by one
+    r = camdyn.run(CASE_A, **ov, **{"cam.speed_rev_s": speeds[3]})
+    assert s2["summaries"][3]["options"] == r.summary["options"]
+    assert s2["summaries"][3]["max_contact_force"] == r.summary["max_contact_force"]
+
+
+def test_run_batch_checks_every_scene_first():
+    with pytest.raises(camdyn.SceneError, match="spring.stiffness"):
+        camdyn.run_batch([CASE_A, (CASE_A, {"spring.stiffness": -1.0})])
