@@ -13,6 +13,7 @@ import pathlib
 import signal
 import subprocess
 import threading
+import time
 import tomllib
 
 import numpy as np
@@ -276,7 +277,6 @@ def test_keyboard_interrupt_stops_a_long_run():
     within about the progress interval (0.2 s), with no observer."""
     timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
     timer.start()
-    import time
     t0 = time.monotonic()
     try:
         with pytest.raises(KeyboardInterrupt):
@@ -318,3 +318,25 @@ def test_sweep_separates_exactly_above_the_closed_form_jump_speed():
 def test_run_batch_checks_every_scene_first():
     with pytest.raises(camdyn.SceneError, match="spring.stiffness"):
         camdyn.run_batch([CASE_A, (CASE_A, {"spring.stiffness": -1.0})])
+
+
+def test_gil_is_released_while_cpp_integrates():
+    """Another Python thread keeps running in the middle of a run without observer."""
+    stamps, stop = [], threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            stamps.append(time.monotonic())
+            time.sleep(0.001)
+
+    th = threading.Thread(target=tick)
+    th.start()
+    try:
+        t0 = time.monotonic()
+        camdyn.run(str(SRC / "examples" / "case_B2.toml"), **{"run.t_end": 0.03})
+        t1 = time.monotonic()
+    finally:
+        stop.set()
+        th.join()
+    mid = [s for s in stamps if t0 + 0.25 * (t1 - t0) < s < t0 + 0.75 * (t1 - t0)]
+    assert t1 - t0 > 0.02 and len(mid) > 0
