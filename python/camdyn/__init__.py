@@ -40,6 +40,8 @@ __all__ = [
     "resolved_scene",
     "jump_speed",
     "cam_motion",
+    "run_batch",
+    "sweep",
     "history_columns",
     "to_toml",
     "__version__",
@@ -238,3 +240,49 @@ def cam_motion(scene: Any, t: Any, **overrides: Any) -> Tuple[Any, Any, Any]:
     if ta.ndim == 0:
         return float(X[0]), float(Xd[0]), float(Xdd[0])
     return X.reshape(ta.shape), Xd.reshape(ta.shape), Xdd.reshape(ta.shape)
+
+
+def run_batch(scenes: Iterable[Any], threads: int = 0) -> List[Dict[str, Any]]:
+    """Run several scenes in C++ threads (``threads`` at a time; 0: all cores) and return
+    their summaries (dicts with the summary.json keys), in order.
+
+    Each item is a scene (path, TOML text, dict or None) or a pair ``(scene, overrides)``
+    with ``overrides`` a dict of dotted keys. Every scene is built and checked before any
+    run (bad input raises :class:`SceneError`); results do not depend on ``threads``
+    (except the timings). Ctrl-C stops the runs and raises KeyboardInterrupt.
+    """
+    specs = []
+    for item in scenes:
+        if isinstance(item, tuple) and len(item) == 2 and isinstance(item[1], Mapping):
+            scene, overrides = item
+        else:
+            scene, overrides = item, {}
+        kind, text, source = _scene_args(scene)
+        specs.append((kind, text, source, _assignments(overrides)))
+    return [json.loads(t) for t in _camdyn.run_batch(specs, int(threads))]
+
+
+#: Summary entries that :func:`sweep` returns as arrays (the numeric ones of sweep.csv).
+SWEEP_COLUMNS = ("finished", "separations", "impacts", "max_contact_force", "min_contact_force",
+                 "min_force_theta_deg", "first_separation_theta_deg", "max_impact_velocity",
+                 "max_gap", "period", "steps", "cpu_seconds")
+
+
+def sweep(scene: Any, key: str, values: Iterable[float], threads: int = 0,
+          **overrides: Any) -> Dict[str, Any]:
+    """Run ``scene`` once per value of the dotted ``key`` (like ``camdyn sweep``), in C++
+    threads.
+
+    Returns:
+        dict: ``key`` → the values (float64 array), each name of :data:`SWEEP_COLUMNS` →
+        a float64 array (``finished`` as 0/1, null as NaN), and ``"summaries"`` → the list
+        of summary dicts.
+    """
+    vals = np.asarray(list(values), dtype=np.float64)
+    sums = run_batch([(scene, {**overrides, key: float(v)}) for v in vals], threads)
+    out: Dict[str, Any] = {key: vals}
+    for c in SWEEP_COLUMNS:
+        out[c] = np.array([np.nan if s.get(c) is None else float(s[c]) for s in sums],
+                          dtype=np.float64)
+    out["summaries"] = sums
+    return out

@@ -16,9 +16,13 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <chrono>
+#include <exception>
+#include <future>
 #include <cstring>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "camdyn/cam.hpp"
@@ -266,6 +270,45 @@ py::tuple cam_motion(const std::string& kind, const std::string& text, const std
   return py::make_tuple(X, Xd, Xdd);
 }
 
+/// run_batch(): scenes given as (kind, text, source, overrides) tuples, all built (and
+/// checked) first; then run `threads` at a time in C++ threads while this thread, holding
+/// the GIL only briefly, polls for Ctrl-C every 0.1 s. Returns the summary JSON texts.
+std::vector<std::string> batch(const std::vector<std::tuple<std::string, std::string, std::string,
+                                                            std::vector<std::string>>>& specs,
+                               int threads) {
+  std::vector<Scene> scenes;
+  scenes.reserve(specs.size());
+  for (const auto& [kind, text, source, overrides] : specs)
+    scenes.push_back(build_scene(kind, text, source, overrides));
+  std::atomic<bool> stop{false};
+  std::vector<Summary> sums;
+  {
+    py::gil_scoped_release nogil;
+    auto fut = std::async(std::launch::async,
+                          [&] { return run_batch(scenes, threads, {}, &stop); });
+    while (fut.wait_for(std::chrono::milliseconds(100)) != std::future_status::ready) {
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) {
+        stop.store(true);
+        py::error_already_set err;  // KeyboardInterrupt: wait for the workers, then raise
+        {
+          py::gil_scoped_release again;
+          fut.wait();
+        }
+        throw err;
+      }
+    }
+    sums = fut.get();
+  }
+  std::vector<std::string> out;
+  out.reserve(sums.size());
+  for (std::size_t i = 0; i < sums.size(); ++i) {
+    if (sums[i].scene.empty()) sums[i].scene = scenes[i].title;
+    out.push_back(summary_json(sums[i], scenes[i]));
+  }
+  return out;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_camdyn, m) {
@@ -300,6 +343,7 @@ PYBIND11_MODULE(_camdyn, m) {
         py::arg("overrides"), py::arg("observer"));
   m.def("jump_speed", &jump, py::arg("kind"), py::arg("text"), py::arg("source"),
         py::arg("overrides"), py::arg("options"));
+  m.def("run_batch", &batch, py::arg("specs"), py::arg("threads"));
   m.def("cam_motion", &cam_motion, py::arg("kind"), py::arg("text"), py::arg("source"),
         py::arg("overrides"), py::arg("t"));
 }

@@ -177,8 +177,8 @@ Scene build_scene(const std::string& file, const std::string& case_name,
       throw SceneError("--set", 0, "", s.substr(1),
                        "missing key before '=': expected KEY=VALUE, e.g. cam.speed_rev_s=3");
     }
-    apply_override(sc, s);
   }
+  apply_overrides(sc, sets);  // all at once, validated once: their order does not matter
   // Cam geometry (convexity, self-intersection) is checked by the Cam itself; name the
   // file or --set the offending key came from, not the Cam's own "<cam>".
   try {

@@ -13,6 +13,7 @@ import pathlib
 import signal
 import subprocess
 import threading
+import time
 import tomllib
 
 import numpy as np
@@ -138,6 +139,13 @@ def test_overrides_in_either_order():
     # nested-dict overrides are the same as dotted ones
     assert camdyn.resolved_scene(CASE_A, run={"t_end": 5e-7, "output_dt": 5e-7}) == \
         camdyn.resolved_scene(CASE_A, **o1)
+
+
+def test_cli_overrides_in_either_order_equal_bindings():
+    for order in (("run.t_end=5e-7", "run.output_dt=5e-7"), ("run.output_dt=5e-7", "run.t_end=5e-7")):
+        r = cli("scene", CASE_A, "--resolved", "--set", order[0], "--set", order[1])
+        assert r.returncode == 0, r.stderr
+        assert r.stdout == camdyn.resolved_scene(CASE_A, **{"run.t_end": 5e-7, "run.output_dt": 5e-7})
 
 
 def test_resolved_scene_equals_cli():
@@ -269,7 +277,6 @@ def test_keyboard_interrupt_stops_a_long_run():
     within about the progress interval (0.2 s), with no observer."""
     timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
     timer.start()
-    import time
     t0 = time.monotonic()
     try:
         with pytest.raises(KeyboardInterrupt):
@@ -284,3 +291,52 @@ def test_version_and_columns():
     assert camdyn.history_columns[:8] == ("t", "theta", "u_c", "v_c", "a_c", "contact_force",
                                           "gap", "in_contact")
     assert issubclass(camdyn.SceneError, ValueError)
+
+
+# ---- batches and sweeps ------------------------------------------------------------------
+
+def test_sweep_separates_exactly_above_the_closed_form_jump_speed():
+    """Case A over cam speeds around its closed-form jump speed: no separation below it,
+    separations above it; 1 and 2 threads give the same results."""
+    j = camdyn.jump_speed(CASE_A)["jump_speed_rev_s"]
+    speeds = [0.5 * j, 0.9 * j, 0.99 * j, 1.01 * j, 1.1 * j]
+    ov = {"run.t_end": 1.0 / j * 1.2}  # more than one revolution at every speed
+    s2 = camdyn.sweep(CASE_A, "cam.speed_rev_s", speeds, threads=2, **ov)
+    s1 = camdyn.sweep(CASE_A, "cam.speed_rev_s", speeds, threads=1, **ov)
+    np.testing.assert_array_equal(s2["cam.speed_rev_s"], speeds)
+    assert list(s2["finished"]) == [1.0] * 5
+    assert list(s2["separations"] > 0) == [False, False, False, True, True]
+    for c in camdyn.SWEEP_COLUMNS:
+        if c != "cpu_seconds":
+            np.testing.assert_array_equal(s1[c], s2[c], err_msg=c)
+    # run_batch: the same summaries as run() one by one
+    r = camdyn.run(CASE_A, **ov, **{"cam.speed_rev_s": speeds[3]})
+    assert s2["summaries"][3]["options"] == r.summary["options"]
+    assert s2["summaries"][3]["max_contact_force"] == r.summary["max_contact_force"]
+
+
+def test_run_batch_checks_every_scene_first():
+    with pytest.raises(camdyn.SceneError, match="spring.stiffness"):
+        camdyn.run_batch([CASE_A, (CASE_A, {"spring.stiffness": -1.0})])
+
+
+def test_gil_is_released_while_cpp_integrates():
+    """Another Python thread keeps running in the middle of a run without observer."""
+    stamps, stop = [], threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            stamps.append(time.monotonic())
+            time.sleep(0.001)
+
+    th = threading.Thread(target=tick)
+    th.start()
+    try:
+        t0 = time.monotonic()
+        camdyn.run(str(SRC / "examples" / "case_B2.toml"), **{"run.t_end": 0.03})
+        t1 = time.monotonic()
+    finally:
+        stop.set()
+        th.join()
+    mid = [s for s in stamps if t0 + 0.25 * (t1 - t0) < s < t0 + 0.75 * (t1 - t0)]
+    assert t1 - t0 > 0.02 and len(mid) > 0
