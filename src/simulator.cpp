@@ -43,6 +43,7 @@
 #include "camdyn/cam.hpp"
 #include "designer_stats.hpp"
 #include "engine.hpp"
+#include "ida_engine.hpp"
 
 namespace camdyn {
 
@@ -128,6 +129,8 @@ class Runner {
     try {
       if (sc_.contact.model == ContactModel::Penalty)
         run_native();
+      else if (sc_.solver.integrator == Integrator::Ida)
+        run_ida_holonomic();  // validated: contact.model = "holonomic"
       else if (sc_.contact.model == ContactModel::Event ||
                sc_.contact.model == ContactModel::Holonomic)
         run_event();
@@ -1386,6 +1389,41 @@ class Runner {
       after_step(t_ - t_prev, dW, P_prev, P_end);
     }
     sum_.rhs_evals += held_engine ? held_engine->stats().rhs_evals : 0;
+  }
+
+  // ------------------------------------------------------------ holonomic on IDA ---
+  // The held contact as an index-2 GGL DAE (ida_engine.cpp): IDA steps natively, rows at
+  // the output times are IDA's interpolants; the force is the multiplier λ, the cam's
+  // work W = ∫ λ Ẋ_C dt a DAE component; a root of λ (decreasing) is the first tensile time.
+  void run_ida_holonomic() {
+    IdaHeldContact ida(model_, sc_, [this](double t) { return cam_at(t); });
+    ida.set_tensile_root(true);
+    ida.init(t_, y_, sc_.run.t_end);
+    y_ = ida.state();
+    F_ = ida.lambda();
+    contact_ = true;
+    sum_.model.linear_solver = to_string(ida.linear_solver());
+    sum_.model.unknowns = ida.unknowns();
+    while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+      const double tout = next_output_time();
+      const double P_prev = dissipation_power(), t_prev = t_, W_prev = ida.work();
+      t_ = ida.advance(tout);
+      y_ = ida.state();
+      F_ = ida.lambda();
+      if (ida.hit_root() && sum_.first_tensile_time < 0) {
+        sum_.first_tensile_time = t_;
+        record_event("tensile", 0.0);
+        ida.set_tensile_root(false);
+      }
+      after_step(t_ - t_prev, ida.work() - W_prev, P_prev);
+      sum_.steps = ida.stats().steps;  // after_step counts output intervals: IDA's steps
+    }
+    const EngineStats st = ida.stats();
+    sum_.steps = st.steps;
+    sum_.rejected_steps = ida.rejected_steps();
+    sum_.rhs_evals += st.rhs_evals;
+    sum_.lin_setups += st.lin_setups;
+    sum_.lin_analyses += st.lin_analyses;
   }
 
   std::shared_ptr<const FollowerModel> held_;
