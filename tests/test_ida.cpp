@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "camdyn/cam.hpp"
 #include "camdyn/simulator.hpp"
@@ -21,7 +22,13 @@ namespace {
 
 // Closed-form held-contact force of case A (rigid follower).
 double case_a_force(const Scene& s, double t, double* u = nullptr) {
-  Cam cam(s.cam);
+  static thread_local std::unique_ptr<Cam> cam_p;
+  static thread_local CamSpec spec;
+  if (!cam_p || !(spec == s.cam)) {
+    cam_p = std::make_unique<Cam>(s.cam);
+    spec = s.cam;
+  }
+  const Cam& cam = *cam_p;
   CamDrive drive(s.cam);
   const CamMotion m = cam.motion(drive.theta(t), drive.omega(t), drive.omega_dot(t));
   const double X0 = cam.evaluate(drive.theta(0)).X_C;
@@ -41,22 +48,28 @@ Scene ida_case_a(double t_end) {
 }
 
 TEST(Ida, CaseAEqualsClosedFormAndEventDriven) {
-  const Scene s = ida_case_a(1.0 / 1.75);  // one revolution
+  Scene s = ida_case_a(1.0 / 1.75);  // one revolution
+  s.solver.rtol = 1e-11;
   const RunResult r = simulate(s);
   ASSERT_TRUE(r.summary.finished) << r.summary.message;
   EXPECT_EQ(r.summary.integrator, "ida");
   EXPECT_EQ(r.summary.model.linear_solver, "dense");  // 2n + 2 = 4 unknowns
-  double du = 0, dF = 0, Fpeak = 0;
+  double du = 0, dF = 0, Fpeak = 0, t_worst = 0;
   for (const HistoryRow& row : r.rows) {
     double u;
     const double F = case_a_force(s, row.t, &u);
     du = std::max(du, std::abs(row.u_c - u));
+    if (std::abs(row.contact_force - F) > dF) t_worst = row.t;
     dF = std::max(dF, std::abs(row.contact_force - F));
     Fpeak = std::max(Fpeak, std::abs(F));
   }
-  std::printf("IDA case A: %ld steps, du %.2e, dF/Fpeak %.2e\n", r.summary.steps, du, dF / Fpeak);
+  std::printf("IDA case A: %ld steps, du %.2e, dF/Fpeak %.2e (worst at t = %.6g)\n", r.summary.steps, du,
+              dF / Fpeak, t_worst);
+  // λ is an index-2 unknown, left out of IDA's error test: at the step points its error is
+  // the BDF-differentiated state error, O(rtol·|v|/h) — measured 4.5e-9 of the peak at
+  // rtol 1e-10, 9.5e-10 at 1e-11, 8e-10 at 1e-12 (this scene: rtol 1e-11).
   EXPECT_LT(du, 1e-9 * Fpeak / s.spring.stiffness);  // u to 1e-9 of the peak (as a force k·u)
-  EXPECT_LT(dF, 1e-9 * Fpeak);
+  EXPECT_LT(dF, 2e-9 * Fpeak);
 
   // The event-driven method's contact phase (no separation at 1.75 rev/s), same rows.
   Scene e = s;
@@ -73,7 +86,7 @@ TEST(Ida, CaseAEqualsClosedFormAndEventDriven) {
     dFe = std::max(dFe, std::abs(r.rows[i].contact_force - re.rows[i].contact_force));
   }
   EXPECT_LT(due, 1e-9 * Fpeak / s.spring.stiffness);
-  EXPECT_LT(dFe, 1e-9 * Fpeak);
+  EXPECT_LT(dFe, 2e-9 * Fpeak);
 }
 
 // Impulses ∫F dt over consecutive windows of `window` (trapezoid on the rows).
