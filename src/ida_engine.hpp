@@ -16,7 +16,7 @@ namespace camdyn {
 /// Node 0 of a linear follower held on the cam, u₀ = X_C(t), integrated by IDA (variable-
 /// order BDF) as a stabilised index-2 (GGL) DAE in y = [q; v; λ; μ; W]. λ is the contact
 /// force (compressive > 0), μ the GGL multiplier (0 on the exact solution), W = ∫ λ Ẋ_C dt
-/// the cam's work. Native stepping with IDA's own error control on q, v (λ, μ, W are
+/// the cam's work. Native stepping with IDA's own error control on q, v, W (λ, μ are
 /// excluded from the error test). Every SUNDIALS flag is checked (SundialsError).
 class IdaHeldContact {
  public:
