@@ -42,7 +42,9 @@ int check_flag(int flag, const char* call) {
 
 LinearSolverKind resolve_linear_solver(const Scene& scene, int nodes) {
   LinearSolverKind k = scene.solver.linear_solver;
-  if (k == LinearSolverKind::Auto) k = (2 * nodes <= 16) ? LinearSolverKind::Dense : LinearSolverKind::Klu;
+  // IDA's DAE carries the contact force λ and the GGL multiplier μ besides q, v.
+  const int unknowns = 2 * nodes + (scene.solver.integrator == Integrator::Ida ? 2 : 0);
+  if (k == LinearSolverKind::Auto) k = (unknowns <= 16) ? LinearSolverKind::Dense : LinearSolverKind::Klu;
   return k;
 }
 
@@ -670,6 +672,11 @@ std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, 
       return std::make_unique<DirkEngine>(std::move(model), scene.solver, trial, lsk);
     case Integrator::CvodeBdf:
       return std::make_unique<CvodeEngine>(std::move(model), scene.solver, lsk, trial, scene.contact.tol_u);
+    case Integrator::Ida:
+      // The DAE engine (ida_engine.cpp) integrates the held contact itself; the runner
+      // still wants an Engine for its bookkeeping (contact law None): an ERK engine in
+      // native mode that is never stepped.
+      return std::make_unique<ErkEngine>(std::move(model), scene.solver, false);
   }
   throw std::invalid_argument("unknown integrator");
 }

@@ -49,7 +49,8 @@ constexpr EnumName<PenaltyLaw> kPenaltyNames[] = {{PenaltyLaw::Linear, "linear"}
                                                   {PenaltyLaw::HuntCrossley, "hunt_crossley"}};
 constexpr EnumName<Integrator> kIntegratorNames[] = {{Integrator::ArkodeErk, "arkode-erk"},
                                                      {Integrator::ArkodeDirk, "arkode-dirk"},
-                                                     {Integrator::CvodeBdf, "cvode-bdf"}};
+                                                     {Integrator::CvodeBdf, "cvode-bdf"},
+                                                     {Integrator::Ida, "ida"}};
 constexpr EnumName<LinearSolverKind> kLinSolNames[] = {
     {LinearSolverKind::Auto, "auto"}, {LinearSolverKind::Dense, "dense"}, {LinearSolverKind::Klu, "klu"}};
 
@@ -741,6 +742,13 @@ class Validator {
 
     // ---- solver
     const SolverSpec& v = s.solver;
+    // IDA integrates the held contact as a DAE (src/ida_engine.cpp): the constraint
+    // u₀ = X_C(t) holds at all times, i.e. the holonomic model only.
+    if (v.integrator == Integrator::Ida && k.model != ContactModel::Holonomic)
+      fail_at("solver.integrator", "\"ida\"",
+              std::string("\"ida\" requires contact.model = \"holonomic\" (contact.model is \"") +
+                  to_string(k.model) + "\")",
+              "contact.model");
     in("solver.rtol", v.rtol, 1e-14, 0.1);
     finite("solver.atol", v.atol);
     if (!(v.atol > 0.0 && v.atol <= 1.0)) fail_at("solver.atol", fmt_num(v.atol), "must be > 0 and <= 1");

@@ -412,7 +412,13 @@ TEST(SceneMalformed, ExactMessages) {
        "bad.toml:2: key 'contact.model' = \"pnalty\": must be one of \"lee\", \"penalty\", \"holonomic\", \"event\""},
       {"bad integrator", "[solver]\nintegrator = \"rk45\"\n",
        "bad.toml:2: key 'solver.integrator' = \"rk45\": must be one of \"arkode-erk\", \"arkode-dirk\", "
-       "\"cvode-bdf\""},
+       "\"cvode-bdf\", \"ida\""},
+      {"ida with lee", "[solver]\nintegrator = \"ida\"\n",
+       "bad.toml:2: key 'solver.integrator' = \"ida\": \"ida\" requires contact.model = \"holonomic\" "
+       "(contact.model is \"lee\")"},
+      {"ida with event", "[contact]\nmodel = \"event\"\n[solver]\nintegrator = \"ida\"\n",
+       "bad.toml:4: key 'solver.integrator' = \"ida\": \"ida\" requires contact.model = \"holonomic\" "
+       "(contact.model is \"event\")"},
       {"rtol = 0", "[solver]\nrtol = 0\n", "bad.toml:2: key 'solver.rtol' = 0: must be >= 1e-14 and <= 0.1"},
       {"rtol = 1", "[solver]\nrtol = 1.0\n", "bad.toml:2: key 'solver.rtol' = 1: must be >= 1e-14 and <= 0.1"},
       {"atol = 0", "[solver]\natol = 0\n", "bad.toml:2: key 'solver.atol' = 0: must be > 0 and <= 1"},

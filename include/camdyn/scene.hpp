@@ -23,7 +23,7 @@ enum class ContactModel { Lee, Penalty, Holonomic, Event };
 enum class ErrorVariant { Eq12, Eq17 };
 enum class LeeStepKind { Located, Classic };
 enum class PenaltyLaw { Linear, HuntCrossley };
-enum class Integrator { ArkodeErk, ArkodeDirk, CvodeBdf };
+enum class Integrator { ArkodeErk, ArkodeDirk, CvodeBdf, Ida };
 enum class LinearSolverKind { Auto, Dense, Klu };
 
 const char* to_string(CamProfileKind v);    // "points" | "lift" | "circle"
@@ -33,7 +33,7 @@ const char* to_string(ContactModel v);      // "lee" | "penalty" | "holonomic" |
 const char* to_string(ErrorVariant v);      // "eq12" | "eq17"
 const char* to_string(LeeStepKind v);           // "located" | "classic"
 const char* to_string(PenaltyLaw v);        // "linear" | "hunt_crossley"
-const char* to_string(Integrator v);        // "arkode-erk" | "arkode-dirk" | "cvode-bdf"
+const char* to_string(Integrator v);        // "arkode-erk" | "arkode-dirk" | "cvode-bdf" | "ida"
 const char* to_string(LinearSolverKind v);  // "auto" | "dense" | "klu"
 
 bool parse_enum(std::string_view s, CamProfileKind* out);
@@ -143,6 +143,8 @@ struct ContactSpec {
 
 /// The time integrator.
 struct SolverSpec {
+  /// "ida" (SUNDIALS IDA, the held contact as an index-2 GGL DAE) needs contact.model =
+  /// "holonomic".
   Integrator integrator = Integrator::ArkodeErk;
   /// Relative and absolute local error tolerances, 1e-14 ≤ rtol ≤ 1e-1, 0 < atol ≤ 1.
   double rtol = 1e-7;

@@ -90,15 +90,39 @@ class EventDriven final : public RunContext {
       const double X = cam_at(t).X;
       return y[0] - X + 64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(X));
     };
-    engine_->set_root(gap_root, -1);
-    auto start_free = [&]() { engine_->reinit(t_, y_); };
+    // A free phase that starts on the cam (after a separation, a bounce, or at t = 0) has
+    // a gap that opens from 0, slowly (≈ t³ after a separation, where the reaction passes
+    // through 0), while the integrator's error in q₀ after its restart is of the order of
+    // its local tolerance (BDF1's first steps: h²ü₀/2, ≫ δ). Armed at once, the gap root
+    // fired on that error again and again — each time the follower was put back on the
+    // cam and the integrator restarted with tiny steps (cvode-bdf, A7 at rtol 1e-9: 6.0 M
+    // steps in 7 ms after the first separation). So such a phase first watches
+    // |gap| − ε (rising) with ε = 10 (rtol·max(1, |X_C|) + atol), the integration error's
+    // scale: the gap opening past ε arms the closing-gap root (one restart); a penetration
+    // past ε before that is a re-contact (handled as an impact, located to ε).
+    const double rtol = sc_.solver.rtol, atol = sc_.solver.atol;
+    double eps_leave = 0.0;
+    bool leaving = false;
+    auto band_root = [this, &eps_leave](double t, const double* y) {
+      return std::abs(y[0] - cam_at(t).X) - eps_leave;
+    };
+    auto start_free = [&]() {
+      const double X = cam_at(t_).X;
+      eps_leave = 10.0 * (rtol * std::max(1.0, std::abs(X)) + atol);
+      leaving = y_[0] - X < eps_leave;
+      if (leaving)
+        engine_->set_root(band_root, +1);
+      else
+        engine_->set_root(gap_root, -1);
+      engine_->reinit(t_, y_);
+    };
     // Initial phase.
     bool in_contact = holonomic || (contact_ && F_ > 0.0);
     contact_ = in_contact;
     if (!in_contact) F_ = 0.0;
     Eigen::VectorXd yr, y1;
     if (in_contact && !rigid) held_engine->reinit(t_, held_from_full());
-    if (!in_contact) engine_->reinit(t_, y_);
+    if (!in_contact) start_free();
     const double dt_scan = std::min(1e-4, sc_.run.t_end / 100.0);
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       const double tout = next_output_time();
@@ -150,7 +174,9 @@ class EventDriven final : public RunContext {
         // impulse's work P·Ẋ_C itself), damping power at the pre-impact state.
         dW_override = 0.0;
         P_end = dissipation_power();
-        if (engine_->hit_root()) {
+        if (engine_->hit_root() && leaving && y_[0] - cam_at(t_).X > 0.0) {
+          start_free();  // the gap opened past ε: arm the closing-gap root
+        } else if (engine_->hit_root()) {
           const CamMotion c = cam_at(t_);
           const double approach = c.Xdot - y_[n_];  // ŝ⁻ > 0: closing
           const double v0_pre = y_[n_];
