@@ -71,6 +71,13 @@ struct MatDel {
 struct LSDel {
   void operator()(_generic_SUNLinearSolver* s) const { SUNLinSolFree(s); }
 };
+struct ContextHolder {
+  SUNContext ctx = nullptr;
+  ContextHolder() { check_flag(SUNContext_Create(nullptr, &ctx), "SUNContext_Create"); }
+  ~ContextHolder() { SUNContext_Free(&ctx); }
+  ContextHolder(const ContextHolder&) = delete;
+  ContextHolder& operator=(const ContextHolder&) = delete;
+};
 struct IdaDel {
   void operator()(void* m) const { IDAFree(&m); }
 };
@@ -106,7 +113,10 @@ struct IdaHeldContact::Impl {
   SparseMatrix J0, J1;   // ∂F/∂y, ∂F/∂ẏ on one common (union) pattern
   long p_wl = -1;        // position of ∂F_W/∂λ in the pattern
   Eigen::VectorXd r, Mvp;
-  SUNContext ctx = nullptr;
+  // Declaration order = construction order; destruction runs in reverse: IDA memory
+  // first, then the linear solver, matrix and vectors it references, the context last.
+  ContextHolder ctx_holder;
+  SUNContext ctx = ctx_holder.ctx;
   NVec yy, yp, id, atol;
   Mat A;
   LS ls;
@@ -117,7 +127,6 @@ struct IdaHeldContact::Impl {
       : model(std::move(mdl)), m(*model), cam(std::move(c)), n(m.n()), N(2 * m.n() + 3),
         iL(2 * m.n()), iU(2 * m.n() + 1), iW(2 * m.n() + 2), spec(scene.solver), dense(dense_ls),
         r(m.n()), Mvp(m.n()) {
-    check_flag(SUNContext_Create(nullptr, &ctx), "SUNContext_Create");
     if (m.rigid()) {
       M = scalar_matrix(m.m_rigid());
       K = scalar_matrix(m.k_rigid());
@@ -134,16 +143,6 @@ struct IdaHeldContact::Impl {
     atol.reset(not_null(N_VNew_Serial(N, ctx), "N_VNew_Serial"));
     N_VConst(0.0, yy.get());
     N_VConst(0.0, yp.get());
-  }
-  ~Impl() {
-    mem.reset();  // IDAFree before the linear solver, matrix and vectors it references
-    ls.reset();
-    A.reset();
-    yy.reset();
-    yp.reset();
-    id.reset();
-    atol.reset();
-    SUNContext_Free(&ctx);
   }
 
   void build_pattern() {
