@@ -1421,8 +1421,8 @@ class Runner {
   }
 
   // ------------------------------------------------------------ holonomic on IDA ---
-  // The held contact as an index-2 GGL DAE (ida_engine.cpp): IDA steps natively, rows at
-  // the output times are IDA's interpolants; the force is the multiplier λ, the cam's
+  // The held contact as an index-2 GGL DAE (ida_engine.cpp): IDA steps natively and stops
+  // on every output time (rows are step values); the force is the multiplier λ, the cam's
   // work W = ∫ λ Ẋ_C dt a DAE component; a root of λ (decreasing) is the first tensile time.
   void run_ida_holonomic() {
     IdaHeldContact ida(model_, sc_, [this](double t) { return cam_at(t); });
