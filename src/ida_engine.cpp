@@ -334,14 +334,15 @@ void IdaHeldContact::set_tensile_root(bool on) {
   }
 }
 
-double IdaHeldContact::advance(double tout) {
+double IdaHeldContact::advance(double tout, bool one_step) {
   Impl& d = *impl_;
   double tret = 0;
   // Rows land on IDA's own steps (tstop = tout): λ is an index-2 unknown, accurate at the
   // step points to O(local error / h) but not through IDA's interpolating polynomial
   // (case A, rtol 1e-10: interpolated rows 2.0e-8 of the peak force off, step points 4.5e-9).
   check_flag(IDASetStopTime(d.mem.get(), tout), "IDASetStopTime");
-  const int flag = check_flag(IDASolve(d.mem.get(), tout, &tret, d.yy.get(), d.yp.get(), IDA_NORMAL), "IDASolve");
+  const int flag = check_flag(IDASolve(d.mem.get(), tout, &tret, d.yy.get(), d.yp.get(), one_step ? IDA_ONE_STEP : IDA_NORMAL),
+                              "IDASolve");
   hit_root_ = flag == IDA_ROOT_RETURN;
   const double* y = N_VGetArrayPointer(d.yy.get());
   qv_ = Eigen::Map<const Eigen::VectorXd>(y, 2 * d.n);

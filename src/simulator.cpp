@@ -1436,7 +1436,7 @@ class Runner {
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       const double tout = next_output_time();
       const double P_prev = dissipation_power(), t_prev = t_, W_prev = ida.work();
-      t_ = ida.advance(tout);
+      t_ = ida.advance(tout, out_dt() <= 0.0);  // output_dt = 0: one row per IDA step
       y_ = ida.state();
       F_ = ida.lambda();
       if (ida.hit_root() && sum_.first_tensile_time < 0) {
