@@ -339,7 +339,7 @@ double IdaHeldContact::advance(double tout, bool one_step) {
   double tret = 0;
   // Rows land on IDA's own steps (tstop = tout): λ is an index-2 unknown, accurate at the
   // step points to O(local error / h) but not through IDA's interpolating polynomial
-  // (case A, rtol 1e-10: interpolated rows 2.0e-8 of the peak force off, step points 4.5e-9).
+  // (case A, rtol 1e-10: interpolated rows 2.0e-8 of the peak force off, step points 4.9e-9).
   check_flag(IDASetStopTime(d.mem.get(), tout), "IDASetStopTime");
   const int flag = check_flag(IDASolve(d.mem.get(), tout, &tret, d.yy.get(), d.yp.get(), one_step ? IDA_ONE_STEP : IDA_NORMAL),
                               "IDASolve");
