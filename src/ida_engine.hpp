@@ -38,9 +38,11 @@ class IdaHeldContact {
   void init(double t0, const Eigen::VectorXd& qv, double tstop);
   /// Rootfinding on λ (decreasing through 0: the constraint force turns tensile).
   void set_tensile_root(bool on);
-  /// IDA_NORMAL toward tout (interpolated output, IDA keeps its own steps). Returns the
-  /// time reached (tout, or a root of λ before it).
-  double advance(double tout);
+  /// Toward tout, never past it (IDASetStopTime(tout): the values returned are IDA's step
+  /// values, not its interpolant). IDA_NORMAL: up to tout; one_step: one internal step
+  /// (IDA_ONE_STEP, for one row per step). Returns the time reached (tout, a root of λ, or
+  /// the end of the step).
+  double advance(double tout, bool one_step = false);
   bool hit_root() const { return hit_root_; }
 
   /// [q; v] at the time reached.

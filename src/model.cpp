@@ -160,7 +160,7 @@ FollowerModel::FollowerModel(const Scene& scene) {
   if (preload_ != 0.0) desc_.rhs_terms.push_back("preload");
   desc_.rhs_terms.push_back("contact_force");
   desc_.damping = damped_;
-  desc_.unknowns = 2 * n_ + (scene.solver.integrator == Integrator::Ida ? 2 : 0);  // IDA: + λ, μ
+  desc_.unknowns = 2 * n_ + (scene.solver.integrator == Integrator::Ida ? 3 : 0);  // IDA: + λ, μ, W
   desc_.linear_solver = to_string(resolve_linear_solver(scene, n_));
   if (scene.solver.integrator == Integrator::ArkodeErk) desc_.linear_solver = "none";
 }

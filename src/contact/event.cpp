@@ -197,7 +197,10 @@ class EventDriven final : public RunContext {
             // is reported; bounces slower than a few times that are round-off, not motion.
             if (v_impact_ref_ == 0.0) v_impact_ref_ = approach;
             const double rel_acc = std::abs(c.Xddot - m_.contact_acceleration(y_.data(), y_.data() + n_, 0.0));
-            const double delta = 64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(c.X));
+            // (A re-contact found by the leaving phase's band root is located at a
+            // penetration of ε, not δ: the same argument with ε.)
+            const double delta = leaving ? eps_leave
+                                         : 64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(c.X));
             const double v_stick = std::max(1e-6 * std::max(v_impact_ref_, 1e-3), 8.0 * std::sqrt(2.0 * rel_acc * delta));
             if (e_rest == 0.0 || (1.0 + e_rest) * approach < v_stick) {
               y_[n_] = c.Xdot;

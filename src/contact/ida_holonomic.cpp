@@ -1,6 +1,6 @@
 // camdyn — the holonomic baseline on SUNDIALS IDA (solver.integrator = "ida"): the held
-// contact as an index-2 GGL DAE (src/ida_engine.cpp). IDA steps natively, rows at the
-// output times are IDA's interpolants; the force is the multiplier λ, the cam's work
+// contact as an index-2 GGL DAE (src/ida_engine.cpp). IDA steps natively and stops on
+// every output time (rows are step values); the force is the multiplier λ, the cam's work
 // W = ∫ λ Ẋ_C dt a DAE component; a root of λ (decreasing) is the first tensile time.
 #include "ida_engine.hpp"
 #include "run_context.hpp"
@@ -26,7 +26,7 @@ class IdaHolonomic final : public RunContext {
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       const double tout = next_output_time();
       const double P_prev = dissipation_power(), t_prev = t_, W_prev = ida.work();
-      t_ = ida.advance(tout);
+      t_ = ida.advance(tout, out_dt() <= 0.0);  // output_dt = 0: one row per IDA step
       y_ = ida.state();
       F_ = ida.lambda();
       if (ida.hit_root() && sum_.first_tensile_time < 0) {
