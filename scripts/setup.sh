@@ -14,7 +14,7 @@ cd "$ROOT"
 PACKAGES=(build-essential cmake ninja-build libsundials-dev libeigen3-dev libsuitesparse-dev
           libtomlplusplus-dev libcli11-dev libgtest-dev googletest libbenchmark-dev
           python3 python3-numpy python3-matplotlib clang libclang-rt-14-dev
-          pybind11-dev python3-dev python3-pytest
+          pybind11-dev python3-dev python3-pytest pkg-config
           libopenmpi-dev openmpi-bin)
 
 # Install the packages of PACKAGES that are not installed yet (no apt at all otherwise).

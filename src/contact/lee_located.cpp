@@ -450,7 +450,10 @@ class LeeLocated final : public RunContext {
           // the force tolerance rtol·|F| of zero.
           const double F_thr = 1e-12 * Fscale;
           F_ref_ = std::max({F_ref_, std::abs(F_), std::abs(Fa)});
-          const double F_sep = rtol * F_ref_;  // a force this close to zero is zero
+          // A force this close to zero is zero; capped at 1e-6 of the largest force: a loose
+          // rtol (1e-2) let the follower leave while still pressed (by 1 % of the peak), and
+          // it re-struck at once — a chatter of separation/impact pairs (A7, tol_u 1e-3).
+          const double F_sep = std::min(rtol, 1e-6) * F_ref_;
           const double x = first_switch(sd_, F_thr);
           if (x >= 0.0 && x < 1.0 - 1e-9) {
             // the force reaches zero inside the step: land there
