@@ -117,6 +117,11 @@ class Engine {
   /// the state there.
   virtual double advance(double tout, Eigen::VectorXd& y_out) = 0;
 
+  /// Native mode, multistep engines (CVODE): allow BDF orders up to q, with CVODE's BDF
+  /// stability-limit detection on (it lowers the order where orders ≥ 3, not A-stable,
+  /// would amplify an undamped stiff mode). No-op for the one-step engines.
+  virtual void set_max_order(int /*q*/) {}
+
   /// Rootfinding (native mode): one function g(t, y); direction −1, 0 or +1.
   using RootFn = std::function<double(double t, const double* y)>;
   virtual void set_root(RootFn fn, int direction) = 0;

@@ -623,6 +623,10 @@ class CvodeEngine final : public Engine {
     ++stats_.steps;
     return tret;
   }
+  void set_max_order(int q) override {
+    check_flag(CVodeSetMaxOrd(mem_.get(), q), "CVodeSetMaxOrd");
+    check_flag(CVodeSetStabLimDet(mem_.get(), q >= 3 ? SUNTRUE : SUNFALSE), "CVodeSetStabLimDet");
+  }
   void set_root(RootFn fn, int direction) override {
     root_fn_ = std::move(fn);
     check_flag(CVodeRootInit(mem_.get(), root_fn_ ? 1 : 0, &CvodeEngine::g), "CVodeRootInit");
