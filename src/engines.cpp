@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "engine.hpp"
+#include "sundials_raii.hpp"
 
 namespace camdyn {
 
@@ -155,25 +156,10 @@ double Engine::wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const 
 namespace {
 
 // ---------------------------------------------------------------- RAII ----------
-struct ContextHolder {
-  SUNContext ctx = nullptr;
-  ContextHolder() { check_flag(SUNContext_Create(nullptr, &ctx), "SUNContext_Create"); }
-  ~ContextHolder() { SUNContext_Free(&ctx); }
-  ContextHolder(const ContextHolder&) = delete;
-  ContextHolder& operator=(const ContextHolder&) = delete;
-};
-struct NVecDel {
-  void operator()(_generic_N_Vector* v) const { N_VDestroy(v); }
-};
-struct MatDel {
-  void operator()(_generic_SUNMatrix* m) const { SUNMatDestroy(m); }
-};
-struct LSDel {
-  void operator()(_generic_SUNLinearSolver* s) const { SUNLinSolFree(s); }
-};
-using NVec = std::unique_ptr<_generic_N_Vector, NVecDel>;
-using Mat = std::unique_ptr<_generic_SUNMatrix, MatDel>;
-using LS = std::unique_ptr<_generic_SUNLinearSolver, LSDel>;
+using detail::ContextHolder;
+using detail::LS;
+using detail::Mat;
+using detail::NVec;
 struct ArkDel {
   void operator()(void* m) const { ARKStepFree(&m); }
 };
@@ -189,10 +175,7 @@ NVec make_nvec(long n, SUNContext ctx) {
   if (!v) throw SundialsError("N_VNew_Serial", -1);
   return NVec(v);
 }
-void* not_null(void* p, const char* call) {
-  if (!p) throw SundialsError(call, -1);
-  return p;
-}
+using detail::not_null;
 inline Eigen::Map<Eigen::VectorXd> map(N_Vector v) {
   return Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(v), N_VGetLength(v));
 }

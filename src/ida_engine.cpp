@@ -43,6 +43,7 @@
 // Every SUNDIALS flag is checked (negative → SundialsError naming the call); callbacks
 // catch every exception and return −1 so none crosses SUNDIALS.
 #include "ida_engine.hpp"
+#include "sundials_raii.hpp"
 
 #include <ida/ida.h>
 #include <ida/ida_ls.h>
@@ -62,34 +63,14 @@ namespace camdyn {
 
 namespace {
 
-struct NVecDel {
-  void operator()(_generic_N_Vector* v) const { N_VDestroy(v); }
-};
-struct MatDel {
-  void operator()(_generic_SUNMatrix* m) const { SUNMatDestroy(m); }
-};
-struct LSDel {
-  void operator()(_generic_SUNLinearSolver* s) const { SUNLinSolFree(s); }
-};
-struct ContextHolder {
-  SUNContext ctx = nullptr;
-  ContextHolder() { check_flag(SUNContext_Create(nullptr, &ctx), "SUNContext_Create"); }
-  ~ContextHolder() { SUNContext_Free(&ctx); }
-  ContextHolder(const ContextHolder&) = delete;
-  ContextHolder& operator=(const ContextHolder&) = delete;
-};
 struct IdaDel {
   void operator()(void* m) const { IDAFree(&m); }
 };
-using NVec = std::unique_ptr<_generic_N_Vector, NVecDel>;
-using Mat = std::unique_ptr<_generic_SUNMatrix, MatDel>;
-using LS = std::unique_ptr<_generic_SUNLinearSolver, LSDel>;
-
-template <class T>
-T* not_null(T* p, const char* call) {
-  if (!p) throw SundialsError(call, -1);
-  return p;
-}
+using detail::ContextHolder;
+using detail::LS;
+using detail::Mat;
+using detail::NVec;
+using detail::not_null;
 
 // M, K, C of the model as n × n sparse matrices (rigid: 1 × 1; undamped: C empty).
 SparseMatrix scalar_matrix(double x) {

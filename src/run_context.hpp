@@ -254,6 +254,26 @@ class RunContext {
     if (contact_) designer_.sample_force(t_, th, F_);
   }
 
+  // The step to try from t_ toward t_next (an output time or t_end): at most h and
+  // solver.max_step, and no slivers — a remainder below 1e-6 of the step is absorbed into
+  // it, a remainder between one and two steps is split into two equal steps. A sliver step
+  // (seen: 1.6e-10 s left before an output time after a 3e-6 s step, B1 at t = 44 s)
+  // cannot correct even round-off in the gap without a force ∝ gap/Δt², which fails the
+  // error test, shrinks Δt, needs a still larger force — and Δt underflows.
+  // @throws StepFailure on step-size underflow.
+  double fit_step(double h, double t_next) const {
+    double hs = std::min(h, t_next - t_);
+    if (sc_.solver.max_step > 0) hs = std::min(hs, sc_.solver.max_step);
+    const double rem = t_next - t_;
+    if (rem - hs < 1e-6 * hs)
+      hs = rem;
+    else if (rem < 2.0 * hs)
+      hs = 0.5 * rem;
+    if (hs <= 1e-14 * std::max(1.0, std::abs(t_)))
+      throw StepFailure("step size underflow (h = " + fmt(hs) + ")");
+    return hs;
+  }
+
   double initial_step() const {
     if (sc_.solver.initial_step > 0) return sc_.solver.initial_step;
     double h = std::min(1e-4, sc_.run.t_end / 100.0);

@@ -159,27 +159,11 @@ class LeeClassic final : public RunContext {
     double h = initial_step();
     double slope_prev = 0.0;  // dF/dt of the previous accepted ramp
     Eigen::VectorXd y1(2 * n_), yv(2 * n_), y_free(2 * n_), y_alt(2 * n_);
-    const double hmin_rel = 1e-14;
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       // Land on output times and t_end exactly.
       const double t_next = next_output_time();
       const double h_planned = h;
-      double hs = std::min(h, t_next - t_);
-      if (sc_.solver.max_step > 0) hs = std::min(hs, sc_.solver.max_step);
-      // No slivers. A remainder below 1e-6 of the step is absorbed into it; a remainder
-      // between one and two steps is split into two equal steps. A sliver step (seen:
-      // 1.6e-10 s left before an output time after a 3e-6 s step, B1 at t = 44 s) cannot
-      // correct even round-off in the gap without a force ∝ gap/Δt², which fails the
-      // error test, shrinks Δt, needs a still larger force — and Δt underflows.
-      {
-        const double rem = t_next - t_;
-        if (rem - hs < 1e-6 * hs)
-          hs = rem;
-        else if (rem < 2.0 * hs)
-          hs = 0.5 * rem;
-      }
-      if (hs <= hmin_rel * std::max(1.0, std::abs(t_)))
-        throw StepFailure("step size underflow (h = " + fmt(hs) + ")");
+      const double hs = fit_step(h, t_next);
       const bool lands = hs == t_next - t_;
       const double t1 = lands ? t_next : t_ + hs;  // land exactly, no round-off sliver
       const CamMotion cm = cam_at(t1);

@@ -393,16 +393,8 @@ class LeeLocated final : public RunContext {
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       const double t_next = land ? next_output_time() : sc_.run.t_end;
       const bool relocating = h_try > 0.0;
-      double hs = relocating ? h_try : h;
+      double hs = relocating ? h_try : fit_step(h, t_next);
       h_try = -1.0;
-      if (!relocating) {
-        if (sc_.solver.max_step > 0) hs = std::min(hs, sc_.solver.max_step);
-        const double rem = t_next - t_;
-        if (rem - hs < 1e-6 * hs)
-          hs = rem;
-        else if (rem < 2.0 * hs)
-          hs = 0.5 * rem;
-      }
       if (hs <= hmin_rel * std::max(1.0, std::abs(t_)))
         throw StepFailure("step size underflow (h = " + fmt(hs) + ")");
       const double t1 = (!relocating && hs == t_next - t_) ? t_next : t_ + hs;
