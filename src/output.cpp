@@ -529,8 +529,6 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
     t += s.poincare.empty() ? "]" : "\n  ]";
     o.raw("poincare", t);
   }
-  o.integer("lin_setups", s.lin_setups);
-  o.integer("lin_analyses", s.lin_analyses);
   o.raw("model", model_json(s.model, o.child_indent()));
   o.integer("events", static_cast<long long>(s.events.size()));
   {

@@ -453,6 +453,14 @@ TEST(Output, SummaryJsonHasEveryKey) {
         "max_steps"}) {
     EXPECT_NE(j.find("\"" + std::string(key) + "\":"), std::string::npos) << key << "\n" << j;
   }
+  // Keys of the summary itself appear once (a duplicated key is invalid JSON for strict
+  // readers; lin_setups was written twice after two branches each added it).
+  for (const char* key : {"lin_setups", "lin_analyses", "relocated_steps", "min_contact_force"}) {
+    const std::string k = "\"" + std::string(key) + "\":";
+    const size_t first = j.find(k);
+    EXPECT_NE(first, std::string::npos) << key;
+    EXPECT_EQ(j.find(k, first + 1), std::string::npos) << key << " twice";
+  }
   EXPECT_NE(j.find("\"finished\": false"), std::string::npos);
   EXPECT_NE(j.find("\"min_gap\": null"), std::string::npos) << "inf → null";
   EXPECT_NE(j.find("\"max_contact_force\": null"), std::string::npos) << "nan → null";
