@@ -205,29 +205,25 @@ std::string plot_script_path() {
   return {};
 }
 
-/// scripts/camdyn_bench_plot.py: $CAMDYN_BENCH_PLOT_SCRIPT, else next to camdyn_plot.py
-/// (installed, then source tree).
-std::string bench_plot_script_path() {
-  if (const char* env = std::getenv("CAMDYN_BENCH_PLOT_SCRIPT"); env && *env) return env;
+/// A plotting script that ships next to scripts/camdyn_plot.py: $ENV_VAR if set, else the
+/// installed copy, else the source tree's. Empty if none is found.
+std::string companion_script_path(const char* env_var, const char* file_name) {
+  if (const char* env = std::getenv(env_var); env && *env) return env;
   std::error_code ec;
   for (const char* p : {CAMDYN_PLOT_SCRIPT_INSTALL, CAMDYN_PLOT_SCRIPT_BUILD}) {
     if (!p || !*p) continue;
-    const fs::path cand = fs::path(p).parent_path() / "camdyn_bench_plot.py";
+    const fs::path cand = fs::path(p).parent_path() / file_name;
     if (fs::is_regular_file(cand, ec)) return cand.string();
   }
   return {};
 }
-
-/// scripts/camdyn_sweep_plot.py: $CAMDYN_SWEEP_PLOT_SCRIPT, else next to camdyn_plot.py.
+/// scripts/camdyn_bench_plot.py ($CAMDYN_BENCH_PLOT_SCRIPT overrides).
+std::string bench_plot_script_path() {
+  return companion_script_path("CAMDYN_BENCH_PLOT_SCRIPT", "camdyn_bench_plot.py");
+}
+/// scripts/camdyn_sweep_plot.py ($CAMDYN_SWEEP_PLOT_SCRIPT overrides).
 std::string sweep_plot_script_path() {
-  if (const char* env = std::getenv("CAMDYN_SWEEP_PLOT_SCRIPT"); env && *env) return env;
-  std::error_code ec;
-  for (const char* p : {CAMDYN_PLOT_SCRIPT_INSTALL, CAMDYN_PLOT_SCRIPT_BUILD}) {
-    if (!p || !*p) continue;
-    const fs::path cand = fs::path(p).parent_path() / "camdyn_sweep_plot.py";
-    if (fs::is_regular_file(cand, ec)) return cand.string();
-  }
-  return {};
+  return companion_script_path("CAMDYN_SWEEP_PLOT_SCRIPT", "camdyn_sweep_plot.py");
 }
 
 /// Run the plot script (`script_override`, or camdyn_plot.py) with `args`. Returns its
