@@ -978,7 +978,7 @@ Scene paper_case(const std::string& name) {
     s.solver.rtol = 1e-6;
     s.contact.tol_u = 1e-7;
   } else {
-    throw std::invalid_argument("unknown paper case '" + name + "' (known: A, B1, B2)");
+    throw SceneError("--case", 0, "case", name, "unknown paper case (allowed: A, B1, B2)");
   }
   return s;
 }

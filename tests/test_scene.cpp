@@ -140,8 +140,8 @@ TEST(ScenePaperCases, Parameters) {
   EXPECT_EQ(paper_case("B2").cam.speed_rev_s, 5.0);
   EXPECT_EQ(paper_case("B2").title, "Case B2 \u2014 elastic follower, 5 rev/s (Lee 1997 \u00a74.2)");
   EXPECT_TRUE(default_scene() == paper_case("B2"));
-  EXPECT_THROW(paper_case("C"), std::invalid_argument);
-  EXPECT_THROW(paper_case("b2"), std::invalid_argument);
+  EXPECT_THROW(paper_case("C"), SceneError);  // one exception type for user errors
+  EXPECT_THROW(paper_case("b2"), SceneError);
   for (const char* name : {"A", "B1", "B2"}) EXPECT_NO_THROW(validate(paper_case(name))) << name;
 }
 

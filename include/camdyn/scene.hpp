@@ -211,7 +211,8 @@ class SceneError : public std::runtime_error {
 
 /// The paper's case B2 (elastic follower, 5 rev/s), the built-in default scene.
 Scene default_scene();
-/// The paper's reference cases: "A", "B1", "B2" (docs/method.md §5). @throws std::invalid_argument
+/// The paper's reference cases: "A", "B1", "B2" (docs/method.md §5).
+/// @throws SceneError (file "--case", key "case") for any other name.
 Scene paper_case(const std::string& name);
 
 /// Parse TOML text. Keys missing from the text keep the defaults of Scene{}.

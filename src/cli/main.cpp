@@ -155,15 +155,7 @@ Scene build_scene(const std::string& file, const std::string& case_name,
   if (!file.empty()) {
     sc = load_scene_file(file);
   } else if (!case_name.empty()) {
-    try {
-      sc = paper_case(case_name);
-    } catch (const SceneError&) {
-      throw;
-    } catch (const std::exception& e) {
-      std::string rule = e.what();
-      if (rule.find("B1") == std::string::npos) rule += " (allowed: A, B1, B2)";
-      throw SceneError("--case", 0, "case", case_name, rule);
-    }
+    sc = paper_case(case_name);  // SceneError names --case, the value and what is allowed
   } else {
     sc = std::move(fallback);
   }
