@@ -39,13 +39,24 @@ std::string fmt_num(double v) {
   return std::string(buf, res.ptr);
 }
 
+/// "[a, b, c]"; a list longer than 8 values is shortened to its first 4 and last 2 values
+/// and its length ("[a, b, c, d, …, y, z] (180 values)"), so a message stays one line.
 std::string fmt_list(const std::vector<double>& v) {
+  const std::size_t n = v.size();
+  const bool cut = n > 8;
   std::string s = "[";
-  for (std::size_t i = 0; i < v.size(); ++i) {
+  for (std::size_t i = 0; i < n; ++i) {
+    if (cut && i == 4) {
+      s += ", …";
+      i = n - 3;
+      continue;
+    }
     if (i) s += ", ";
     s += fmt_num(v[i]);
   }
-  return s + "]";
+  s += "]";
+  if (cut) s += " (" + std::to_string(n) + " values)";
+  return s;
 }
 
 std::string fmt_deg1(double deg) {
@@ -462,9 +473,28 @@ void Cam::Impl::build_lift(const CamSpec& spec) {
       const double t0 = wrap360(runs[j].first / kDeg);
       th += fmt_deg1(t0) + ".." + fmt_deg1(wrap360(t0 + (runs[j].second - runs[j].first) / kDeg));
     }
+    // A hint about units: the usual cause of a non-convex lift table is angles in radians
+    // (the table then spans a few degrees and L″ is huge) or lifts in another length unit.
+    std::string hint;
+    const double span = ang.back() - ang.front();
+    double lmax = 0;
+    for (double x : L) lmax = std::max(lmax, std::fabs(x));
+    if (span <= kTwoPi + 1e-9)
+    {
+      char b[32];
+      std::snprintf(b, sizeof b, "%.3g", span);
+      hint = std::string("; cam.lift_angles_deg spans only ") + b +
+             "°: are the angles in radians? They must be degrees";
+    }
+    else if (lmax > 10 * rb)
+      hint = "; the lift reaches " + fmt_num(lmax) + ", more than 10× cam.base_radius = " +
+             fmt_num(rb) + ": are lift and base radius in the same length unit?";
+    else
+      hint = "; the lift changes too fast for the base circle: a larger cam.base_radius or "
+             "a smoother lift table";
     fail("cam.lift", fmt_list(L),
          "profile is not convex: radius of curvature ρ = r_b + L + L″ ≤ 0 at cam angles " + th +
-             " — a flat-faced follower cannot follow a concave flank");
+             " — a flat-faced follower cannot follow a concave flank" + hint);
   }
   auto rho_at = [this](double th) {
     double h, h1, h2;

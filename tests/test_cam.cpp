@@ -247,6 +247,20 @@ CamSpec lift_with(std::vector<double> L, double rb = 2.0) {
   s.base_radius = rb;
   return s;
 }
+/// A 180-entry lift table L = 0.5(1 − cos θ)·0.3 over one turn whose angles were given in
+/// radians (θ_i = 2π i/180) instead of degrees.
+CamSpec lift_in_radians() {
+  CamSpec s = lift_with({0, 0.1, 0.5, 0.7, 0.3, 0.05});
+  s.lift_angles_deg.clear();
+  s.lift.clear();
+  for (int i = 0; i < 180; ++i) {
+    const double th = 2 * kPi * i / 180.0;
+    s.lift_angles_deg.push_back(th);
+    s.lift.push_back(std::stod(std::to_string(0.15 * (1 - std::cos(th)))));
+  }
+  return s;
+}
+
 }  // namespace
 
 TEST(CamValidation, MalformedSpecsGiveExactMessages) {
@@ -290,7 +304,16 @@ TEST(CamValidation, MalformedSpecsGiveExactMessages) {
       {"lift non-convex", lift_with({0, 0, 3, 0, 0, 0}), "cam.lift", "[0, 0, 3, 0, 0, 0]",
        "profile is not convex: radius of curvature ρ = r_b + L + L″ ≤ 0 at cam angles "
        "357.1°..1.1°, 96.1°..143.9°, 238.8°..242.9° — a flat-faced follower cannot follow a "
-       "concave flank"},
+       "concave flank; the lift changes too fast for the base circle: a larger "
+       "cam.base_radius or a smoother lift table"},
+      // Angles in radians (issue 17): a short message with a hint about the unit, and a
+      // long table is not dumped value by value.
+      {"lift angles in radians", lift_in_radians(), "cam.lift",
+       "[0, 9.1e-05, 0.000365, 0.000822, …, 0.000365, 9.1e-05] (180 values)",
+       "profile is not convex: radius of curvature ρ = r_b + L + L″ ≤ 0 at cam angles "
+       "1.6°..4.7° — a flat-faced follower cannot follow a concave flank; "
+       "cam.lift_angles_deg spans only 6.25°: are the angles in radians? "
+       "They must be degrees"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
