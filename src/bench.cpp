@@ -1,5 +1,6 @@
 // camdyn — work–precision benchmark (bench.hpp).
 #include "camdyn/bench.hpp"
+#include "camdyn/model.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -15,10 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "camdyn/model.hpp"
+#include "camdyn/model_description.hpp"
 #include "camdyn/scene.hpp"
 
 namespace camdyn {
+
+class FollowerModel;  // camdyn/model.hpp (Eigen): include it to use Simulator::model()
 
 /// One output row (docs/interface.md history.csv, then energy columns).
 struct HistoryRow {

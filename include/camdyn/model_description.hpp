@@ -1,0 +1,28 @@
+// camdyn — what the model builder built (printed in Summary::FullReport, in summary.json).
+//
+// Kept apart from model.hpp so that simulator.hpp, which a user includes to run scenes,
+// does not pull Eigen (model.hpp's sparse matrices).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace camdyn {
+
+/// What the model builder built (tested, and printed in the full report).
+struct ModelDescription {
+  std::string follower;        ///< "rigid" | "elastic_bar"
+  int nodes = 0;               ///< n
+  int unknowns = 0;            ///< first-order unknowns handed to the integrator (2n)
+  std::string mass;            ///< "scalar" | "consistent" | "lumped"
+  bool sparse = false;         ///< sparse matrices assembled
+  std::string linear_solver;   ///< "none" (explicit) | "dense" | "klu"
+  bool damping = false;        ///< C ≠ 0 (damping term present in the right-hand side)
+  bool preload = false;        ///< k δ₀ ≠ 0
+  bool varying_speed = false;  ///< ω(t) table (ω̇ ≠ 0)
+  std::string contact;         ///< "unilateral" | "holonomic"
+  std::vector<std::string> rhs_terms;  ///< e.g. {"inertia", "stiffness", "spring", ...}
+  std::string ToString() const;
+};
+
+}  // namespace camdyn
