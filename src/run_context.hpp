@@ -274,6 +274,15 @@ class RunContext {
     return hs;
   }
 
+  // Full acceleration a = M⁻¹(f₀ − Kq − Cv + e₀F) at state y under contact force F.
+  void full_acceleration(const Eigen::VectorXd& y, double F, Eigen::VectorXd& a) {
+    a.resize(n_);
+    rbuf_.resize(n_);
+    m_.internal_force(y.data(), y.data() + n_, rbuf_.data());
+    rbuf_[0] += F;
+    m_.solve_mass(rbuf_.data(), a.data());
+  }
+
   double initial_step() const {
     if (sc_.solver.initial_step > 0) return sc_.solver.initial_step;
     double h = std::min(1e-4, sc_.run.t_end / 100.0);

@@ -114,15 +114,8 @@ class LeeClassic final : public RunContext {
     hv_.resize(n);
     if (!m_.rigid()) {
       // v̇ = M⁻¹(f₀ − Kq − Cv + e₀F) at an end state.
-      auto acceleration = [&](const Eigen::VectorXd& y, double F, Eigen::VectorXd& a) {
-        a.resize(n);
-        rbuf_.resize(n);
-        m_.internal_force(y.data(), y.data() + n, rbuf_.data());
-        rbuf_[0] += F;
-        m_.solve_mass(rbuf_.data(), a.data());
-      };
-      acceleration(ya, Fa0, ha_);
-      acceleration(yb, Fb1, hb_);
+      full_acceleration(ya, Fa0, ha_);
+      full_acceleration(yb, Fb1, hb_);
     }
     auto g = [&](double tau) {
       const CamMotion c = cam_at(tau);

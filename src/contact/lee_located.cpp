@@ -95,14 +95,6 @@ class LeeLocated final : public RunContext {
   static double grid_step(double h) { return std::exp2(std::floor(std::log2(h) * 8.0) / 8.0); }
   Eigen::VectorXd la_, le_, col0_, zero_;
 
-  // Full acceleration M⁻¹(f₀ − Kq − Cv + e₀F).
-  void full_acceleration(const Eigen::VectorXd& y, double F, Eigen::VectorXd& a) {
-    a.resize(n_);
-    rbuf_.resize(n_);
-    m_.internal_force(y.data(), y.data() + n_, rbuf_.data());
-    rbuf_[0] += F;
-    m_.solve_mass(rbuf_.data(), a.data());
-  }
   void fill_step_data(StepData& s, double t0, const Eigen::VectorXd& y0, double F0, double t1,
                       const Eigen::VectorXd& y1, double F1, bool held) {
     s.t0 = t0;
