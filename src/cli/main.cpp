@@ -344,12 +344,19 @@ struct SweepOpts {
   double timeout = 0;
 };
 
-int cmd_jump(const JumpOpts& o) {
-  if (o.c.scene_file.empty() && o.c.case_name.empty())
-    throw SceneError("jump", 0, "SCENE", "", "give a scene file (or --case A|B1|B2)");
-  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
+// jump and sweep need a scene of the user's (no built-in default): the resolved, validated
+// scene from the file or --case with the --set overrides.
+Scene required_scene(const char* cmd, const CommonOpts& c) {
+  if (c.scene_file.empty() && c.case_name.empty())
+    throw SceneError(cmd, 0, "SCENE", "", "give a scene file (or --case A|B1|B2)");
+  Scene sc = build_scene(c.scene_file, c.case_name, c.sets, default_scene());
   resolve_defaults(sc);
   validate(sc);
+  return sc;
+}
+
+int cmd_jump(const JumpOpts& o) {
+  Scene sc = required_scene("jump", o.c);
   JumpOptions jo;
   jo.rel_tol = o.rel_tol;
   jo.lo_rev_s = o.lo;
@@ -443,11 +450,7 @@ class SweepProgress {
 };
 
 int cmd_sweep(const SweepOpts& o) {
-  if (o.c.scene_file.empty() && o.c.case_name.empty())
-    throw SceneError("sweep", 0, "SCENE", "", "give a scene file (or --case A|B1|B2)");
-  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
-  resolve_defaults(sc);
-  validate(sc);
+  Scene sc = required_scene("sweep", o.c);
   if (o.jobs < 0) throw SceneError("--jobs", 0, "jobs", std::to_string(o.jobs), "must be >= 1 (0: all cores)");
   SweepOptions so;
   so.axes.push_back(make_sweep_axis(sc, o.a1.key, o.a1.from, o.a1.to, o.a1.step, o.a1.points, o.a1.log));
