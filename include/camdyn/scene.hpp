@@ -12,12 +12,14 @@
 #include <string_view>
 #include <vector>
 
+#include "camdyn/network.hpp"
+
 namespace camdyn {
 
 // ---- enumerations, each with a to_string / parse pair so the CLI and reports need no
 // ---- extra code. parse_enum returns false on an unknown spelling.
 enum class CamProfileKind { Points, Lift, Circle };
-enum class FollowerKind { Rigid, ElasticBar };
+enum class FollowerKind { Rigid, ElasticBar, Network };
 enum class MassMatrixKind { Consistent, Lumped };
 enum class ContactModel { Lee, Penalty, Holonomic, Event };
 enum class ErrorVariant { Eq12, Eq17 };
@@ -27,7 +29,7 @@ enum class Integrator { ArkodeErk, ArkodeDirk, CvodeBdf, Ida };
 enum class LinearSolverKind { Auto, Dense, Klu };
 
 const char* to_string(CamProfileKind v);    // "points" | "lift" | "circle"
-const char* to_string(FollowerKind v);      // "rigid" | "elastic_bar"
+const char* to_string(FollowerKind v);      // "rigid" | "elastic_bar" | "network"
 const char* to_string(MassMatrixKind v);    // "consistent" | "lumped"
 const char* to_string(ContactModel v);      // "lee" | "penalty" | "holonomic" | "event"
 const char* to_string(ErrorVariant v);      // "eq12" | "eq17"
@@ -190,6 +192,10 @@ struct Scene {
   ContactSpec contact;
   SolverSpec solver;
   RunSpec run;
+  /// follower.kind = "network": the nodes, elements and contacts ([[nodes]], [[elements]],
+  /// [[contacts]]); empty for the other kinds (follower.* bar keys and [spring] are then
+  /// unused, [contact] gives the method and the contacts' default restitution and penalty).
+  NetworkSpec network;
   /// Where the scene came from (file path or "<built-in>"), for error messages.
   std::string source = "<built-in>";
 };

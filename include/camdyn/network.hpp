@@ -1,0 +1,120 @@
+// camdyn — follower networks (valve trains): nodes, elements and several unilateral
+// contacts (docs/interface.md "Networks").
+//
+//   A network scene (follower.kind = "network") describes the follower as a chain or tree
+//   of nodes on one axis each (displacement q ≥ 0 in the node's own lift direction,
+//   measured from the installed position: q = 0 at rest with the cam on its base circle):
+//
+//     [[nodes]]     name, mass [mass], initial_displacement, initial_velocity
+//     [[elements]]  spring   nodes = [lower, upper], stiffness k, preload P, damping c,
+//                            mass m_s with `masses` internal masses (a surging coil spring)
+//                   dashpot  nodes = [lower, upper], damping c
+//                   bar      nodes = [lower, upper], an elastic bar of `elements` elements
+//                            (mass, youngs_modulus, area, length, mass_matrix, Rayleigh)
+//                   lever    nodes = [input, output], q_output = ratio · q_input (a rocker)
+//     [[contacts]]  cam      nodes = [node]          gap g = q + clearance − X_C(t)
+//                   lash     nodes = [lower, upper]  gap g = q_upper − q_lower + clearance
+//                   stop     nodes = [node], side = "below": g = q + clearance (a valve seat)
+//                                        side = "above": g = clearance − q
+//
+//   "ground" (q ≡ 0) may end a spring, dashpot or bar. A spring, dashpot or bar between
+//   [lower, upper] is compressed by δ = q_lower − q_upper and pushes lower by −(P + kδ + cδ̇)
+//   and upper by +(P + kδ + cδ̇). A contact force F ≥ 0 acts along ∂g/∂q: the contact matrix
+//   T has one row per contact (g = T q + g₀ − X_C(t)·[cam]), the generalised force is TᵀF.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace camdyn {
+
+enum class ElementKind { Spring, Dashpot, Bar, Lever };
+enum class ContactPointKind { Cam, Lash, Stop };
+enum class StopSide { Below, Above };
+enum class BarMass { Consistent, Lumped };
+
+const char* to_string(ElementKind v);       // "spring" | "dashpot" | "bar" | "lever"
+const char* to_string(ContactPointKind v);  // "cam" | "lash" | "stop"
+const char* to_string(StopSide v);          // "below" | "above"
+bool parse_enum(std::string_view s, ElementKind* out);
+bool parse_enum(std::string_view s, ContactPointKind* out);
+bool parse_enum(std::string_view s, StopSide* out);
+
+/// A node of the network: one displacement (after levers are eliminated, a node tied as a
+/// lever's output is not an unknown of its own).
+struct NodeSpec {
+  /// Unique name, not "ground" [letters, digits, '_', '-'].
+  std::string name;
+  /// Lumped mass at the node [mass], ≥ 0 (a massless node needs mass from a bar, a spring
+  /// with mass, or a lever tying it to one).
+  double mass = 0.0;
+  /// q(0) [length] and q̇(0) [length/time], finite.
+  double initial_displacement = 0.0;
+  double initial_velocity = 0.0;
+};
+
+/// An element between two nodes ("ground" allowed at one end of a spring, dashpot or bar).
+struct ElementSpec {
+  /// Optional name for reports and errors (default: "<kind> #<index>").
+  std::string name;
+  ElementKind kind = ElementKind::Spring;
+  /// [lower, upper] (lever: [input, output]); exactly two, distinct.
+  std::vector<std::string> nodes;
+  /// spring: stiffness k [force/length], ≥ 0.
+  double stiffness = 0.0;
+  /// spring: preload P [force], finite: the compressive force at q = 0 (> 0 pushes apart).
+  double preload = 0.0;
+  /// spring, dashpot: viscous damping c [force·time/length], ≥ 0 (dashpot: > 0).
+  double damping = 0.0;
+  /// spring: its own mass m_s [mass], ≥ 0; bar: total mass [mass], > 0.
+  double mass = 0.0;
+  /// spring with mass: internal masses N ≥ 1 (the spring becomes N + 1 springs of stiffness
+  /// (N + 1)k with masses m_s/(N + 1) inside and m_s/(2(N + 1)) on each end node: a lumped
+  /// bar, whose first surge frequency tends to ½√(k/m_s) like N⁻²). 0 with mass = 0.
+  int masses = 0;
+  /// bar: E [force/length²] > 0, A [length²] > 0, L [length] > 0, N elements ≥ 1,
+  /// mass matrix, Rayleigh C = αM + βK (α, β ≥ 0).
+  double youngs_modulus = 0.0;
+  double area = 0.0;
+  double length = 0.0;
+  int elements = 1;
+  BarMass mass_matrix = BarMass::Lumped;
+  double rayleigh_alpha = 0.0;
+  double rayleigh_beta = 0.0;
+  /// lever: q_output = ratio · q_input, ratio finite and ≠ 0.
+  double ratio = 1.0;
+};
+
+/// A unilateral contact (any number per network).
+struct ContactPointSpec {
+  /// Unique name (history columns F_<name>, gap_<name>, in_<name>; events' contact).
+  std::string name;
+  ContactPointKind kind = ContactPointKind::Cam;
+  /// cam, stop: [node]; lash: [lower, upper].
+  std::vector<std::string> nodes;
+  /// Gap at q = 0 (cam: on the base circle, X_C = 0) [length], ≥ 0.
+  double clearance = 0.0;
+  /// stop only: which side of the node the stop is on.
+  StopSide side = StopSide::Below;
+  /// Per-contact values; unset = the [contact] table's restitution, penalty_stiffness,
+  /// penalty_damping.
+  std::optional<double> restitution;
+  std::optional<double> penalty_stiffness;
+  std::optional<double> penalty_damping;
+};
+
+/// The network of a scene with follower.kind = "network" (empty otherwise).
+struct NetworkSpec {
+  std::vector<NodeSpec> nodes;
+  std::vector<ElementSpec> elements;
+  std::vector<ContactPointSpec> contacts;
+};
+
+bool operator==(const NodeSpec& a, const NodeSpec& b);
+bool operator==(const ElementSpec& a, const ElementSpec& b);
+bool operator==(const ContactPointSpec& a, const ContactPointSpec& b);
+bool operator==(const NetworkSpec& a, const NetworkSpec& b);
+
+}  // namespace camdyn
