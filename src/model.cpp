@@ -66,6 +66,7 @@ std::string ModelDescription::ToString() const {
     << (preload ? ", preloaded spring" : "") << (varying_speed ? ", varying cam speed" : "")
     << "; rhs terms:";
   for (const auto& t : rhs_terms) o << ' ' << t;
+  for (const auto& e : network) o << "\n    " << e;
   return o.str();
 }
 

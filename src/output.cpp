@@ -321,6 +321,10 @@ void append_row(std::string& out, const HistoryRow& r) {
     out += ',';
     append_double(out, x);
   }
+  for (double x : r.extra) {
+    out += ',';
+    append_double(out, x);
+  }
   out += '\n';
 }
 
@@ -334,9 +338,16 @@ std::string csv_header(const std::vector<std::string>& cols) {
   return h;
 }
 
-void write_history_file(const std::string& path, const std::vector<HistoryRow>& rows) {
+std::vector<std::string> all_columns(const std::vector<std::string>& extra) {
+  std::vector<std::string> c = history_columns();
+  c.insert(c.end(), extra.begin(), extra.end());
+  return c;
+}
+
+void write_history_file(const std::string& path, const std::vector<HistoryRow>& rows,
+                        const std::vector<std::string>& extra) {
   AtomicFile f(path);
-  f.write(csv_header(history_columns()));
+  f.write(csv_header(all_columns(extra)));
   std::string chunk;
   chunk.reserve(1 << 17);
   for (const auto& r : rows) {
@@ -352,15 +363,16 @@ void write_history_file(const std::string& path, const std::vector<HistoryRow>& 
 
 }  // namespace
 
-std::string history_csv(const std::vector<HistoryRow>& rows) {
-  std::string out = csv_header(history_columns());
+std::string history_csv(const std::vector<HistoryRow>& rows, const std::vector<std::string>& extra) {
+  std::string out = csv_header(all_columns(extra));
   out.reserve(out.size() + rows.size() * 200);
   for (const auto& r : rows) append_row(out, r);
   return out;
 }
 
-std::string events_csv(const std::vector<ContactEvent>& events) {
-  std::string out = "t,kind,impact_velocity,theta,impulse\n";
+std::string events_csv(const std::vector<ContactEvent>& events, bool with_contact) {
+  std::string out = with_contact ? "t,kind,impact_velocity,theta,impulse,contact\n"
+                                 : "t,kind,impact_velocity,theta,impulse\n";
   for (const auto& e : events) {
     append_double(out, e.t);
     out += ',';
@@ -381,6 +393,10 @@ std::string events_csv(const std::vector<ContactEvent>& events) {
     append_double(out, e.theta);
     out += ',';
     append_double(out, e.impulse);
+    if (with_contact) {
+      out += ',';
+      out += e.contact;  // names are [A-Za-z0-9_-]
+    }
     out += '\n';
   }
   return out;
@@ -394,8 +410,8 @@ void HistoryWriter::clear() {
 }
 
 void HistoryWriter::write(const std::string& dir) const {
-  write_history_file(join_path(dir, "history.csv"), rows_);
-  write_file_atomic(join_path(dir, "events.csv"), events_csv(events_));
+  write_history_file(join_path(dir, "history.csv"), rows_, extra_);
+  write_file_atomic(join_path(dir, "events.csv"), events_csv(events_, !extra_.empty()));
 }
 
 // ---- summary.json -----------------------------------------------------------------------

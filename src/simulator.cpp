@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "contact/network_run.hpp"
+#include "mechanism.hpp"
 #include "run_context.hpp"
 
 namespace camdyn {
@@ -24,13 +26,27 @@ const std::vector<std::string>& history_columns() {
 Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   resolve_defaults(scene_);
   validate(scene_);
-  model_ = build_model(scene_);
+  if (scene_.follower.kind == FollowerKind::Network) {
+    mech_ = std::make_shared<const Mechanism>(scene_);
+    extra_columns_ = detail::NetworkRun::extra_columns(*mech_);
+  } else {
+    model_ = build_model(scene_);
+  }
+}
+
+const ModelDescription& Simulator::description() const {
+  return mech_ ? mech_->description() : model_->description();
 }
 
 Simulator::~Simulator() = default;
 
 Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
                        const std::string& stop_reason) {
+  if (mech_) {
+    auto method = detail::make_network_method(scene_, mech_, observer, stop);
+    method->set_stop_reason(stop_reason);
+    return method->run();
+  }
   auto method = detail::make_contact_method(scene_, model_, observer, stop);
   method->set_stop_reason(stop_reason);
   return method->run();

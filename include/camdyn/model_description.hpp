@@ -11,7 +11,7 @@ namespace camdyn {
 
 /// What the model builder built (tested, and printed in the full report).
 struct ModelDescription {
-  std::string follower;        ///< "rigid" | "elastic_bar"
+  std::string follower;        ///< "rigid" | "elastic_bar" | "network"
   int nodes = 0;               ///< n
   int unknowns = 0;            ///< first-order unknowns handed to the integrator (2n)
   std::string mass;            ///< "scalar" | "consistent" | "lumped"
@@ -22,6 +22,8 @@ struct ModelDescription {
   bool varying_speed = false;  ///< ω(t) table (ω̇ ≠ 0)
   std::string contact;         ///< "unilateral" | "holonomic"
   std::vector<std::string> rhs_terms;  ///< e.g. {"inertia", "stiffness", "spring", ...}
+  /// Network followers: one line per assembled element and contact (empty otherwise).
+  std::vector<std::string> network;
   std::string ToString() const;
 };
 

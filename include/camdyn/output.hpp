@@ -66,10 +66,13 @@ std::string json_string(std::string_view s);
 
 // ---- history and events ---------------------------------------------------------------
 
-/// history.csv text: header from history_columns(), one line per row.
-std::string history_csv(const std::vector<HistoryRow>& rows);
-/// events.csv text: header "t,kind,impact_velocity,theta,impulse", one line per event.
-std::string events_csv(const std::vector<ContactEvent>& events);
+/// history.csv text: header from history_columns() (then `extra_columns`, network scenes:
+/// Simulator::extra_columns()), one line per row.
+std::string history_csv(const std::vector<HistoryRow>& rows,
+                        const std::vector<std::string>& extra_columns = {});
+/// events.csv text: header "t,kind,impact_velocity,theta,impulse" (with_contact: then
+/// ",contact", the contact's name — network scenes), one line per event.
+std::string events_csv(const std::vector<ContactEvent>& events, bool with_contact = false);
 
 /// An Observer that keeps every row and event in memory as they arrive, so a run that
 /// fails or is interrupted still has what it computed; write() puts them on disk.
@@ -81,6 +84,9 @@ class HistoryWriter : public Observer {
   const std::vector<HistoryRow>& rows() const { return rows_; }
   const std::vector<ContactEvent>& events() const { return events_; }
   void clear();
+  /// Network scenes: the extra history columns (Simulator::extra_columns()); non-empty
+  /// also adds the `contact` column to events.csv.
+  void set_extra_columns(std::vector<std::string> names) { extra_ = std::move(names); }
 
   /// Write DIR/history.csv and DIR/events.csv atomically. @throws std::runtime_error.
   void write(const std::string& dir) const;
@@ -88,6 +94,7 @@ class HistoryWriter : public Observer {
  private:
   std::vector<HistoryRow> rows_;
   std::vector<ContactEvent> events_;
+  std::vector<std::string> extra_;
 };
 
 // ---- summary.json ---------------------------------------------------------------------

@@ -32,6 +32,9 @@ struct HistoryRow {
   double potential = 0;      ///< strain + spring energy change since t = 0
   double work_cam = 0;       ///< ∫ F v₀ dt, work done by the cam on the follower
   double dissipated = 0;     ///< ∫ vᵀ C v dt + energy lost in impacts
+  /// Network scenes: per contact (F_<name>, gap_<name>, in_<name>), then per named node
+  /// (u_<name>, v_<name>), in the order of Simulator::extra_columns(); empty otherwise.
+  std::vector<double> extra;
 };
 
 /// Names of the history columns, in order.
@@ -45,6 +48,7 @@ struct ContactEvent {
   double theta = 0;             ///< cam angle at the event [rad] (as history.csv's theta)
   double impulse = 0;           ///< contact impulse applied at the instant (impacts resolved
                                 ///< as a Newton impulse: event-driven, Lee "located"), else 0
+  std::string contact;          ///< network scenes: the contact's name ("" otherwise)
 };
 
 /// One Poincaré sample: the follower's contact face when the cam passes the section angle
@@ -146,11 +150,19 @@ class Simulator {
   Summary run(Observer* observer = nullptr, const std::atomic<bool>* stop = nullptr,
               const std::string& stop_reason = "interrupted (SIGINT)");
   const Scene& scene() const { return scene_; }
+  /// @pre the scene is not a network (follower.kind ≠ "network").
   const FollowerModel& model() const { return *model_; }
+  /// The model description (any follower kind).
+  const ModelDescription& description() const;
+  /// Names of HistoryRow::extra, in order: network scenes F_<c>, gap_<c>, in_<c> per
+  /// contact c, then u_<n>, v_<n> per named node n; empty for the other follower kinds.
+  const std::vector<std::string>& extra_columns() const { return extra_columns_; }
 
  private:
   Scene scene_;
-  std::shared_ptr<const FollowerModel> model_;
+  std::shared_ptr<const FollowerModel> model_;      // rigid, elastic_bar
+  std::shared_ptr<const class Mechanism> mech_;     // network
+  std::vector<std::string> extra_columns_;
 };
 
 /// Convenience: run and collect all rows in memory.

@@ -526,6 +526,7 @@ int cmd_run(const RunOpts& o) {
   // Run stage.
   const bool progress = !o.quiet && ::isatty(STDERR_FILENO);
   CliObserver obs(progress);
+  obs.set_extra_columns(sim->extra_columns());
   Summary summary;
   bool interrupted = false;
   {

@@ -1,0 +1,122 @@
+// camdyn — the event-driven method on a network: the active contacts are constraint rows,
+//   M q̈ = f₀ − K q − C q̇ + T_Aᵀ F_A,   W_AA F_A = Ẍ_C,A − T_A M⁻¹(f₀ − K q − C q̇)
+// (the acceleration level of every active contact, g̈_A = 0), integrated natively with the
+// engine's error control. Rootfinding on one function per contact: the force F_j of an
+// active contact (it separates where F_j reaches zero) and the gap g_j of an open one (it
+// impacts where g_j reaches zero). At an impact all contacts taking part get a Newton
+// impulse at once (network_run.cpp: resolve_impact), then the engine restarts.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "network_run.hpp"
+#include "run_context.hpp"
+
+namespace camdyn {
+namespace detail {
+namespace {
+
+class NetworkEvent final : public NetworkRun {
+ public:
+  NetworkEvent(const Scene& sc, std::shared_ptr<const Mechanism> mech, Observer* obs,
+               const std::atomic<bool>* stop)
+      : NetworkRun(sc, std::move(mech), obs, stop) {
+    OdeSystem sys;
+    sys.size = 2 * n_;
+    sys.rhs = [this](double t, const double* y, double* yd) {
+      const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
+      yv_ = Y;
+      const Eigen::VectorXd F = held_forces(yv_, cam_at(t), set_);
+      std::copy(y + n_, y + 2 * n_, yd);
+      mk_.acceleration(y, y + n_, F, yd + n_);
+    };
+    // Jacobian: SUNDIALS' difference quotients (the constraint forces couple every unknown).
+    engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
+    eng_ = engines_.back().get();
+  }
+
+ private:
+  OdeEngine* eng_;
+  Eigen::VectorXd yv_;
+  std::vector<int> set_;  // the active set the right-hand side uses
+
+  void restart() {
+    set_ = active_list();
+    eng_->reinit(t_, y_);
+  }
+
+  void run_method() override {
+    eng_->set_roots(m_, [this](double t, const double* y, double* g) {
+      const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
+      yv_ = Y;
+      const CamMotion cm = cam_at(t);
+      Eigen::VectorXd F;
+      if (!set_.empty()) F = held_forces(yv_, cm, set_);
+      for (int j = 0; j < m_; ++j) g[j] = active_[j] ? F[j] : gap(j, yv_, cm);
+    });
+    restart();
+    Eigen::VectorXd y1(2 * n_);
+    const double gap_thr = 1e-3 * sc_.contact.tol_u;
+    while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+      const double tout = next_output_time();
+      const double Pw_prev = cam_power(F_, cam_at(t_));
+      const double P_prev = dissipation_power(t_, y_);
+      const double t1 = eng_->advance(tout, y1);
+      const double h = t1 - t_;
+      t_ = t1;
+      y_ = y1;
+      const CamMotion cm = cam_at(t_);
+      F_ = held_forces(y_, cm, set_);
+      const double dW = 0.5 * h * (Pw_prev + cam_power(F_, cm));
+      const double P_end = dissipation_power(t_, y_);
+      bool changed = false;
+      if (eng_->hit_root() && unilateral_) {
+        std::vector<int> closing;
+        bool released = false;
+        for (int j = 0; j < m_; ++j) {
+          if (eng_->root_info()[j] >= 0) continue;  // only downward crossings act
+          if (active_[j]) {
+            active_[j] = 0;
+            ++sum_.separations;
+            record_event("separation", j, 0.0);
+            released = true;
+          } else {
+            closing.push_back(j);
+          }
+        }
+        // other open contacts closed at the same instant take part too
+        for (int j = 0; j < m_; ++j)
+          if (!active_[j] && std::find(closing.begin(), closing.end(), j) == closing.end() &&
+              gap(j, y_, cm) <= gap_thr && gap_rate(j, y_, cm) < 0.0)
+            closing.push_back(j);
+        if (!closing.empty())
+          resolve_impact(closing, cm);
+        else if (released)
+          settle_active(cm);
+        changed = !closing.empty() || released;
+      } else if (eng_->hit_root()) {  // bilateral: a contact that closes stays closed
+        std::vector<int> closing;
+        for (int j = 0; j < m_; ++j)
+          if (!active_[j] && eng_->root_info()[j] < 0) closing.push_back(j);
+        if (!closing.empty()) {
+          resolve_impact(closing, cm);
+          changed = true;
+        }
+      }
+      for (int j : set_)
+        if (active_[j] && unilateral_) F_[j] = std::max(F_[j], 0.0);
+      if (changed) restart();
+      after_step(h, dW, P_prev, changed ? P_end : NAN);
+    }
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<NetworkRun> make_network_event(const Scene& sc, std::shared_ptr<const Mechanism> mech,
+                                               Observer* obs, const std::atomic<bool>* stop) {
+  return std::make_unique<NetworkEvent>(sc, std::move(mech), obs, stop);
+}
+
+}  // namespace detail
+}  // namespace camdyn

@@ -1,0 +1,494 @@
+// camdyn — Lee's method on a network with several contacts (the located step for a vector
+// of contact forces).
+//
+//   Over a step t → t + h, each active contact j carries the force shape
+//     F_j(τ) = F_j + (F₁ⱼ − F_j)x + F_cⱼ·4x(1 − x),   x = (τ − t)/h,
+//   the inactive ones none. The end state is affine in (F₁, F_c) on the one-step engines
+//   (ERK, DIRK with an exact Jacobian), y = y_a + Σⱼ (ΔF₁ⱼ D₁ⱼ + ΔF_cⱼ D_cⱼ), with
+//   responses D of the (time-invariant) mechanism to a unit shape on contact j, computed
+//   from rest without preload once per step size and contact. The displacement and
+//   velocity levels, g_j(t + h) = 0 and ġ_j(t + h) = 0 for every active j, are 2k linear
+//   equations in the 2k shape parameters, solved together (for CVODE, whose step map is
+//   not exactly affine: iterated with Lee's constants, ∂g/∂F₁ = W h²/6, ∂ġ/∂F₁ = W h/2,
+//   ∂g/∂F_c = W h²/3, ∂ġ/∂F_c = 2W h/3, W = T M⁻¹ Tᵀ). The acceleration level gives the
+//   forces the equation of motion demands at t + h, W_AA F̃ = Ẍ_C,A − T_A a_free, which
+//   start the next step; |F̃ − F₁| is in the error test against
+//   rtol·|F| + 2 tol_u/(W_jj h²).
+//   Switches are located inside the step and landed on: an active contact whose pointwise
+//   held force (acceleration level on the cubic Hermite state) falls to zero separates; an
+//   inactive contact whose gap (quintic Hermite from g, ġ, g̈ at both ends) reaches zero
+//   impacts, resolved by the Newton law on all contacts taking part (network_run.cpp).
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "network_run.hpp"
+#include "run_context.hpp"  // StepFailure, IterationFailure, fmt
+
+namespace camdyn {
+namespace detail {
+namespace {
+
+// p(x) on [0, 1] with p, p', p'' (in time) given at both ends: value at x.
+double quintic(double u0, double v0, double a0, double u1, double v1, double a1, double h, double x) {
+  const double p0 = u0, d0 = v0 * h, s0 = a0 * h * h, p1 = u1, d1 = v1 * h, s1 = a1 * h * h;
+  const double c3 = 10 * (p1 - p0) - 6 * d0 - 4 * d1 - 1.5 * s0 + 0.5 * s1;
+  const double c4 = -15 * (p1 - p0) + 8 * d0 + 7 * d1 + 1.5 * s0 - s1;
+  const double c5 = 6 * (p1 - p0) - 3 * d0 - 3 * d1 - 0.5 * s0 + 0.5 * s1;
+  return p0 + x * (d0 + x * (0.5 * s0 + x * (c3 + x * (c4 + x * c5))));
+}
+
+// First x ∈ (0, 1] where f falls below −thr: a sign change between K + 1 samples, or a
+// sampled minimum refined by golden section (grazing). −1 if none; else the root of f = 0
+// after the last point where f ≥ 0 (bisection to round-off in time h).
+double first_below(const std::function<double(double)>& f, double f0, double f1, double thr, double h,
+                   double t1) {
+  constexpr int K = 8;
+  double s[K + 1];
+  s[0] = f0;
+  s[K] = f1;
+  for (int k = 1; k < K; ++k) s[k] = f(double(k) / K);
+  double lo = -1, hi = -1;
+  for (int k = 1; k <= K; ++k) {
+    if (s[k] < -thr) {
+      lo = double(k - 1) / K;
+      hi = double(k) / K;
+      break;
+    }
+    if (k < K && s[k] <= s[k - 1] && s[k] <= s[k + 1] &&
+        s[k] < thr + std::abs(s[k - 1] - s[k]) + std::abs(s[k + 1] - s[k])) {
+      double a = double(k - 1) / K, b = double(k + 1) / K;
+      const double gr = 0.6180339887498949;
+      double c = b - gr * (b - a), d = a + gr * (b - a);
+      double fc = f(c), fd = f(d);
+      for (int i = 0; i < 40; ++i) {
+        if (fc < fd) {
+          b = d; d = c; fd = fc; c = b - gr * (b - a); fc = f(c);
+        } else {
+          a = c; c = d; fc = fd; d = a + gr * (b - a); fd = f(d);
+        }
+      }
+      const double xm = fc < fd ? c : d, fm = std::min(fc, fd);
+      if (fm < -thr) {
+        lo = double(k - 1) / K;
+        hi = xm;
+        break;
+      }
+    }
+  }
+  if (lo < 0) return -1.0;
+  if (f(lo) < 0) return lo;
+  for (int i = 0; i < 100 && (hi - lo) * h > 4e-16 * std::max(1.0, std::abs(t1)); ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) >= 0.0 ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+class NetworkLee final : public NetworkRun {
+ public:
+  NetworkLee(const Scene& sc, std::shared_ptr<const Mechanism> mech, Observer* obs,
+             const std::atomic<bool>* stop)
+      : NetworkRun(sc, std::move(mech), obs, stop) {
+    OdeSystem sys;
+    sys.size = 2 * n_;
+    sys.rhs = [this](double t, const double* y, double* yd) { rhs(t, y, yd); };
+    sys.jacobian = [this](double, const double*, Eigen::MatrixXd& J) {
+      J.setZero();
+      J.topRightCorner(n_, n_).setIdentity();
+      J.bottomLeftCorner(n_, n_) = -mk_.MinvK();
+      if (mk_.damped()) J.bottomRightCorner(n_, n_) = -mk_.MinvC();
+    };
+    sys.linear = true;
+    engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, true));
+    eng_ = engines_.back().get();
+    F0_ = F1_ = Fc_ = Eigen::VectorXd::Zero(m_);
+    slope_ = Eigen::VectorXd::Zero(m_);
+    fs_.resize(m_);
+  }
+
+ private:
+  OdeEngine* eng_;
+  // the force shape of the step being integrated
+  double s_t0_ = 0, s_h_ = 1;
+  bool homogeneous_ = false;
+  Eigen::VectorXd F0_, F1_, Fc_, fs_, slope_;
+
+  void rhs(double t, const double* y, double* yd) {
+    const double x = (t - s_t0_) / s_h_;
+    for (int j = 0; j < m_; ++j) fs_[j] = F0_[j] + (F1_[j] - F0_[j]) * x + Fc_[j] * 4.0 * x * (1.0 - x);
+    std::copy(y + n_, y + 2 * n_, yd);
+    mk_.acceleration(y, y + n_, fs_, yd + n_, homogeneous_);
+  }
+  double integrate(double t, const Eigen::VectorXd& from, double h, Eigen::VectorXd& out) {
+    s_t0_ = t;
+    s_h_ = h;
+    return eng_->step(t, from, h, out);
+  }
+
+  // Responses to a unit F₁ and F_c on each contact, per step size (a few sizes cached on
+  // the grid 2^(k/8)).
+  struct Responses {
+    double h = -1;
+    std::vector<Eigen::VectorXd> D1, Dc, E1, Ec;
+    std::vector<char> have;
+  };
+  static constexpr int kSlots = 12;
+  Responses cache_[kSlots];
+  int next_slot_ = 0;
+  static double grid_step(double h) { return std::exp2(std::floor(std::log2(h) * 8.0) / 8.0); }
+  Responses& responses(double hs, const std::vector<int>& set) {
+    Responses* r = nullptr;
+    for (Responses& c : cache_)
+      if (c.h == hs) r = &c;
+    if (!r) {
+      r = &cache_[next_slot_];
+      next_slot_ = (next_slot_ + 1) % kSlots;
+      r->h = hs;
+      r->D1.assign(m_, {});
+      r->Dc.assign(m_, {});
+      r->E1.assign(m_, {});
+      r->Ec.assign(m_, {});
+      r->have.assign(m_, 0);
+    }
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(2 * n_);
+    const Eigen::VectorXd keep0 = F0_, keep1 = F1_, keepc = Fc_;
+    for (int j : set) {
+      if (r->have[j]) continue;
+      const double amp = 1.0 / (mk_.W()(j, j) * hs * hs);
+      homogeneous_ = true;
+      F0_.setZero();
+      F1_.setZero();
+      Fc_.setZero();
+      F1_[j] = amp;
+      integrate(0.0, zero, hs, r->D1[j]);
+      r->D1[j] /= amp;
+      r->E1[j] = eng_->local_error() / amp;
+      F1_[j] = 0.0;
+      Fc_[j] = amp;
+      integrate(0.0, zero, hs, r->Dc[j]);
+      r->Dc[j] /= amp;
+      r->Ec[j] = eng_->local_error() / amp;
+      homogeneous_ = false;
+      r->have[j] = 1;
+      sum_.contact_iterations += 2;
+    }
+    F0_ = keep0;
+    F1_ = keep1;
+    Fc_ = keepc;
+    return *r;
+  }
+
+  // The accepted-or-trial step's data for interpolation and switch search.
+  struct StepData {
+    double t0 = 0, t1 = 0;
+    Eigen::VectorXd y0, y1, a0, a1, F0, F1;  // F1: acceleration-level forces at t1
+    std::vector<int> set;                    // active contacts over the step
+    double W0 = 0, D0 = 0, P0 = 0;
+    Eigen::VectorXd s0, s1, sc;              // the force shape (start, end, bubble)
+  } sd_;
+  Eigen::VectorXd yi_;
+  // State at τ (cubic Hermite from the end states and accelerations).
+  void interpolate(const StepData& s, double tau, Eigen::VectorXd& y) const {
+    const double h = s.t1 - s.t0, x = (tau - s.t0) / h;
+    const double x2 = x * x, x3 = x2 * x;
+    const double h00 = 2 * x3 - 3 * x2 + 1, h10 = (x3 - 2 * x2 + x) * h;
+    const double h01 = -2 * x3 + 3 * x2, h11 = (x3 - x2) * h;
+    y.resize(2 * n_);
+    y.head(n_) = h00 * s.y0.head(n_) + h10 * s.y0.tail(n_) + h01 * s.y1.head(n_) + h11 * s.y1.tail(n_);
+    y.tail(n_) = h00 * s.y0.tail(n_) + h10 * s.a0 + h01 * s.y1.tail(n_) + h11 * s.a1;
+  }
+  // ∫ Σ_cam F_shape Ẋ_C over [s.t0, tb] (5-point Gauss–Legendre on the applied shape).
+  double shape_work(const StepData& s, double tb) const {
+    static const double xg[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                                 0.9061798459386640};
+    static const double wg[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                                 0.4786286704993665, 0.2369268850561891};
+    const double h = s.t1 - s.t0, len = tb - s.t0;
+    if (len <= 0 || s.set.empty()) return 0.0;
+    double W = 0.0;
+    Eigen::VectorXd F(m_);
+    for (int i = 0; i < 5; ++i) {
+      const double tau = s.t0 + 0.5 * len * (1.0 + xg[i]), x = (tau - s.t0) / h;
+      F = s.s0 + (s.s1 - s.s0) * x + s.sc * (4.0 * x * (1.0 - x));
+      W += wg[i] * cam_power(F, cam_at(tau));
+    }
+    return 0.5 * len * W;
+  }
+  StepData* dense_ = nullptr;
+  bool dense_row_at(double to) override {
+    if (!dense_ || !(to > dense_->t0)) return false;
+    const StepData& s = *dense_;
+    interpolate(s, to, yi_);
+    const CamMotion cm = cam_at(to);
+    Eigen::VectorXd F = held_forces(yi_, cm, s.set);
+    for (int j : s.set) F[j] = unilateral_ ? std::max(F[j], 0.0) : F[j];
+    std::vector<char> act(m_, 0);
+    for (int j : s.set) act[j] = 1;
+    const double P = dissipation_power(to, yi_);
+    const double D = s.D0 + 0.5 * (to - s.t0) * (s.P0 + P);
+    emit_row_at(to, yi_, F, act, s.W0 + shape_work(s, to), D);
+    return true;
+  }
+
+  double h_fail_ = INFINITY;
+  double propose_step(double hs, double fac) {
+    h_fail_ *= 1.02;
+    fac = std::min(5.0, std::max(0.2, fac));
+    if (fac < 1.25) return grid_step(hs * std::min(fac, 1.0));
+    return grid_step(std::max(std::min(hs * fac / 1.1, 0.95 * h_fail_), grid_step(hs)));
+  }
+
+  // Solve the shape for the active set over a step of hs; y1 the end state, returns the
+  // engine's error norm.
+  double solve_step(const std::vector<int>& set, double hs, double t1, Eigen::VectorXd& y1) {
+    const CamMotion cm = cam_at(t1);
+    F0_.setZero();
+    F1_.setZero();
+    Fc_.setZero();
+    for (int j : set) {
+      F0_[j] = F_[j];
+      F1_[j] = F_[j] + slope_[j] * hs;
+    }
+    double err = integrate(t_, y_, hs, y1);
+    const int k = int(set.size());
+    if (k == 0) return err;
+    const bool affine = eng_->estimates_error();
+    Eigen::VectorXd le = eng_->local_error();
+    Eigen::MatrixXd J(2 * k, 2 * k);
+    Responses* R = affine ? &responses(hs, set) : nullptr;
+    for (int i = 0; i < k; ++i) {
+      const Eigen::RowVectorXd& ti = mk_.contacts()[set[i]].t;
+      for (int l = 0; l < k; ++l) {
+        const int j = set[l];
+        if (affine) {
+          J(2 * i, 2 * l) = ti.dot(R->D1[j].head(n_));
+          J(2 * i, 2 * l + 1) = ti.dot(R->Dc[j].head(n_));
+          J(2 * i + 1, 2 * l) = ti.dot(R->D1[j].tail(n_));
+          J(2 * i + 1, 2 * l + 1) = ti.dot(R->Dc[j].tail(n_));
+        } else {
+          const double w = mk_.W()(set[i], j);
+          J(2 * i, 2 * l) = w * hs * hs / 6.0;
+          J(2 * i, 2 * l + 1) = w * hs * hs / 3.0;
+          J(2 * i + 1, 2 * l) = w * hs / 2.0;
+          J(2 * i + 1, 2 * l + 1) = 2.0 * w * hs / 3.0;
+        }
+      }
+    }
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> lu(J);
+    const double tol_v = sc_.contact.tol_v > 0 ? sc_.contact.tol_v : sc_.contact.tol_u / hs;
+    Eigen::VectorXd r(2 * k);
+    int it = 0;
+    for (;;) {
+      double rmax_u = 0, rmax_v = 0;
+      for (int i = 0; i < k; ++i) {
+        r[2 * i] = -gap(set[i], y1, cm);
+        r[2 * i + 1] = -gap_rate(set[i], y1, cm);
+        rmax_u = std::max(rmax_u, std::abs(r[2 * i]));
+        rmax_v = std::max(rmax_v, std::abs(r[2 * i + 1]));
+      }
+      if (it > 0 && (affine || (rmax_u < sc_.contact.tol_u && rmax_v < tol_v))) break;
+      if (it >= sc_.contact.max_iterations) {
+        ++sum_.iteration_failures;
+        throw IterationFailure();
+      }
+      const Eigen::VectorXd d = lu.solve(r);
+      if (!d.allFinite()) {
+        ++sum_.iteration_failures;
+        throw IterationFailure();
+      }
+      ++it;
+      ++sum_.contact_iterations;
+      for (int l = 0; l < k; ++l) {
+        const int j = set[l];
+        F1_[j] += d[2 * l];
+        Fc_[j] += d[2 * l + 1];
+        if (affine) {
+          y1 += d[2 * l] * R->D1[j] + d[2 * l + 1] * R->Dc[j];
+          le += d[2 * l] * R->E1[j] + d[2 * l + 1] * R->Ec[j];
+        }
+      }
+      if (affine)
+        err = eng_->wrms(le, y_);
+      else
+        err = integrate(t_, y_, hs, y1);
+    }
+    sum_.level_u.total += it;
+    sum_.level_u.max = std::max(sum_.level_u.max, it);
+    ++sum_.level_u.steps;
+    sum_.level_v = sum_.level_u;
+    return err;
+  }
+
+  void run_method() override {
+    const int q = eng_->error_order();
+    const bool land = sc_.run.land_on_output || out_dt() <= 0.0;
+    const double rtol = sc_.solver.rtol, tol_u = sc_.contact.tol_u;
+    const double gap_thr = 1e-3 * tol_u;
+    double h = initial_step(), h_try = -1.0;
+    Eigen::VectorXd y1(2 * n_);
+    while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+      const double t_next = land ? next_output_time() : sc_.run.t_end;
+      const bool relocating = h_try > 0.0;
+      double hs = relocating ? h_try : fit_step(h, t_next);
+      h_try = -1.0;
+      if (hs <= 1e-14 * std::max(1.0, std::abs(t_)))
+        throw StepFailure("step size underflow (h = " + fmt(hs) + ")");
+      const double t1 = (!relocating && hs == t_next - t_) ? t_next : t_ + hs;
+      hs = t1 - t_;
+      const CamMotion cm1 = cam_at(t1);
+      const double P_prev = dissipation_power(t_, y_);
+      const std::vector<int> set = active_list();
+      double err_e = 0;
+      try {
+        err_e = solve_step(set, hs, t1, y1);
+      } catch (const IterationFailure&) {
+        ++sum_.rejected_steps;
+        h = 0.5 * hs;
+        continue;
+      }
+      // acceleration level
+      const Eigen::VectorXd Fa = held_forces(y1, cm1, set);
+      double err_c = 0.0, pc = 5.0;
+      for (int j : set) {
+        ++sum_.level_a.total;
+        const double Fscale = std::max(std::abs(F_[j]), std::abs(Fa[j]));
+        const double tolF = rtol * Fscale + 2.0 * tol_u / (mk_.W()(j, j) * hs * hs);
+        const double e = std::abs(Fa[j] - F1_[j]) / tolF;
+        if (e > err_c) {
+          err_c = e;
+          pc = (3.0 * rtol * Fscale + 5.0 * (tolF - rtol * Fscale)) / tolF;
+        }
+      }
+      if (!set.empty()) {
+        sum_.level_a.max = std::max(sum_.level_a.max, 1);
+        ++sum_.level_a.steps;
+      }
+      const double fe = err_e > 0 ? 0.9 * std::pow(err_e, -1.0 / q) : 5.0;
+      const double fc = err_c > 0 ? 0.9 * std::pow(err_c, -1.0 / pc) : 5.0;
+      const double fac = std::min(5.0, std::max(0.2, std::min(fe, fc)));
+      if (std::max(err_e, err_c) > 1.0) {
+        ++sum_.rejected_steps;
+        h_fail_ = hs;
+        h = grid_step(hs * std::min(0.9, fac));
+        continue;
+      }
+      // the step's data, then switches inside it
+      StepData& s = sd_;
+      s.t0 = t_;
+      s.t1 = t1;
+      s.y0 = y_;
+      s.y1 = y1;
+      s.F0 = F_;
+      s.F1 = Fa;
+      s.set = set;
+      s.s0 = F0_;
+      s.s1 = F1_;
+      s.sc = Fc_;
+      acceleration(y_, F_, s.a0);
+      acceleration(y1, Fa, s.a1);
+      F_ref_ = std::max({F_ref_, F_.cwiseAbs().maxCoeff(), Fa.cwiseAbs().maxCoeff()});
+      const double F_thr = 1e-12 * std::max(F_ref_, 1e-300);
+      const double F_sep = std::min(rtol, 1e-6) * F_ref_;
+      double x_first = 2.0;
+      int who = -1;
+      std::vector<char> in_set(m_, 0);
+      for (int j : set) in_set[j] = 1;
+      if (unilateral_)
+        for (int j : set) {
+          auto f = [&](double x) {
+            const double tau = s.t0 + x * hs;
+            interpolate(s, tau, yi_);
+            return held_forces(yi_, cam_at(tau), set)[j];
+          };
+          const double x = first_below(f, F_[j], Fa[j], F_thr, hs, t1);
+          if (x >= 0.0 && x < x_first) {
+            x_first = x;
+            who = j;
+          }
+        }
+      const CamMotion cm0 = cam_at(t_);
+      for (int j = 0; j < m_; ++j) {
+        if (in_set[j]) continue;
+        const MechanismContact& c = mk_.contacts()[j];
+        const double g0 = gap(j, y_, cm0), g1 = gap(j, y1, cm1);
+        const double gd0 = gap_rate(j, y_, cm0), gd1 = gap_rate(j, y1, cm1);
+        const double ga0 = c.t.dot(s.a0) - cam_acc(j, cm0), ga1 = c.t.dot(s.a1) - cam_acc(j, cm1);
+        auto f = [&](double x) { return quintic(g0, gd0, ga0, g1, gd1, ga1, hs, x); };
+        const double x = first_below(f, g0, g1, gap_thr, hs, t1);
+        if (x >= 0.0 && x < x_first) {
+          x_first = x;
+          who = j;
+        }
+      }
+      if (who >= 0 && x_first < 1.0 - 1e-9) {
+        const double hx = x_first * hs;
+        if (in_set[who] && (F_[who] <= F_sep || hx <= 1e-9 * hs || hx <= 1e-14 * std::max(1.0, std::abs(t_)))) {
+          // the held force is zero at the step's start: release now
+          active_[who] = 0;
+          ++sum_.separations;
+          record_event("separation", who, 0.0);
+          settle_active(cam_at(t_));
+          slope_.setZero();
+          continue;
+        }
+        ++sum_.relocated_steps;
+        h_try = std::max(x_first, 1e-9) * hs;
+        continue;
+      }
+      // accept
+      if (obs_) obs_->on_lee_shape(t_, hs, set.empty() ? 0.0 : F0_[set[0]], set.empty() ? 0.0 : F1_[set[0]],
+                                   set.empty() ? 0.0 : Fc_[set[0]], 0.0);
+      s.W0 = work_;
+      s.D0 = dissipated_;
+      s.P0 = P_prev;
+      const double dW = shape_work(s, t1);
+      for (int j : set) slope_[j] = (Fa[j] - F_[j]) / hs;
+      y_ = y1;
+      t_ = t1;
+      F_ = Fa;
+      bool changed = false;
+      for (int j : set)
+        if (unilateral_ && (Fa[j] <= F_sep || (who == j))) {
+          active_[j] = 0;
+          F_[j] = 0.0;
+          slope_[j] = 0.0;
+          ++sum_.separations;
+          record_event("separation", j, 0.0);
+          changed = true;
+        }
+      for (int j : set)
+        if (active_[j]) F_[j] = unilateral_ ? std::max(F_[j], 0.0) : F_[j];
+      // impacts: inactive contacts closed at the step's end
+      std::vector<int> closing;
+      for (int j = 0; j < m_; ++j) {
+        if (active_[j] || in_set[j]) continue;
+        const double g = gap(j, y_, cm1);
+        if (g <= gap_thr || (relocating && who == j) || (relocating && g <= tol_u)) closing.push_back(j);
+      }
+      const double P_end = dissipation_power(t_, y_);
+      if (!closing.empty()) {
+        resolve_impact(closing, cm1);
+        changed = true;
+      } else if (changed) {
+        settle_active(cm1);
+      }
+      if (changed) slope_.setZero();
+      dense_ = land ? nullptr : &sd_;
+      after_step(hs, dW, P_prev, closing.empty() ? NAN : P_end);
+      dense_ = nullptr;
+      if (!relocating) h = propose_step(hs, fac);
+    }
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<NetworkRun> make_network_lee(const Scene& sc, std::shared_ptr<const Mechanism> mech,
+                                             Observer* obs, const std::atomic<bool>* stop) {
+  return std::make_unique<NetworkLee>(sc, std::move(mech), obs, stop);
+}
+
+}  // namespace detail
+}  // namespace camdyn

@@ -1,0 +1,180 @@
+// camdyn — the penalty baseline on a network: every contact its own spring–damper law,
+//   F_j = max(0, k_p,j s_j + c_p,j ŝ_j)  (linear)   or   k_p,j s_jⁿ(1 + c_p,j ŝ_j)  (Hunt–Crossley)
+// while s_j = −g_j > 0 (ŝ_j = −ġ_j), inside the right-hand side; the engine steps natively
+// with its own error control, lands on the output times, and restarts where a gap
+// crosses zero (rootfinding: the force law has a kink there). Implicit engines get the
+// exact Jacobian [[0, I], [−M⁻¹(K + Σ k̃_j t_jᵀt_j), −M⁻¹(C + Σ c̃_j t_jᵀt_j)]].
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "network_run.hpp"
+#include "run_context.hpp"
+
+namespace camdyn {
+namespace detail {
+namespace {
+
+class NetworkPenalty final : public NetworkRun {
+ public:
+  NetworkPenalty(const Scene& sc, std::shared_ptr<const Mechanism> mech, Observer* obs,
+                 const std::atomic<bool>* stop)
+      : NetworkRun(sc, std::move(mech), obs, stop) {
+    OdeSystem sys;
+    sys.size = 2 * n_;
+    sys.rhs = [this](double t, const double* y, double* yd) {
+      const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
+      yv_ = Y;
+      forces(t, yv_, fv_);
+      std::copy(y + n_, y + 2 * n_, yd);
+      mk_.acceleration(y, y + n_, fv_, yd + n_);
+    };
+    sys.jacobian = [this](double t, const double* y, Eigen::MatrixXd& J) {
+      const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
+      yv_ = Y;
+      const CamMotion cm = cam_at(t);
+      Eigen::MatrixXd Kt = mk_.K(), Ct = mk_.damped() ? mk_.C() : Eigen::MatrixXd::Zero(n_, n_);
+      for (int j = 0; j < m_; ++j) {
+        double dq = 0, dv = 0;  // dF/ds, dF/dŝ
+        law(j, -gap(j, yv_, cm), -gap_rate(j, yv_, cm), nullptr, &dq, &dv);
+        const Eigen::RowVectorXd& tj = mk_.contacts()[j].t;
+        Kt += dq * tj.transpose() * tj;  // F = f(s), s = −t q: ∂(tᵀF)/∂q = −dq tᵀt
+        Ct += dv * tj.transpose() * tj;
+      }
+      J.setZero();
+      J.topRightCorner(n_, n_).setIdentity();
+      J.bottomLeftCorner(n_, n_) = -mk_.Minv() * Kt;
+      J.bottomRightCorner(n_, n_) = -mk_.Minv() * Ct;
+    };
+    engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
+    eng_ = engines_.back().get();
+    fv_.resize(m_);
+  }
+
+ private:
+  OdeEngine* eng_;
+  Eigen::VectorXd yv_, fv_;
+
+  // The law of contact j at penetration s and its rate ŝ; el: the elastic part.
+  double law(int j, double s, double sd, double* el = nullptr, double* dFds = nullptr,
+             double* dFdsd = nullptr) const {
+    const MechanismContact& c = mk_.contacts()[j];
+    if (el) *el = 0.0;
+    if (dFds) *dFds = 0.0;
+    if (dFdsd) *dFdsd = 0.0;
+    if (s <= 0.0) return 0.0;
+    const double kp = c.penalty_stiffness, cp = c.penalty_damping;
+    double F, E;
+    if (sc_.contact.penalty_law == PenaltyLaw::Linear) {
+      E = kp * s;
+      F = E + cp * sd;
+      if (F > 0 && dFds) *dFds = kp;
+      if (F > 0 && dFdsd) *dFdsd = cp;
+    } else {
+      const double nn = sc_.contact.penalty_exponent, sn = std::pow(s, nn);
+      E = kp * sn;
+      F = E * (1.0 + cp * sd);
+      if (F > 0 && dFds) *dFds = kp * nn * std::pow(s, nn - 1.0) * (1.0 + cp * sd);
+      if (F > 0 && dFdsd) *dFdsd = kp * sn * cp;
+    }
+    if (el) *el = E;
+    return F > 0.0 ? F : 0.0;
+  }
+  void forces(double t, const Eigen::VectorXd& y, Eigen::VectorXd& F) const {
+    const CamMotion cm = cam_at(t);
+    F.resize(m_);
+    for (int j = 0; j < m_; ++j) F[j] = law(j, -gap(j, y, cm), -gap_rate(j, y, cm));
+  }
+  double contact_potential(double t, const double* q) const override {
+    const CamMotion cm = cam_at(t);
+    double V = 0.0;
+    for (int j = 0; j < m_; ++j) {
+      const MechanismContact& c = mk_.contacts()[j];
+      const double s = -(c.t.dot(Eigen::Map<const Eigen::VectorXd>(q, n_)) + c.g0 - (c.cam ? cm.X : 0.0));
+      if (s <= 0.0) continue;
+      V += sc_.contact.penalty_law == PenaltyLaw::Linear
+               ? 0.5 * c.penalty_stiffness * s * s
+               : c.penalty_stiffness * std::pow(s, sc_.contact.penalty_exponent + 1.0) /
+                     (sc_.contact.penalty_exponent + 1.0);
+    }
+    return V;
+  }
+  double contact_dissipation(double t, const Eigen::VectorXd& y) const override {
+    const CamMotion cm = cam_at(t);
+    double P = 0.0;
+    for (int j = 0; j < m_; ++j) {
+      const double s = -gap(j, y, cm), sd = -gap_rate(j, y, cm);
+      double el = 0.0;
+      const double F = law(j, s, sd, &el);
+      if (s > 0.0) P += (F - el) * sd;
+    }
+    return P;
+  }
+
+  void run_method() override {
+    // The penalty's own equilibrium at t = 0: each contact carrying force F_j starts
+    // penetrated by the s_j its law needs (ŝ = 0), by the M-weighted smallest shift.
+    const CamMotion cm0 = cam_at(0.0);
+    std::vector<int> set = active_list();
+    if (!set.empty()) {
+      const int k = int(set.size());
+      Eigen::VectorXd s(k);
+      Eigen::MatrixXd Wss(k, k), MTs(n_, k);
+      for (int i = 0; i < k; ++i) {
+        const int j = set[i];
+        const double kp = mk_.contacts()[j].penalty_stiffness;
+        s[i] = sc_.contact.penalty_law == PenaltyLaw::Linear ? F_[j] / kp
+                                                              : std::pow(F_[j] / kp, 1.0 / sc_.contact.penalty_exponent);
+        MTs.col(i) = mk_.MinvTt().col(j);
+        for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, set[l]);
+      }
+      y_.head(n_) -= MTs * Wss.completeOrthogonalDecomposition().solve(s);
+      V0_ = potential(0.0, y_);  // the ledger starts from the shifted state
+    }
+    forces(0.0, y_, F_);
+    for (int j = 0; j < m_; ++j) active_[j] = F_[j] > 0.0;
+    // every gap is a root: the law's kink
+    eng_->set_roots(m_, [this](double t, const double* y, double* g) {
+      const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
+      yv_ = Y;
+      const CamMotion cm = cam_at(t);
+      for (int j = 0; j < m_; ++j) g[j] = gap(j, yv_, cm);
+    });
+    eng_->reinit(t_, y_);
+    Eigen::VectorXd y1(2 * n_), Fprev;
+    while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+      const double tout = next_output_time();
+      Fprev = F_;
+      const double Pw_prev = cam_power(F_, cam_at(t_));
+      const double P_prev = dissipation_power(t_, y_);
+      const double t1 = eng_->advance(tout, y1);
+      const double h = t1 - t_;
+      t_ = t1;
+      y_ = y1;
+      forces(t_, y_, F_);
+      const CamMotion cm = cam_at(t_);
+      for (int j = 0; j < m_; ++j) {
+        const bool now = F_[j] > 0.0 || (eng_->hit_root() && eng_->root_info()[j] < 0);
+        if (!active_[j] && now) {
+          ++sum_.impacts;
+          record_event("impact", j, -gap_rate(j, y_, cm));
+        } else if (active_[j] && !now) {
+          ++sum_.separations;
+          record_event("separation", j, 0.0);
+        }
+        active_[j] = now;
+      }
+      if (eng_->hit_root()) eng_->reinit(t_, y_);  // the law's kink: restart the history
+      after_step(h, 0.5 * h * (Pw_prev + cam_power(F_, cm)), P_prev);
+    }
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<NetworkRun> make_network_penalty(const Scene& sc, std::shared_ptr<const Mechanism> mech,
+                                                 Observer* obs, const std::atomic<bool>* stop) {
+  return std::make_unique<NetworkPenalty>(sc, std::move(mech), obs, stop);
+}
+
+}  // namespace detail
+}  // namespace camdyn

@@ -1,0 +1,387 @@
+// camdyn — the run machinery of the network (several-contact) methods (network_run.hpp).
+#include "network_run.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <stdexcept>
+
+#include "run_context.hpp"  // StepFailure, Clock, fmt
+
+namespace camdyn {
+namespace detail {
+
+NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const Mechanism> mech, Observer* obs,
+                       const std::atomic<bool>* stop)
+    : sc_(sc), mech_(std::move(mech)), mk_(*mech_), cam_(sc.cam), drive_(sc.cam), obs_(obs),
+      stop_(stop), n_(mk_.n()), m_(mk_.m()), designer_(sc, cam_.lift()) {
+  sum_.scene = sc.title;
+  sum_.integrator = to_string(sc.solver.integrator);
+  sum_.contact_model = to_string(sc.contact.model);
+  sum_.model = mk_.description();
+  sum_.min_gap = INFINITY;
+  unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
+}
+
+std::vector<std::string> NetworkRun::extra_columns(const Mechanism& mech) {
+  std::vector<std::string> c;
+  for (const MechanismContact& k : mech.contacts()) {
+    c.push_back("F_" + k.name);
+    c.push_back("gap_" + k.name);
+    c.push_back("in_" + k.name);
+  }
+  for (const std::string& nd : mech.node_names()) {
+    c.push_back("u_" + nd);
+    c.push_back("v_" + nd);
+  }
+  return c;
+}
+
+CamMotion NetworkRun::cam_at(double t) const {
+  return cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
+}
+double NetworkRun::gap(int j, const Eigen::VectorXd& y, const CamMotion& cm) const {
+  const MechanismContact& c = mk_.contacts()[j];
+  return c.t.dot(y.head(n_)) + c.g0 - (c.cam ? cm.X : 0.0);
+}
+double NetworkRun::gap_rate(int j, const Eigen::VectorXd& y, const CamMotion& cm) const {
+  const MechanismContact& c = mk_.contacts()[j];
+  return c.t.dot(y.tail(n_)) - (c.cam ? cm.Xdot : 0.0);
+}
+double NetworkRun::cam_acc(int j, const CamMotion& cm) const {
+  return mk_.contacts()[j].cam ? cm.Xddot : 0.0;
+}
+void NetworkRun::acceleration(const Eigen::VectorXd& y, const Eigen::VectorXd& F,
+                              Eigen::VectorXd& a) const {
+  a.resize(n_);
+  mk_.acceleration(y.data(), y.data() + n_, F, a.data());
+}
+
+Eigen::VectorXd NetworkRun::held_forces(const Eigen::VectorXd& y, const CamMotion& cm,
+                                        const std::vector<int>& set) const {
+  Eigen::VectorXd F = Eigen::VectorXd::Zero(m_);
+  if (set.empty()) return F;
+  Eigen::VectorXd a0;
+  acceleration(y, F, a0);  // free acceleration
+  const int k = int(set.size());
+  Eigen::MatrixXd Wss(k, k);
+  Eigen::VectorXd b(k);
+  for (int i = 0; i < k; ++i) {
+    b[i] = cam_acc(set[i], cm) - mk_.contacts()[set[i]].t.dot(a0);
+    for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(set[i], set[l]);
+  }
+  Eigen::VectorXd Fs;
+  if (k == 1)
+    Fs = b / Wss(0, 0);
+  else
+    Fs = Wss.completeOrthogonalDecomposition().solve(b);
+  for (int i = 0; i < k; ++i) F[set[i]] = Fs[i];
+  return F;
+}
+
+std::vector<int> NetworkRun::active_list() const {
+  std::vector<int> a;
+  for (int j = 0; j < m_; ++j)
+    if (active_[j]) a.push_back(j);
+  return a;
+}
+
+void NetworkRun::settle_active(const CamMotion& cm) {
+  for (;;) {
+    const std::vector<int> set = active_list();
+    F_ = held_forces(y_, cm, set);
+    if (!unilateral_) return;  // holonomic: contacts never release
+    F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
+    const double thr = 1e-12 * std::max(F_ref_, 1e-300);
+    int worst = -1;
+    for (int j : set)
+      if (F_[j] < -thr && (worst < 0 || F_[j] < F_[worst])) worst = j;
+    if (worst < 0) {
+      for (int j : set) F_[j] = std::max(F_[j], 0.0);
+      return;
+    }
+    active_[worst] = 0;
+    ++sum_.separations;
+    record_event("separation", worst, 0.0);
+  }
+}
+
+void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion& cm) {
+  std::vector<int> S = active_list();
+  std::vector<char> stick(m_, 0), is_closing(m_, 0);
+  for (int j : closing) {
+    S.push_back(j);
+    is_closing[j] = 1;
+  }
+  // Gaps of the contacts taking part: closed exactly (the roots are located to the
+  // engine's accuracy); q moves by the smallest M-weighted correction.
+  {
+    const int k = int(S.size());
+    Eigen::MatrixXd Wss(k, k), MTs(n_, k);
+    Eigen::VectorXd g(k);
+    for (int i = 0; i < k; ++i) {
+      g[i] = gap(S[i], y_, cm);
+      MTs.col(i) = mk_.MinvTt().col(S[i]);
+      for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(S[i], S[l]);
+    }
+    y_.head(n_) -= MTs * Wss.completeOrthogonalDecomposition().solve(g);
+  }
+  const double T_before = mk_.kinetic_energy(y_.data() + n_);
+  Eigen::VectorXd gd(m_);
+  for (int j = 0; j < m_; ++j) gd[j] = gap_rate(j, y_, cm);
+  Eigen::VectorXd a_free;
+  acceleration(y_, Eigen::VectorXd::Zero(m_), a_free);
+  for (int j : closing) {
+    const double approach = -gd[j];
+    const double e = mk_.contacts()[j].restitution;
+    if (v_impact_ref_ == 0.0 && approach > 0.0) v_impact_ref_ = approach;
+    const double rel_acc = std::abs(mk_.contacts()[j].t.dot(a_free) - cam_acc(j, cm));
+    const double v_stick = std::max(1e-6 * v_impact_ref_, 4.0 * std::sqrt(2.0 * rel_acc * 1e-3 * sc_.contact.tol_u));
+    stick[j] = !unilateral_ || e == 0.0 || (1.0 + e) * approach < v_stick;
+  }
+  Eigen::VectorXd P = Eigen::VectorXd::Zero(m_);
+  for (;;) {
+    const int k = int(S.size());
+    if (k == 0) break;
+    Eigen::MatrixXd Wss(k, k);
+    Eigen::VectorXd rhs(k);
+    for (int i = 0; i < k; ++i) {
+      const int j = S[i];
+      const double target = is_closing[j] && !stick[j] ? -mk_.contacts()[j].restitution * gd[j] : 0.0;
+      rhs[i] = target - gd[j];
+      for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, S[l]);
+    }
+    const Eigen::VectorXd Ps = Wss.completeOrthogonalDecomposition().solve(rhs);
+    int worst = -1;
+    const double thr = 1e-12 * std::max(1.0, Ps.cwiseAbs().maxCoeff());
+    for (int i = 0; i < k; ++i)
+      if (unilateral_ && Ps[i] < -thr && (worst < 0 || Ps[i] < Ps[worst])) worst = i;
+    if (worst < 0) {
+      P.setZero();
+      for (int i = 0; i < k; ++i) P[S[i]] = std::max(Ps[i], unilateral_ ? 0.0 : Ps[i]);
+      break;
+    }
+    S.erase(S.begin() + worst);  // it would pull: it leaves (or stays open)
+  }
+  y_.tail(n_) += mk_.MinvTt() * P;
+  const double T_after = mk_.kinetic_energy(y_.data() + n_);
+  const double W_imp = cam_power(P, cm);  // Σ_cam P_j Ẋ_C
+  work_ += W_imp;
+  dissipated_ += W_imp - (T_after - T_before);
+  for (int j : closing) {
+    if (-gd[j] > 0.0) {
+      ++sum_.impacts;
+      record_event("impact", j, -gd[j], P[j]);
+    }
+    if (stick[j] && std::find(S.begin(), S.end(), j) != S.end()) active_[j] = 1;
+  }
+  for (int j = 0; j < m_; ++j)  // active contacts left out of S separate
+    if (active_[j] && !is_closing[j] && std::find(S.begin(), S.end(), j) == S.end()) {
+      active_[j] = 0;
+      ++sum_.separations;
+      record_event("separation", j, 0.0);
+    }
+  settle_active(cm);
+}
+
+double NetworkRun::potential(double t, const Eigen::VectorXd& y) const {
+  return mk_.potential_energy(y.data()) + contact_potential(t, y.data());
+}
+double NetworkRun::dissipation_power(double t, const Eigen::VectorXd& y) const {
+  return mk_.damping_power(y.data() + n_) + contact_dissipation(t, y);
+}
+double NetworkRun::cam_power(const Eigen::VectorXd& F, const CamMotion& cm) const {
+  double p = 0.0;
+  for (int j = 0; j < m_; ++j)
+    if (mk_.contacts()[j].cam) p += F[j] * cm.Xdot;
+  return p;
+}
+
+void NetworkRun::emit_row() { emit_row_at(t_, y_, F_, active_, work_, dissipated_); }
+
+void NetworkRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F,
+                             const std::vector<char>& active, double W, double D) {
+  const int p = mk_.primary();
+  const CamMotion cm = cam_at(t);
+  Eigen::VectorXd a;
+  acceleration(y, F, a);
+  const MechanismContact& c = mk_.contacts()[p];
+  HistoryRow r;
+  r.t = t;
+  r.theta = drive_.theta(t);
+  r.u_c = c.t.dot(y.head(n_)) + c.g0;
+  r.v_c = c.t.dot(y.tail(n_));
+  r.a_c = c.t.dot(a);
+  r.contact_force = F[p];
+  r.gap = gap(p, y, cm);
+  r.in_contact = active[p] ? 1 : 0;
+  r.kinetic = mk_.kinetic_energy(y.data() + n_);
+  r.potential = potential(t, y) - V0_;
+  r.work_cam = W;
+  r.dissipated = D;
+  r.extra.reserve(3 * m_ + 2 * mk_.node_names().size());
+  for (int j = 0; j < m_; ++j) {
+    r.extra.push_back(F[j]);
+    r.extra.push_back(gap(j, y, cm));
+    r.extra.push_back(active[j] ? 1.0 : 0.0);
+  }
+  const Eigen::VectorXd u = mk_.L() * y.head(n_), v = mk_.L() * y.tail(n_);
+  for (Eigen::Index i = 0; i < u.size(); ++i) {
+    r.extra.push_back(u[i]);
+    r.extra.push_back(v[i]);
+  }
+  last_row_t_ = t;
+  if (obs_) obs_->on_row(r);
+}
+
+void NetworkRun::record_event(const char* kind, int contact, double v, double impulse,
+                              double t_event) {
+  const double te = std::isnan(t_event) ? t_ : t_event;
+  ContactEvent e{te, kind, v, drive_.theta(te), impulse, mk_.contacts()[contact].name};
+  if (contact == mk_.primary()) designer_.event(e);
+  sum_.events.push_back(e);
+  if (obs_) obs_->on_event(e);
+}
+
+void NetworkRun::after_step(double h, double dW, double P_prev, double P_end) {
+  ++sum_.steps;
+  const CamMotion cm = cam_at(t_);
+  const double P = std::isnan(P_end) ? dissipation_power(t_, y_) : P_end;
+  work_ += dW;
+  dissipated_ += 0.5 * h * (P_prev + P);
+  for (int j = 0; j < m_; ++j) {
+    const double g = gap(j, y_, cm);
+    sum_.min_gap = std::min(sum_.min_gap, g);
+    sum_.max_penetration = std::max(sum_.max_penetration, -g);
+    sum_.max_contact_force = std::max(sum_.max_contact_force, F_[j]);
+  }
+  const int p = mk_.primary();
+  const MechanismContact& c = mk_.contacts()[p];
+  Eigen::VectorXd a;
+  acceleration(y_, F_, a);
+  const double th = drive_.theta(t_);
+  designer_.step(t_, th, c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.tail(n_)), c.t.dot(a), gap(p, y_, cm));
+  if (active_[p]) designer_.sample_force(t_, th, F_[p]);
+  if (out_dt() <= 0.0) {
+    emit_row();
+  } else {
+    while (next_out_ * out_dt() <= t_ * (1 + 1e-12) + 1e-300 &&
+           next_out_ * out_dt() <= sc_.run.t_end * (1 + 1e-12)) {
+      const double to = double(next_out_) * out_dt();
+      ++next_out_;
+      if (!(to < t_ && dense_row_at(to))) emit_row();
+    }
+    if (t_ >= sc_.run.t_end && last_row_t_ < t_) emit_row();
+  }
+  if (stop_ && stop_->load()) throw StepFailure(stop_reason_);
+  if (sum_.steps + sum_.rejected_steps > sc_.run.max_steps)
+    throw StepFailure("run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
+  if (!y_.allFinite() || !F_.allFinite()) throw StepFailure("non-finite state");
+  if (obs_ && (sum_.steps & 255) == 0) obs_->on_progress(t_, sc_.run.t_end, sum_.steps);
+}
+
+double NetworkRun::fit_step(double h, double t_next) const {
+  double hs = std::min(h, t_next - t_);
+  if (sc_.solver.max_step > 0) hs = std::min(hs, sc_.solver.max_step);
+  const double rem = t_next - t_;
+  if (rem - hs < 1e-6 * hs)
+    hs = rem;
+  else if (rem < 2.0 * hs)
+    hs = 0.5 * rem;
+  if (hs <= 1e-14 * std::max(1.0, std::abs(t_)))
+    throw StepFailure("step size underflow (h = " + fmt(hs) + ")");
+  return hs;
+}
+
+double NetworkRun::initial_step() const {
+  if (sc_.solver.initial_step > 0) return sc_.solver.initial_step;
+  return std::min(1e-4, sc_.run.t_end / 100.0);
+}
+
+double NetworkRun::next_output_time() const {
+  return out_dt() > 0 ? std::min(sc_.run.t_end, double(next_out_) * out_dt()) : sc_.run.t_end;
+}
+
+Summary NetworkRun::run() {
+  Clock clock;
+  y_.resize(2 * n_);
+  y_.head(n_) = mk_.q0();
+  y_.tail(n_) = mk_.v0();
+  t_ = 0.0;
+  F_ = Eigen::VectorXd::Zero(m_);
+  active_.assign(m_, 0);
+  // Closed contacts at t = 0 (gap ≤ 0 and not opening) start active with the forces of
+  // the acceleration level; the ones that would pull are released at once.
+  const CamMotion cm0 = cam_at(0.0);
+  const double gtol = 1e-12 * std::max(1.0, y_.head(n_).cwiseAbs().maxCoeff());
+  for (int j = 0; j < m_; ++j)
+    if (gap(j, y_, cm0) <= gtol && gap_rate(j, y_, cm0) <= gtol) active_[j] = 1;
+  V0_ = potential(0.0, y_);
+  E0_ = mk_.kinetic_energy(y_.data() + n_) + V0_;
+  settle_active(cm0);
+  emit_row();
+  {
+    const int p = mk_.primary();
+    const MechanismContact& c = mk_.contacts()[p];
+    Eigen::VectorXd a;
+    acceleration(y_, F_, a);
+    designer_.step(0.0, drive_.theta(0.0), c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.tail(n_)),
+                   c.t.dot(a), gap(p, y_, cm0));
+  }
+  next_out_ = 1;
+  try {
+    run_method();
+    sum_.finished = true;
+    sum_.message = "finished";
+  } catch (const std::exception& e) {
+    sum_.finished = false;
+    sum_.message = "at t = " + fmt(t_) + ": " + e.what();
+    if (last_row_t_ < t_) emit_row();
+  }
+  sum_.t_end = t_;
+  for (const auto& e : engines_) {
+    sum_.rhs_evals += e->stats().rhs_evals;
+    sum_.lin_setups += e->stats().lin_setups;
+  }
+  sum_.cpu_seconds = clock.cpu();
+  sum_.wall_seconds = clock.wall();
+  if (!std::isfinite(sum_.min_gap)) sum_.min_gap = 0.0;
+  const double E = mk_.kinetic_energy(y_.data() + n_) + potential(t_, y_);
+  sum_.energy_residual = std::abs(work_ - (E - E0_) - dissipated_);
+  designer_.finish(sum_);
+  return sum_;
+}
+
+}  // namespace detail
+}  // namespace camdyn
+
+namespace camdyn {
+namespace detail {
+
+std::unique_ptr<NetworkRun> make_network_lee(const Scene&, std::shared_ptr<const Mechanism>, Observer*,
+                                             const std::atomic<bool>*);
+std::unique_ptr<NetworkRun> make_network_penalty(const Scene&, std::shared_ptr<const Mechanism>,
+                                                 Observer*, const std::atomic<bool>*);
+std::unique_ptr<NetworkRun> make_network_event(const Scene&, std::shared_ptr<const Mechanism>,
+                                               Observer*, const std::atomic<bool>*);
+
+// The network methods: Lee's located step (lee; holonomic = Lee with contacts that never
+// release), the penalty baseline, the event-driven method.
+std::unique_ptr<NetworkRun> make_network_method(const Scene& scene, std::shared_ptr<const Mechanism> mech,
+                                                Observer* obs, const std::atomic<bool>* stop) {
+  switch (scene.contact.model) {
+    case ContactModel::Lee:
+    case ContactModel::Holonomic:
+      return make_network_lee(scene, std::move(mech), obs, stop);
+    case ContactModel::Penalty:
+      return make_network_penalty(scene, std::move(mech), obs, stop);
+    case ContactModel::Event:
+      return make_network_event(scene, std::move(mech), obs, stop);
+  }
+  throw std::logic_error("no network method for this contact.model");
+}
+
+}  // namespace detail
+}  // namespace camdyn

@@ -1,0 +1,126 @@
+// camdyn (private) — the run machinery of the several-contact (network) methods:
+//
+//   scene (follower.kind = "network") → Mechanism (src/mechanism.hpp) → OdeEngine
+//   (src/ode_engine.hpp) + a network contact method (a NetworkRun subclass, one file each:
+//   network_lee.cpp, network_penalty.cpp, network_event.cpp) → HistoryRow stream + Summary.
+//
+// The state is y = [q; v] over the mechanism's unknowns, F the contact forces (one per
+// contact, ≥ 0), `active` the contacts that are closed and carry force. Shared here: the
+// initial state and its consistent forces, gaps, the acceleration-level forces of an
+// active set, the Newton impact law on several contacts, output rows (standard columns for
+// the primary contact, then per contact and per node), the energy ledger, events,
+// statistics, stop and failure handling.
+#pragma once
+
+#include <Eigen/Core>
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camdyn/cam.hpp"
+#include "camdyn/simulator.hpp"
+#include "designer_stats.hpp"
+#include "mechanism.hpp"
+#include "ode_engine.hpp"
+
+namespace camdyn {
+namespace detail {
+
+class NetworkRun {
+ public:
+  NetworkRun(const Scene& sc, std::shared_ptr<const Mechanism> mech, Observer* obs,
+             const std::atomic<bool>* stop);
+  virtual ~NetworkRun() = default;
+  NetworkRun(const NetworkRun&) = delete;
+  NetworkRun& operator=(const NetworkRun&) = delete;
+  void set_stop_reason(std::string reason) { stop_reason_ = std::move(reason); }
+  Summary run();
+
+  /// Names of HistoryRow::extra for a mechanism.
+  static std::vector<std::string> extra_columns(const Mechanism& mech);
+
+ protected:
+  /// The method's loop over accepted steps from (t_, y_, F_, active_) to t_end.
+  virtual void run_method() = 0;
+  /// Dense output inside the step just accepted (see RunContext); false: step-end row.
+  virtual bool dense_row_at(double /*to*/) { return false; }
+  /// Penalty: energy stored in the contact springs at (t, q), and the power its dampers
+  /// dissipate at (t, y); 0 for the other methods.
+  virtual double contact_potential(double /*t*/, const double* /*q*/) const { return 0.0; }
+  virtual double contact_dissipation(double /*t*/, const Eigen::VectorXd& /*y*/) const { return 0.0; }
+
+  // ---- geometry and forces
+  CamMotion cam_at(double t) const;
+  /// g_j = T_j q + g₀_j − X_C·[cam], ġ_j, and the cam's part of g̈_j (−Ẍ_C·[cam]).
+  double gap(int j, const Eigen::VectorXd& y, const CamMotion& cm) const;
+  double gap_rate(int j, const Eigen::VectorXd& y, const CamMotion& cm) const;
+  double cam_acc(int j, const CamMotion& cm) const;
+  /// a = M⁻¹(f₀ − Kq − Cv + TᵀF).
+  void acceleration(const Eigen::VectorXd& y, const Eigen::VectorXd& F, Eigen::VectorXd& a) const;
+  /// The acceleration level: forces on the contacts of `set` that keep g̈ = 0 there
+  /// (W_SS F_S = Ẍ_C,S − T_S M⁻¹(f₀ − Kq − Cv)), zero elsewhere; least squares of minimum
+  /// norm if W_SS is singular (two contacts on one rigid chain).
+  Eigen::VectorXd held_forces(const Eigen::VectorXd& y, const CamMotion& cm,
+                              const std::vector<int>& set) const;
+  /// Active contacts as a list.
+  std::vector<int> active_list() const;
+  /// F_ from the acceleration level for the active set, releasing (with a separation
+  /// event) every contact whose force would pull (< −thr·scale), most negative first.
+  void settle_active(const CamMotion& cm);
+  /// Resolve an impact at the current state: `closing` contacts (gap ≈ 0, approaching)
+  /// and the active ones take a Newton impulse (g⁺ = −e g⁻ on the closing ones, or 0 when
+  /// they stick; 0 on the active ones), impulses ≥ 0 (a contact whose impulse would pull
+  /// is left out). Sticking contacts join the active set; forces are settled afterwards.
+  /// Records the impacts; books the cam's impulse work and the loss.
+  void resolve_impact(const std::vector<int>& closing, const CamMotion& cm);
+
+  // ---- energies
+  double potential(double t, const Eigen::VectorXd& y) const;
+  double dissipation_power(double t, const Eigen::VectorXd& y) const;
+  /// Σ over cam contacts F_j Ẋ_C.
+  double cam_power(const Eigen::VectorXd& F, const CamMotion& cm) const;
+
+  // ---- output and bookkeeping
+  void emit_row();
+  void emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F,
+                   const std::vector<char>& active, double W, double D);
+  void record_event(const char* kind, int contact, double v, double impulse = 0.0,
+                    double t_event = NAN);
+  /// After an accepted step (state updated): dW the cam's work over the step, P_prev the
+  /// dissipated power at its start (P_end at its end if not the current state's).
+  void after_step(double h, double dW, double P_prev, double P_end = NAN);
+  double fit_step(double h, double t_next) const;
+  double initial_step() const;
+  double out_dt() const { return sc_.run.output_dt; }
+  double next_output_time() const;
+
+  const Scene& sc_;
+  std::shared_ptr<const Mechanism> mech_;
+  const Mechanism& mk_;
+  Cam cam_;
+  CamDrive drive_;
+  Observer* obs_;
+  const std::atomic<bool>* stop_;
+  std::string stop_reason_ = "interrupted (SIGINT)";
+  int n_, m_;
+  DesignerStats designer_;
+  Summary sum_;
+  double t_ = 0, work_ = 0, dissipated_ = 0, E0_ = 0, V0_ = 0, last_row_t_ = -1;
+  Eigen::VectorXd y_, F_;
+  std::vector<char> active_;
+  bool unilateral_ = true;  // false: contact.separation = false or holonomic (never release)
+  long next_out_ = 1;
+  double F_ref_ = 0.0;        // largest contact force so far (force thresholds)
+  double v_impact_ref_ = 0.0;  // first approach velocity (sticking threshold)
+  double last_progress_ = 0;
+  std::vector<std::unique_ptr<OdeEngine>> engines_;  // for the statistics
+};
+
+/// The network method a scene asks for (contact.model: lee | penalty | event | holonomic).
+std::unique_ptr<NetworkRun> make_network_method(const Scene& scene,
+                                                std::shared_ptr<const Mechanism> mech,
+                                                Observer* obs, const std::atomic<bool>* stop);
+
+}  // namespace detail
+}  // namespace camdyn

@@ -1,0 +1,284 @@
+// camdyn — the mechanism builder for network scenes (src/mechanism.hpp has the maths).
+#include "mechanism.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "run_context.hpp"  // detail::fmt
+
+namespace camdyn {
+
+namespace {
+std::string element_label(const ElementSpec& e, size_t i) {
+  return e.name.empty() ? std::string(to_string(e.kind)) + " #" + std::to_string(i) : e.name;
+}
+}  // namespace
+
+Mechanism::Mechanism(const Scene& scene) {
+  using detail::fmt;
+  const NetworkSpec& net = scene.network;
+  std::map<std::string, int> index;  // named node → full DOF
+  for (const NodeSpec& nd : net.nodes) {
+    index[nd.name] = int(node_names_.size());
+    node_names_.push_back(nd.name);
+  }
+  const int n_named = int(node_names_.size());
+  auto dof = [&](const std::string& name) { return name == "ground" ? -1 : index.at(name); };
+
+  // ---- full DOFs: named nodes, then the inside nodes of bars and springs with mass
+  int n_full = n_named;
+  struct Stiff { int a, b; double k, c, P; };  // two-node spring/damper/preload, −1 = ground
+  std::vector<Stiff> links;
+  std::vector<std::pair<int, double>> point_mass;  // (dof, mass)
+  struct MassPair { int a, b; double md, mo; };    // element mass matrix [md mo; mo md]
+  std::vector<MassPair> mass_pairs;
+  std::vector<std::pair<int, std::pair<int, double>>> levers;  // out → (in, ratio)
+  std::vector<std::pair<int, int>> inner_ends;  // per inner node: its chain's end DOFs
+  std::vector<double> inner_frac;               // position along the chain (0 at a, 1 at b)
+  for (size_t i = 0; i < net.nodes.size(); ++i)
+    if (net.nodes[i].mass > 0.0) point_mass.emplace_back(int(i), net.nodes[i].mass);
+  bool any_damping = false, any_preload = false, any_mass_matrix = false;
+  for (size_t ei = 0; ei < net.elements.size(); ++ei) {
+    const ElementSpec& e = net.elements[ei];
+    const int a = dof(e.nodes.at(0)), b = dof(e.nodes.at(1));
+    std::ostringstream d;
+    d << to_string(e.kind) << " '" << element_label(e, ei) << "' [" << e.nodes[0] << " → "
+      << e.nodes[1] << "]";
+    // A chain of `parts` equal segments a → inner … → b; returns the DOFs along it.
+    auto chain = [&](int parts) {
+      std::vector<int> c{a};
+      for (int k = 1; k < parts; ++k) {
+        c.push_back(n_full++);
+        inner_ends.emplace_back(a, b);
+        inner_frac.push_back(double(k) / parts);
+      }
+      c.push_back(b);
+      return c;
+    };
+    switch (e.kind) {
+      case ElementKind::Spring:
+      case ElementKind::Dashpot: {
+        const double k = e.kind == ElementKind::Spring ? e.stiffness : 0.0;
+        const double P = e.kind == ElementKind::Spring ? e.preload : 0.0;
+        any_damping |= e.damping != 0.0;
+        any_preload |= P != 0.0;
+        if (e.kind == ElementKind::Spring && e.masses > 0) {
+          const int parts = e.masses + 1;
+          const std::vector<int> c = chain(parts);
+          const double ms = e.mass / parts;
+          for (int s = 0; s < parts; ++s) {
+            links.push_back({c[s], c[s + 1], k * parts, e.damping * parts, P});
+            mass_pairs.push_back({c[s], c[s + 1], 0.5 * ms, 0.0});
+          }
+          d << " k " << fmt(k) << ", preload " << fmt(P) << ", mass " << fmt(e.mass) << " in "
+            << e.masses << " masses";
+        } else {
+          links.push_back({a, b, k, e.damping, P});
+          if (e.kind == ElementKind::Spring) d << " k " << fmt(k) << ", preload " << fmt(P);
+        }
+        if (e.damping != 0.0) d << ", c " << fmt(e.damping);
+        break;
+      }
+      case ElementKind::Bar: {
+        const int N = e.elements;
+        const std::vector<int> c = chain(N);
+        const double h = e.length / N, ke = e.youngs_modulus * e.area / h, me = e.mass / N;
+        const bool lumped = e.mass_matrix == BarMass::Lumped;
+        any_mass_matrix |= !lumped;
+        any_damping |= e.rayleigh_alpha != 0.0 || e.rayleigh_beta != 0.0;
+        for (int s = 0; s < N; ++s) {
+          const double md = lumped ? me / 2 : me / 3, mo = lumped ? 0.0 : me / 6;
+          // Rayleigh on the element: c = α·(mass part) + β·ke (the mass part's
+          // off-diagonal enters C through mass_pairs below)
+          links.push_back({c[s], c[s + 1], ke, e.rayleigh_beta * ke, 0.0});
+          mass_pairs.push_back({c[s], c[s + 1], md, mo});
+          if (e.rayleigh_alpha != 0.0) {
+            // C += α Mₑ, written as a link with c = −α·mo (off-diagonal) plus diagonal terms
+            links.push_back({c[s], c[s + 1], 0.0, -e.rayleigh_alpha * mo, 0.0});
+            // diagonal α(md + mo) on both ends: a damper to ground at each end
+            links.push_back({c[s], -1, 0.0, e.rayleigh_alpha * (md + mo), 0.0});
+            links.push_back({c[s + 1], -1, 0.0, e.rayleigh_alpha * (md + mo), 0.0});
+          }
+        }
+        d << " " << N << " elements, EA " << fmt(e.youngs_modulus * e.area) << ", L "
+          << fmt(e.length) << ", mass " << fmt(e.mass) << (lumped ? " lumped" : " consistent");
+        break;
+      }
+      case ElementKind::Lever:
+        levers.push_back({b, {a, e.ratio}});
+        d << " ratio " << fmt(e.ratio);
+        break;
+    }
+    desc_.network.push_back(d.str());
+  }
+
+  // ---- assemble over full DOFs
+  Eigen::MatrixXd Mf = Eigen::MatrixXd::Zero(n_full, n_full), Kf = Mf, Cf = Mf;
+  Eigen::VectorXd ff = Eigen::VectorXd::Zero(n_full);
+  auto add2 = [](Eigen::MatrixXd& A, int a, int b, double x) {
+    // x [1 −1; −1 1] on (a, b); ground rows/columns dropped
+    if (a >= 0) A(a, a) += x;
+    if (b >= 0) A(b, b) += x;
+    if (a >= 0 && b >= 0) {
+      A(a, b) -= x;
+      A(b, a) -= x;
+    }
+  };
+  for (const Stiff& l : links) {
+    add2(Kf, l.a, l.b, l.k);
+    add2(Cf, l.a, l.b, l.c);
+    if (l.a >= 0) ff[l.a] -= l.P;
+    if (l.b >= 0) ff[l.b] += l.P;
+  }
+  for (const auto& pm : point_mass) Mf(pm.first, pm.first) += pm.second;
+  for (const MassPair& p : mass_pairs) {
+    if (p.a >= 0) Mf(p.a, p.a) += p.md;
+    if (p.b >= 0) Mf(p.b, p.b) += p.md;
+    if (p.a >= 0 && p.b >= 0) {
+      Mf(p.a, p.b) += p.mo;
+      Mf(p.b, p.a) += p.mo;
+    }
+  }
+
+  // ---- levers: q_full = Lf q (outputs expressed through their inputs)
+  std::vector<int> red(n_full, -1);
+  std::map<int, std::pair<int, double>> dep;
+  for (const auto& lv : levers) dep[lv.first] = lv.second;
+  n_ = 0;
+  for (int i = 0; i < n_full; ++i)
+    if (!dep.count(i)) red[i] = n_++;
+  Eigen::MatrixXd Lf = Eigen::MatrixXd::Zero(n_full, n_);
+  std::function<Eigen::RowVectorXd(int, int)> expr = [&](int i, int depth) -> Eigen::RowVectorXd {
+    if (depth > n_full) throw std::invalid_argument("levers form a cycle");
+    if (i < 0) return Eigen::RowVectorXd::Zero(n_);
+    auto it = dep.find(i);
+    if (it == dep.end()) {
+      Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(n_);
+      r[red[i]] = 1.0;
+      return r;
+    }
+    return it->second.second * expr(it->second.first, depth + 1);
+  };
+  for (int i = 0; i < n_full; ++i) Lf.row(i) = expr(i, 0);
+  M_ = Lf.transpose() * Mf * Lf;
+  K_ = Lf.transpose() * Kf * Lf;
+  if (any_damping) C_ = Lf.transpose() * Cf * Lf;
+  f0_ = Lf.transpose() * ff;
+  L_ = Lf.topRows(n_named);
+
+  Eigen::LLT<Eigen::MatrixXd> llt(M_);
+  if (llt.info() != Eigen::Success)
+    throw std::invalid_argument("network: the mass matrix is not positive definite (a node without mass)");
+  Minv_ = llt.solve(Eigen::MatrixXd::Identity(n_, n_));
+  MinvK_ = Minv_ * K_;
+  if (any_damping) MinvC_ = Minv_ * C_;
+  Minvf0_ = Minv_ * f0_;
+
+  // ---- contacts
+  primary_ = -1;
+  for (const ContactPointSpec& cs : net.contacts) {
+    MechanismContact c;
+    c.name = cs.name;
+    c.kind = cs.kind;
+    Eigen::RowVectorXd tf = Eigen::RowVectorXd::Zero(n_full);
+    const int a = dof(cs.nodes.at(0));
+    std::ostringstream d;
+    d << "contact '" << cs.name << "' (" << to_string(cs.kind) << ", ";
+    switch (cs.kind) {
+      case ContactPointKind::Cam:
+        tf[a] = 1.0;
+        c.cam = true;
+        d << "cam on " << cs.nodes[0];
+        break;
+      case ContactPointKind::Lash:
+        tf[dof(cs.nodes.at(1))] = 1.0;
+        tf[a] -= 1.0;
+        d << cs.nodes[0] << " below " << cs.nodes[1];
+        break;
+      case ContactPointKind::Stop:
+        tf[a] = cs.side == StopSide::Below ? 1.0 : -1.0;
+        d << "stop " << to_string(cs.side) << " " << cs.nodes[0];
+        break;
+    }
+    c.g0 = cs.clearance;
+    c.t = tf * Lf;
+    c.restitution = cs.restitution.value_or(scene.contact.restitution);
+    c.penalty_stiffness = cs.penalty_stiffness.value_or(scene.contact.penalty_stiffness);
+    c.penalty_damping = cs.penalty_damping.value_or(scene.contact.penalty_damping);
+    d << ", clearance " << fmt(c.g0) << ", e " << fmt(c.restitution) << ")";
+    desc_.network.push_back(d.str());
+    if (primary_ < 0 && c.cam) primary_ = int(contacts_.size());
+    contacts_.push_back(std::move(c));
+  }
+  if (primary_ < 0) primary_ = 0;
+  T_.resize(m(), n_);
+  for (int j = 0; j < m(); ++j) T_.row(j) = contacts_[j].t;
+  MinvTt_ = Minv_ * T_.transpose();
+  W_ = T_ * MinvTt_;
+
+  // ---- initial state: named nodes as given, inside nodes linear between their ends
+  Eigen::VectorXd qf = Eigen::VectorXd::Zero(n_full), vf = qf;
+  for (int i = 0; i < n_named; ++i) {
+    qf[i] = net.nodes[i].initial_displacement;
+    vf[i] = net.nodes[i].initial_velocity;
+  }
+  for (size_t k = 0; k < inner_ends.size(); ++k) {
+    const int i = n_named + int(k), a = inner_ends[k].first, b = inner_ends[k].second;
+    const double x = inner_frac[k];
+    qf[i] = (1 - x) * (a >= 0 ? qf[a] : 0.0) + x * (b >= 0 ? qf[b] : 0.0);
+    vf[i] = (1 - x) * (a >= 0 ? vf[a] : 0.0) + x * (b >= 0 ? vf[b] : 0.0);
+  }
+  q0_.resize(n_);
+  v0_.resize(n_);
+  for (int i = 0; i < n_full; ++i)
+    if (red[i] >= 0) {
+      q0_[red[i]] = qf[i];
+      v0_[red[i]] = vf[i];
+    }
+
+  desc_.follower = "network";
+  desc_.nodes = n_;
+  desc_.unknowns = 2 * n_;
+  desc_.mass = any_mass_matrix ? "consistent" : "lumped";
+  desc_.sparse = false;
+  desc_.linear_solver = scene.solver.integrator == Integrator::ArkodeErk ? "none" : "dense";
+  desc_.damping = any_damping;
+  desc_.preload = any_preload;
+  desc_.contact = "unilateral × " + std::to_string(m());
+  desc_.rhs_terms = {"inertia"};
+  if (K_.size() && K_.cwiseAbs().maxCoeff() > 0) desc_.rhs_terms.push_back("stiffness");
+  if (any_preload) desc_.rhs_terms.push_back("preload");
+  if (any_damping) desc_.rhs_terms.push_back("damping");
+  if (!levers.empty()) desc_.rhs_terms.push_back("levers");
+  desc_.rhs_terms.push_back("contacts");
+}
+
+void Mechanism::acceleration(const double* q, const double* v, const Eigen::VectorXd& F, double* a,
+                             bool homogeneous) const {
+  Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
+  Eigen::Map<Eigen::VectorXd> A(a, n_);
+  A.noalias() = -MinvK_ * Q;
+  if (!homogeneous) A += Minvf0_;
+  if (damped()) A.noalias() -= MinvC_ * V;
+  if (F.size()) A.noalias() += MinvTt_ * F;
+}
+
+double Mechanism::kinetic_energy(const double* v) const {
+  Eigen::Map<const Eigen::VectorXd> V(v, n_);
+  return 0.5 * V.dot(M_ * V);
+}
+double Mechanism::potential_energy(const double* q) const {
+  Eigen::Map<const Eigen::VectorXd> Q(q, n_);
+  return 0.5 * Q.dot(K_ * Q) - f0_.dot(Q);
+}
+double Mechanism::damping_power(const double* v) const {
+  if (!damped()) return 0.0;
+  Eigen::Map<const Eigen::VectorXd> V(v, n_);
+  return V.dot(C_ * V);
+}
+
+}  // namespace camdyn

@@ -1,0 +1,92 @@
+// camdyn (private) — a mechanism with several contacts, assembled from a network scene
+// (include/camdyn/network.hpp, docs/interface.md "Networks").
+//
+//   M q̈ + C q̇ + K q = f₀ + Tᵀ F,     F ≥ 0 (one entry per contact)
+//   gap of contact j:  g_j = T_j q + g₀_j − X_C(t)·[j touches the cam]
+//
+//   Assembly over the network's nodes (ground dropped), then levers eliminated:
+//     q_full = L q  (a lever's output node is ratio × its input node; chains resolved),
+//     M = LᵀM_f L, C = LᵀC_f L, K = LᵀK_f L, f₀ = Lᵀf₀_f, T = T_f L.
+//   spring [a, b] (δ = q_a − q_b):  K_f += k[1 −1; −1 1], C_f += c[…], f₀_f += P(−e_a + e_b)
+//   spring with mass m_s, N masses: N + 1 springs of (N + 1)k (and (N + 1)c) in series,
+//     masses m_s/(N + 1) inside, m_s/(2(N + 1)) added on each end node (a lumped bar).
+//   bar (N elements, h = L/N, mₑ = m/N): Kₑ = EA/h[1 −1; −1 1], Mₑ = mₑ/6[2 1; 1 2] or
+//     mₑ/2 I, C += αMₑ + βKₑ.
+//   W = T M⁻¹ Tᵀ (m × m): the contacts' inverse mass matrix (Lee's M* for several contacts).
+//
+// Networks are small (a valve train has a handful to a few hundred unknowns): dense
+// matrices, M⁻¹ from one Cholesky factorisation. Only what the scene asks for is built
+// (C only if some element damps; the description lists the assembled network).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "camdyn/model_description.hpp"
+#include "camdyn/scene.hpp"
+
+namespace camdyn {
+
+/// One contact of a mechanism: a row of T.
+struct MechanismContact {
+  std::string name;
+  ContactPointKind kind = ContactPointKind::Cam;
+  Eigen::RowVectorXd t;  ///< row of T over the unknowns
+  double g0 = 0.0;       ///< gap at q = 0 (and X_C = 0)
+  bool cam = false;      ///< the cam's lift X_C(t) enters the gap
+  double restitution = 0.0, penalty_stiffness = 0.0, penalty_damping = 0.0;
+};
+
+class Mechanism {
+ public:
+  /// @pre validate(scene) passed and scene.follower.kind == Network.
+  /// @throws std::invalid_argument on a mass matrix that is not positive definite.
+  explicit Mechanism(const Scene& scene);
+
+  int n() const { return n_; }  ///< unknowns (after lever elimination)
+  int m() const { return int(contacts_.size()); }
+  const Eigen::MatrixXd& M() const { return M_; }
+  const Eigen::MatrixXd& K() const { return K_; }
+  const Eigen::MatrixXd& C() const { return C_; }  ///< zero-sized if undamped
+  bool damped() const { return C_.size() > 0; }
+  const Eigen::VectorXd& f0() const { return f0_; }
+  const Eigen::MatrixXd& Minv() const { return Minv_; }
+  /// M⁻¹K, M⁻¹C (empty if undamped), M⁻¹f₀, M⁻¹Tᵀ (n × m).
+  const Eigen::MatrixXd& MinvK() const { return MinvK_; }
+  const Eigen::MatrixXd& MinvC() const { return MinvC_; }
+  const Eigen::VectorXd& Minvf0() const { return Minvf0_; }
+  const Eigen::MatrixXd& MinvTt() const { return MinvTt_; }
+  const Eigen::MatrixXd& T() const { return T_; }  ///< m × n
+  const Eigen::MatrixXd& W() const { return W_; }  ///< T M⁻¹ Tᵀ
+  const std::vector<MechanismContact>& contacts() const { return contacts_; }
+  /// The contact shown in history.csv's standard columns: the first cam contact (or 0).
+  int primary() const { return primary_; }
+
+  /// Named nodes (scene order) and their displacement q_node = L_row · q.
+  const std::vector<std::string>& node_names() const { return node_names_; }
+  const Eigen::MatrixXd& L() const { return L_; }  ///< named nodes × unknowns
+
+  const Eigen::VectorXd& q0() const { return q0_; }
+  const Eigen::VectorXd& v0() const { return v0_; }
+
+  /// a = M⁻¹(f₀ − Kq − Cv + TᵀF) (F over all contacts; homogeneous: without f₀).
+  void acceleration(const double* q, const double* v, const Eigen::VectorXd& F, double* a,
+                    bool homogeneous = false) const;
+  double kinetic_energy(const double* v) const;
+  /// ½qᵀKq − f₀ᵀq (up to a constant).
+  double potential_energy(const double* q) const;
+  double damping_power(const double* v) const;
+
+  const ModelDescription& description() const { return desc_; }
+
+ private:
+  int n_ = 0, primary_ = 0;
+  Eigen::MatrixXd M_, K_, C_, Minv_, MinvK_, MinvC_, MinvTt_, T_, W_, L_;
+  Eigen::VectorXd f0_, Minvf0_, q0_, v0_;
+  std::vector<MechanismContact> contacts_;
+  std::vector<std::string> node_names_;
+  ModelDescription desc_;
+};
+
+}  // namespace camdyn
