@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <system_error>
@@ -443,9 +444,47 @@ std::string scene_json(const Scene& s, int indent) {
       case SceneEntry::Kind::Bool: w.boolean(e.key, e.boolean); break;
       case SceneEntry::Kind::Str: w.str(e.key, e.text); break;
       case SceneEntry::Kind::Array: w.nums(e.key, e.array); break;
+      case SceneEntry::Kind::Names: w.strs(e.key, e.names); break;
     }
   });
   close_table();
+  // The network (follower.kind = "network"): "nodes", "elements", "contacts" as arrays of
+  // objects with the keys of the scene file. Absent for the other follower kinds.
+  if (s.follower.kind == FollowerKind::Network || !s.network.nodes.empty() || !s.network.elements.empty() ||
+      !s.network.contacts.empty()) {
+    std::map<std::string, std::vector<std::string>> objects;
+    for_each_network_entry(s, [&](const std::string& array, std::size_t, const std::vector<SceneEntry>& keys) {
+      std::string body;
+      JsonObject w(body, o.child_indent() + 2);
+      for (const auto& e : keys) {
+        switch (e.kind) {
+          case SceneEntry::Kind::Real: w.num(e.key, e.real); break;
+          case SceneEntry::Kind::Int: w.integer(e.key, e.integer); break;
+          case SceneEntry::Kind::Bool: w.boolean(e.key, e.boolean); break;
+          case SceneEntry::Kind::Str: w.str(e.key, e.text); break;
+          case SceneEntry::Kind::Array: w.nums(e.key, e.array); break;
+          case SceneEntry::Kind::Names: w.strs(e.key, e.names); break;
+        }
+      }
+      w.close();
+      objects[array].push_back(std::move(body));
+    });
+    for (const char* array : {"nodes", "elements", "contacts"}) {
+      const auto& list = objects[array];
+      std::string a = "[";
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        a += i ? ",\n" : "\n";
+        a.append(static_cast<std::size_t>(o.child_indent() + 2), ' ');
+        a += list[i];
+      }
+      if (!list.empty()) {
+        a += '\n';
+        a.append(static_cast<std::size_t>(o.child_indent()), ' ');
+      }
+      a += ']';
+      o.raw(array, a);
+    }
+  }
   o.str("source", s.source);
   o.close();
   return out;

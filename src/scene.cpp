@@ -7,6 +7,7 @@
 #include "camdyn/scene.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -36,7 +37,8 @@ struct EnumName {
 constexpr EnumName<CamProfileKind> kProfileNames[] = {
     {CamProfileKind::Points, "points"}, {CamProfileKind::Lift, "lift"}, {CamProfileKind::Circle, "circle"}};
 constexpr EnumName<FollowerKind> kFollowerNames[] = {{FollowerKind::Rigid, "rigid"},
-                                                     {FollowerKind::ElasticBar, "elastic_bar"}};
+                                                     {FollowerKind::ElasticBar, "elastic_bar"},
+                                                     {FollowerKind::Network, "network"}};
 constexpr EnumName<MassMatrixKind> kMassNames[] = {{MassMatrixKind::Consistent, "consistent"},
                                                    {MassMatrixKind::Lumped, "lumped"}};
 constexpr EnumName<ContactModel> kContactNames[] = {{ContactModel::Lee, "lee"},
@@ -53,6 +55,14 @@ constexpr EnumName<Integrator> kIntegratorNames[] = {{Integrator::ArkodeErk, "ar
                                                      {Integrator::Ida, "ida"}};
 constexpr EnumName<LinearSolverKind> kLinSolNames[] = {
     {LinearSolverKind::Auto, "auto"}, {LinearSolverKind::Dense, "dense"}, {LinearSolverKind::Klu, "klu"}};
+constexpr EnumName<ElementKind> kElementNames[] = {{ElementKind::Spring, "spring"},
+                                                   {ElementKind::Dashpot, "dashpot"},
+                                                   {ElementKind::Bar, "bar"},
+                                                   {ElementKind::Lever, "lever"}};
+constexpr EnumName<ContactPointKind> kContactPointNames[] = {
+    {ContactPointKind::Cam, "cam"}, {ContactPointKind::Lash, "lash"}, {ContactPointKind::Stop, "stop"}};
+constexpr EnumName<StopSide> kStopSideNames[] = {{StopSide::Below, "below"}, {StopSide::Above, "above"}};
+constexpr EnumName<BarMass> kBarMassNames[] = {{BarMass::Lumped, "lumped"}, {BarMass::Consistent, "consistent"}};
 
 template <class E, std::size_t N>
 const char* enum_to_string(const EnumName<E> (&names)[N], E v) {
@@ -89,6 +99,10 @@ const char* to_string(LeeStepKind v) { return enum_to_string(kLeeStepNames, v); 
 const char* to_string(PenaltyLaw v) { return enum_to_string(kPenaltyNames, v); }
 const char* to_string(Integrator v) { return enum_to_string(kIntegratorNames, v); }
 const char* to_string(LinearSolverKind v) { return enum_to_string(kLinSolNames, v); }
+const char* to_string(ElementKind v) { return enum_to_string(kElementNames, v); }
+const char* to_string(ContactPointKind v) { return enum_to_string(kContactPointNames, v); }
+const char* to_string(StopSide v) { return enum_to_string(kStopSideNames, v); }
+const char* to_string(BarMass v) { return enum_to_string(kBarMassNames, v); }
 
 bool parse_enum(std::string_view s, CamProfileKind* out) { return enum_parse(kProfileNames, s, out); }
 bool parse_enum(std::string_view s, FollowerKind* out) { return enum_parse(kFollowerNames, s, out); }
@@ -99,6 +113,10 @@ bool parse_enum(std::string_view s, LeeStepKind* out) { return enum_parse(kLeeSt
 bool parse_enum(std::string_view s, PenaltyLaw* out) { return enum_parse(kPenaltyNames, s, out); }
 bool parse_enum(std::string_view s, Integrator* out) { return enum_parse(kIntegratorNames, s, out); }
 bool parse_enum(std::string_view s, LinearSolverKind* out) { return enum_parse(kLinSolNames, s, out); }
+bool parse_enum(std::string_view s, ElementKind* out) { return enum_parse(kElementNames, s, out); }
+bool parse_enum(std::string_view s, ContactPointKind* out) { return enum_parse(kContactPointNames, s, out); }
+bool parse_enum(std::string_view s, StopSide* out) { return enum_parse(kStopSideNames, s, out); }
+bool parse_enum(std::string_view s, BarMass* out) { return enum_parse(kBarMassNames, s, out); }
 
 // ---------------------------------------------------------------- SceneError
 
@@ -157,9 +175,28 @@ bool operator==(const RunSpec& a, const RunSpec& b) {
          a.max_steps == b.max_steps && a.poincare_angle_deg == b.poincare_angle_deg &&
          a.settle_revolutions == b.settle_revolutions && a.period_tol == b.period_tol;
 }
+bool operator==(const NodeSpec& a, const NodeSpec& b) {
+  return a.name == b.name && a.mass == b.mass && a.initial_displacement == b.initial_displacement &&
+         a.initial_velocity == b.initial_velocity;
+}
+bool operator==(const ElementSpec& a, const ElementSpec& b) {
+  return a.name == b.name && a.kind == b.kind && a.nodes == b.nodes && a.stiffness == b.stiffness &&
+         a.preload == b.preload && a.damping == b.damping && a.mass == b.mass && a.masses == b.masses &&
+         a.youngs_modulus == b.youngs_modulus && a.area == b.area && a.length == b.length &&
+         a.elements == b.elements && a.mass_matrix == b.mass_matrix && a.rayleigh_alpha == b.rayleigh_alpha &&
+         a.rayleigh_beta == b.rayleigh_beta && a.ratio == b.ratio;
+}
+bool operator==(const ContactPointSpec& a, const ContactPointSpec& b) {
+  return a.name == b.name && a.kind == b.kind && a.nodes == b.nodes && a.clearance == b.clearance &&
+         a.side == b.side && a.restitution == b.restitution && a.penalty_stiffness == b.penalty_stiffness &&
+         a.penalty_damping == b.penalty_damping;
+}
+bool operator==(const NetworkSpec& a, const NetworkSpec& b) {
+  return a.nodes == b.nodes && a.elements == b.elements && a.contacts == b.contacts;
+}
 bool operator==(const Scene& a, const Scene& b) {
   return a.title == b.title && a.cam == b.cam && a.follower == b.follower && a.spring == b.spring &&
-         a.contact == b.contact && a.solver == b.solver && a.run == b.run;
+         a.contact == b.contact && a.solver == b.solver && a.run == b.run && a.network == b.network;
 }
 bool operator!=(const Scene& a, const Scene& b) { return !(a == b); }
 
@@ -432,6 +469,7 @@ bool is_table_name(std::string_view s) {
 std::string allowed_top() {
   std::vector<std::string> k{"title"};
   for (const char* t : kTables) k.emplace_back(t);
+  for (const char* a : {"nodes", "elements", "contacts"}) k.emplace_back(a);
   return "allowed keys at top level: " + join(k, ", ");
 }
 
@@ -531,6 +569,293 @@ void read_field(const Field& f, const toml::node& n, Scene& s, const std::string
   }
 }
 
+// ---------------------------------------------------------------- network arrays
+
+// [[nodes]], [[elements]], [[contacts]] (follower.kind = "network"): arrays of tables whose
+// allowed keys depend on the entry's type. Keys of entry i are named "ARRAY[i].KEY" (0-based).
+
+const char* const kNetworkArrays[] = {"nodes", "elements", "contacts"};
+
+bool is_network_array(std::string_view s) {
+  for (const char* a : kNetworkArrays)
+    if (s == a) return true;
+  return false;
+}
+
+const std::vector<std::string>& node_keys() {
+  static const std::vector<std::string> k{"name", "mass", "initial_displacement", "initial_velocity"};
+  return k;
+}
+
+/// Every key an element may have (of some type), in file order.
+const std::vector<std::string>& all_element_keys() {
+  static const std::vector<std::string> k{"name",   "type",          "nodes",          "stiffness",     "preload",
+                                          "damping", "mass",         "masses",         "youngs_modulus", "area",
+                                          "length",  "elements",     "mass_matrix",    "rayleigh_alpha", "rayleigh_beta",
+                                          "ratio"};
+  return k;
+}
+
+std::vector<std::string> element_keys(ElementKind kind) {
+  std::vector<std::string> k{"name", "type", "nodes"};
+  switch (kind) {
+    case ElementKind::Spring: k.insert(k.end(), {"stiffness", "preload", "damping", "mass", "masses"}); break;
+    case ElementKind::Dashpot: k.insert(k.end(), {"damping"}); break;
+    case ElementKind::Bar:
+      k.insert(k.end(), {"mass", "youngs_modulus", "area", "length", "elements", "mass_matrix", "rayleigh_alpha",
+                         "rayleigh_beta"});
+      break;
+    case ElementKind::Lever: k.insert(k.end(), {"ratio"}); break;
+  }
+  return k;
+}
+
+const std::vector<std::string>& all_contact_keys() {
+  static const std::vector<std::string> k{"name",        "type",        "nodes",           "clearance",
+                                          "side",        "restitution", "penalty_stiffness", "penalty_damping"};
+  return k;
+}
+
+std::vector<std::string> contact_keys(ContactPointKind kind) {
+  std::vector<std::string> k{"name", "type", "nodes", "clearance"};
+  if (kind == ContactPointKind::Stop) k.emplace_back("side");
+  k.insert(k.end(), {"restitution", "penalty_stiffness", "penalty_damping"});
+  return k;
+}
+
+bool contains(const std::vector<std::string>& v, std::string_view s) {
+  return std::find(v.begin(), v.end(), s) != v.end();
+}
+
+std::string allowed_in_array(std::string_view array) {
+  if (array == "nodes") return "allowed keys in [[nodes]]: " + join(node_keys(), ", ");
+  if (array == "elements") return "allowed keys in [[elements]]: " + join(all_element_keys(), ", ") + " (by type)";
+  return "allowed keys in [[contacts]]: " + join(all_contact_keys(), ", ") + " (by type)";
+}
+
+/// Builds SceneEntry lists for the writers (for_each_network_entry).
+struct EntryList {
+  std::string table;
+  std::vector<SceneEntry> v;
+  SceneEntry& add(const char* key, SceneEntry::Kind kind) {
+    SceneEntry e;
+    e.table = table;
+    e.key = key;
+    e.kind = kind;
+    v.push_back(std::move(e));
+    return v.back();
+  }
+  void real(const char* key, double x) { add(key, SceneEntry::Kind::Real).real = x; }
+  void integer(const char* key, long long x) { add(key, SceneEntry::Kind::Int).integer = x; }
+  void str(const char* key, const std::string& x) { add(key, SceneEntry::Kind::Str).text = x; }
+  void names(const char* key, const std::vector<std::string>& x) { add(key, SceneEntry::Kind::Names).names = x; }
+};
+
+std::vector<SceneEntry> node_entries(const NodeSpec& n) {
+  EntryList l{"nodes", {}};
+  l.str("name", n.name);
+  l.real("mass", n.mass);
+  l.real("initial_displacement", n.initial_displacement);
+  l.real("initial_velocity", n.initial_velocity);
+  return std::move(l.v);
+}
+
+std::vector<SceneEntry> element_entries(const ElementSpec& e) {
+  EntryList l{"elements", {}};
+  if (!e.name.empty()) l.str("name", e.name);
+  l.str("type", to_string(e.kind));
+  l.names("nodes", e.nodes);
+  switch (e.kind) {
+    case ElementKind::Spring:
+      l.real("stiffness", e.stiffness);
+      l.real("preload", e.preload);
+      l.real("damping", e.damping);
+      l.real("mass", e.mass);
+      l.integer("masses", e.masses);
+      break;
+    case ElementKind::Dashpot: l.real("damping", e.damping); break;
+    case ElementKind::Bar:
+      l.real("mass", e.mass);
+      l.real("youngs_modulus", e.youngs_modulus);
+      l.real("area", e.area);
+      l.real("length", e.length);
+      l.integer("elements", e.elements);
+      l.str("mass_matrix", to_string(e.mass_matrix));
+      l.real("rayleigh_alpha", e.rayleigh_alpha);
+      l.real("rayleigh_beta", e.rayleigh_beta);
+      break;
+    case ElementKind::Lever: l.real("ratio", e.ratio); break;
+  }
+  return std::move(l.v);
+}
+
+std::vector<SceneEntry> contact_entries(const ContactPointSpec& c) {
+  EntryList l{"contacts", {}};
+  l.str("name", c.name);
+  l.str("type", to_string(c.kind));
+  l.names("nodes", c.nodes);
+  l.real("clearance", c.clearance);
+  if (c.kind == ContactPointKind::Stop) l.str("side", to_string(c.side));
+  if (c.restitution) l.real("restitution", *c.restitution);
+  if (c.penalty_stiffness) l.real("penalty_stiffness", *c.penalty_stiffness);
+  if (c.penalty_damping) l.real("penalty_damping", *c.penalty_damping);
+  return std::move(l.v);
+}
+
+/// Reads the values of one network entry (strict types, as read_field).
+struct NetReader {
+  const std::string& file;
+  bool use_lines;
+  LineMap& lines;
+
+  int line(const toml::node& n) const { return use_lines ? line_of(n) : 0; }
+  [[noreturn]] void fail_missing(const toml::table& t, const std::string& prefix, const std::string& rule) const {
+    fail(file, line(t), prefix, "{...}", rule);
+  }
+  double real(const toml::node& n, const std::string& key) const {
+    if (auto i = n.as_integer()) return static_cast<double>(i->get());
+    if (auto d = n.as_floating_point()) return d->get();
+    fail(file, line(n), key, fmt_node(n), "must be a number");
+  }
+  int integer(const toml::node& n, const std::string& key, long long lo, long long hi) const {
+    long long v = 0;
+    if (auto i = n.as_integer()) {
+      v = i->get();
+    } else if (auto d = n.as_floating_point()) {
+      const double x = d->get();
+      if (!(std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 9.0e18))
+        fail(file, line(n), key, fmt_node(n), "must be an integer");
+      v = static_cast<long long>(x);
+    } else {
+      fail(file, line(n), key, fmt_node(n), "must be an integer");
+    }
+    if (v < lo || v > hi) fail(file, line(n), key, fmt_node(n), range_rule(lo, hi));
+    return static_cast<int>(v);
+  }
+  std::string str(const toml::node& n, const std::string& key) const {
+    if (auto s = n.as_string()) return s->get();
+    fail(file, line(n), key, fmt_node(n), "must be a string");
+  }
+  std::vector<std::string> names(const toml::node& n, const std::string& key) {
+    auto a = n.as_array();
+    if (!a) fail(file, line(n), key, fmt_node(n), "must be an array of node names");
+    std::vector<std::string> v;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const toml::node& e = *a->get(i);
+      const std::string ek = key + "[" + std::to_string(i) + "]";
+      lines[ek] = line(e);
+      auto s = e.as_string();
+      if (!s) fail(file, line(e), ek, fmt_node(e), "must be a string (a node name)");
+      v.push_back(s->get());
+    }
+    return v;
+  }
+  template <class E, std::size_t N>
+  E enumeration(const toml::node& n, const std::string& key, const EnumName<E> (&names)[N]) const {
+    E v{};
+    auto s = n.as_string();
+    if (!s || !enum_parse(names, s->get(), &v)) fail(file, line(n), key, fmt_node(n), one_of(enum_names(names)));
+    return v;
+  }
+};
+
+/// The value of the key 'type' of entry `prefix` (an element or contact), which decides the
+/// other keys allowed; required.
+template <class E, std::size_t N>
+E entry_type(const toml::table& t, const std::string& prefix, const EnumName<E> (&names)[N], NetReader& r) {
+  const toml::node* n = t.get("type");
+  if (!n) {
+    std::vector<std::string> q;
+    for (const auto& a : enum_names(names)) q.push_back(quote(a));
+    r.fail_missing(t, prefix, "must have a key 'type' (" + join(q, " | ") + ")");
+  }
+  r.lines[prefix + ".type"] = r.line(*n);
+  return r.enumeration(*n, prefix + ".type", names);
+}
+
+void read_network_array(const std::string& array, const toml::node& node, Scene& s, const std::string& file,
+                        bool use_lines, LineMap& lines) {
+  NetReader r{file, use_lines, lines};
+  const int line = r.line(node);
+  lines[array] = line;
+  const toml::array* a = node.as_array();
+  if (!a || (!a->empty() && !a->is_array_of_tables()))
+    fail(file, line, array, fmt_node(node),
+         "must be an array of tables ([[" + array + "]]); " + allowed_in_array(array));
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::table& t = *a->get(i)->as_table();
+    const std::string prefix = array + "[" + std::to_string(i) + "]";
+    lines[prefix] = r.line(t);
+    if (array == "nodes") {
+      NodeSpec n;
+      for (const auto& [k, v] : sorted_entries(t)) {
+        const std::string key = prefix + "." + k;
+        lines[key] = r.line(*v);
+        if (k == "name") n.name = r.str(*v, key);
+        else if (k == "mass") n.mass = r.real(*v, key);
+        else if (k == "initial_displacement") n.initial_displacement = r.real(*v, key);
+        else if (k == "initial_velocity") n.initial_velocity = r.real(*v, key);
+        else
+          fail(file, r.line(*v), key, fmt_node(*v),
+               std::string(v->is_table() ? "unknown table; " : "unknown key; ") + allowed_in_array(array));
+      }
+      s.network.nodes.push_back(std::move(n));
+    } else if (array == "elements") {
+      ElementSpec e;
+      e.kind = entry_type(t, prefix, kElementNames, r);
+      const std::vector<std::string> allowed = element_keys(e.kind);
+      for (const auto& [k, v] : sorted_entries(t)) {
+        const std::string key = prefix + "." + k;
+        lines[key] = r.line(*v);
+        if (!contains(allowed, k)) {
+          const std::string what = std::string(" ") + to_string(e.kind) + " element";
+          fail(file, r.line(*v), key, fmt_node(*v),
+               (contains(all_element_keys(), k) ? "not a key of a" + what + "; " : std::string("unknown key; ")) +
+                   "allowed keys of a" + what + ": " + join(allowed, ", "));
+        }
+        if (k == "name") e.name = r.str(*v, key);
+        else if (k == "nodes") e.nodes = r.names(*v, key);
+        else if (k == "stiffness") e.stiffness = r.real(*v, key);
+        else if (k == "preload") e.preload = r.real(*v, key);
+        else if (k == "damping") e.damping = r.real(*v, key);
+        else if (k == "mass") e.mass = r.real(*v, key);
+        else if (k == "masses") e.masses = r.integer(*v, key, 0, 100000);
+        else if (k == "youngs_modulus") e.youngs_modulus = r.real(*v, key);
+        else if (k == "area") e.area = r.real(*v, key);
+        else if (k == "length") e.length = r.real(*v, key);
+        else if (k == "elements") e.elements = r.integer(*v, key, 1, 100000);
+        else if (k == "mass_matrix") e.mass_matrix = r.enumeration(*v, key, kBarMassNames);
+        else if (k == "rayleigh_alpha") e.rayleigh_alpha = r.real(*v, key);
+        else if (k == "rayleigh_beta") e.rayleigh_beta = r.real(*v, key);
+        else if (k == "ratio") e.ratio = r.real(*v, key);
+      }
+      s.network.elements.push_back(std::move(e));
+    } else {
+      ContactPointSpec c;
+      c.kind = entry_type(t, prefix, kContactPointNames, r);
+      const std::vector<std::string> allowed = contact_keys(c.kind);
+      for (const auto& [k, v] : sorted_entries(t)) {
+        const std::string key = prefix + "." + k;
+        lines[key] = r.line(*v);
+        if (!contains(allowed, k)) {
+          const std::string what = std::string(" ") + to_string(c.kind) + " contact";
+          fail(file, r.line(*v), key, fmt_node(*v),
+               (contains(all_contact_keys(), k) ? "not a key of a" + what + "; " : std::string("unknown key; ")) +
+                   "allowed keys of a" + what + ": " + join(allowed, ", "));
+        }
+        if (k == "name") c.name = r.str(*v, key);
+        else if (k == "nodes") c.nodes = r.names(*v, key);
+        else if (k == "clearance") c.clearance = r.real(*v, key);
+        else if (k == "side") c.side = r.enumeration(*v, key, kStopSideNames);
+        else if (k == "restitution") c.restitution = r.real(*v, key);
+        else if (k == "penalty_stiffness") c.penalty_stiffness = r.real(*v, key);
+        else if (k == "penalty_damping") c.penalty_damping = r.real(*v, key);
+      }
+      s.network.contacts.push_back(std::move(c));
+    }
+  }
+}
+
 void validate_impl(const Scene& s, const std::string& file, const LineMap& lines);
 
 Scene from_table(const toml::table& root, const std::string& file, bool use_lines) {
@@ -541,6 +866,10 @@ Scene from_table(const toml::table& root, const std::string& file, bool use_line
     const int line = use_lines ? line_of(*node) : 0;
     if (const Field* f = find_field("", k)) {
       read_field(*f, *node, s, file, use_lines, lines);
+      continue;
+    }
+    if (is_network_array(k)) {
+      read_network_array(k, *node, s, file, use_lines, lines);
       continue;
     }
     if (!is_table_name(k))
@@ -584,6 +913,32 @@ toml::table to_table(const Scene& scene) {
       }
     }
   }
+  // The network: one array of tables per non-empty list.
+  for_each_network_entry(scene, [&](const std::string& array, std::size_t, const std::vector<SceneEntry>& keys) {
+    toml::table t;
+    for (const auto& e : keys) {
+      switch (e.kind) {
+        case SceneEntry::Kind::Real: t.insert_or_assign(e.key, e.real); break;
+        case SceneEntry::Kind::Int: t.insert_or_assign(e.key, static_cast<int64_t>(e.integer)); break;
+        case SceneEntry::Kind::Bool: t.insert_or_assign(e.key, e.boolean); break;
+        case SceneEntry::Kind::Str: t.insert_or_assign(e.key, e.text); break;
+        case SceneEntry::Kind::Array: {
+          toml::array a;
+          for (double x : e.array) a.push_back(x);
+          t.insert_or_assign(e.key, std::move(a));
+          break;
+        }
+        case SceneEntry::Kind::Names: {
+          toml::array a;
+          for (const auto& x : e.names) a.push_back(x);
+          t.insert_or_assign(e.key, std::move(a));
+          break;
+        }
+      }
+    }
+    if (!root.get_as<toml::array>(array)) root.insert_or_assign(array, toml::array{});
+    root.get_as<toml::array>(array)->push_back(std::move(t));
+  });
   return root;
 }
 
@@ -766,6 +1121,260 @@ class Validator {
     finite("run.period_tol", s.run.period_tol);
     if (!(s.run.period_tol > 0.0 && s.run.period_tol <= 1.0))
       fail_at("run.period_tol", fmt_num(s.run.period_tol), "must be > 0 and <= 1");
+
+    network();
+  }
+
+  // ---- network (follower.kind = "network")
+
+  /// The line of `key`, else of the nearest enclosing key recorded ("elements[2].nodes[1]"
+  /// → "elements[2].nodes" → "elements[2]" → "elements").
+  int net_line(std::string key) const {
+    for (;;) {
+      auto it = lines_.find(key);
+      if (it != lines_.end()) return it->second;
+      const auto cut = key.find_last_of(".[");
+      if (cut == std::string::npos || cut == 0) return 0;
+      key.resize(cut);
+    }
+  }
+  [[noreturn]] void net_fail(const std::string& key, const std::string& value, const std::string& rule) const {
+    throw SceneError(file_, net_line(key), key, value, rule);
+  }
+  void net_finite(const std::string& key, double v, const std::string& who) const {
+    if (!std::isfinite(v)) net_fail(key, fmt_num(v), "must be a finite number (" + who + ")");
+  }
+  void net_ge(const std::string& key, double v, double lo, const std::string& who) const {
+    net_finite(key, v, who);
+    if (!(v >= lo)) net_fail(key, fmt_num(v), "must be >= " + fmt_num(lo) + " (" + who + ")");
+  }
+  void net_gt(const std::string& key, double v, double lo, const std::string& who) const {
+    net_finite(key, v, who);
+    if (!(v > lo)) net_fail(key, fmt_num(v), "must be > " + fmt_num(lo) + " (" + who + ")");
+  }
+  static std::string quoted_names(const std::vector<std::string>& v) {
+    std::vector<std::string> q;
+    for (const auto& x : v) q.push_back(quote(x));
+    return fmt_list(q);
+  }
+  static std::string element_label(const ElementSpec& e, std::size_t i) {
+    return std::string(to_string(e.kind)) + (e.name.empty() ? " #" + std::to_string(i) : " '" + e.name + "'");
+  }
+  static std::string contact_label(const ContactPointSpec& c, std::size_t i) {
+    return std::string(to_string(c.kind)) + " contact " + (c.name.empty() ? "#" + std::to_string(i) : "'" + c.name + "'");
+  }
+  static bool valid_node_name(const std::string& n) {
+    for (char ch : n)
+      if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-')) return false;
+    return true;
+  }
+
+  void network() const {
+    const Scene& s = s_;
+    const NetworkSpec& n = s.network;
+    if (s.follower.kind != FollowerKind::Network) {
+      const std::pair<const char*, std::size_t> arrays[] = {
+          {"nodes", n.nodes.size()}, {"elements", n.elements.size()}, {"contacts", n.contacts.size()}};
+      for (const auto& [name, count] : arrays)
+        if (count > 0)
+          net_fail(name, "(" + std::to_string(count) + (count == 1 ? " entry)" : " entries)"),
+                   std::string("[[") + name + "]] needs follower.kind = \"network\" (follower.kind is \"" +
+                       to_string(s.follower.kind) + "\")");
+      return;
+    }
+    if (n.nodes.empty()) net_fail("follower.kind", "\"network\"", "needs at least one [[nodes]] entry");
+    if (n.contacts.empty()) net_fail("follower.kind", "\"network\"", "needs at least one [[contacts]] entry");
+
+    // ---- nodes
+    std::map<std::string, std::size_t> node_index;
+    for (std::size_t i = 0; i < n.nodes.size(); ++i) {
+      const NodeSpec& nd = n.nodes[i];
+      const std::string p = elem("nodes", i);
+      const std::string who = "node '" + nd.name + "'";
+      if (nd.name.empty()) net_fail(p + ".name", "\"\"", "must not be empty (node names are required)");
+      if (nd.name == "ground")
+        net_fail(p + ".name", quote(nd.name), "is reserved (\"ground\" is the fixed end of a spring, dashpot or bar)");
+      if (!valid_node_name(nd.name))
+        net_fail(p + ".name", quote(nd.name), "must contain only letters, digits, '_' and '-'");
+      const auto [it, fresh] = node_index.emplace(nd.name, i);
+      if (!fresh)
+        net_fail(p + ".name", quote(nd.name), "must be unique (" + elem("nodes", it->second) + " has the same name)");
+      net_ge(p + ".mass", nd.mass, 0.0, who);
+      net_finite(p + ".initial_displacement", nd.initial_displacement, who);
+      net_finite(p + ".initial_velocity", nd.initial_velocity, who);
+    }
+    std::vector<bool> used(n.nodes.size(), false);
+    auto node_ref = [&](const std::string& key, const std::string& name, bool ground_ok, const std::string& who,
+                        const char* ground_rule) {
+      if (name == "ground") {
+        if (!ground_ok) net_fail(key, quote(name), std::string(ground_rule) + " (" + who + ")");
+        return;
+      }
+      auto it = node_index.find(name);
+      if (it == node_index.end()) net_fail(key, quote(name), "names no node of [[nodes]] (" + who + ")");
+      used[it->second] = true;
+    };
+
+    // ---- elements
+    for (std::size_t i = 0; i < n.elements.size(); ++i) {
+      const ElementSpec& e = n.elements[i];
+      const std::string p = elem("elements", i);
+      const std::string who = element_label(e, i);
+      if (e.nodes.size() != 2)
+        net_fail(p + ".nodes", quoted_names(e.nodes),
+                 "must name exactly 2 nodes, has " + std::to_string(e.nodes.size()) + " (" + who + ")");
+      const bool lever = e.kind == ElementKind::Lever;
+      for (std::size_t k = 0; k < 2; ++k)
+        node_ref(elem(p + ".nodes", k), e.nodes[k], !lever, who, "\"ground\" cannot be a node of a lever");
+      if (e.nodes[0] == e.nodes[1]) net_fail(p + ".nodes", quoted_names(e.nodes), "must name two different nodes (" + who + ")");
+      switch (e.kind) {
+        case ElementKind::Spring:
+          net_ge(p + ".stiffness", e.stiffness, 0.0, who);
+          net_finite(p + ".preload", e.preload, who);
+          net_ge(p + ".damping", e.damping, 0.0, who);
+          net_ge(p + ".mass", e.mass, 0.0, who);
+          if (e.masses < 0 || e.masses > 100000)
+            net_fail(p + ".masses", std::to_string(e.masses), range_rule(0, 100000) + " (" + who + ")");
+          if (e.mass > 0 && e.masses < 1)
+            net_fail(p + ".masses", std::to_string(e.masses),
+                     "must be >= 1 for a spring with mass (" + p + ".mass = " + fmt_num(e.mass) + ") (" + who + ")");
+          if (e.masses >= 1 && !(e.mass > 0))
+            net_fail(p + ".masses", std::to_string(e.masses), "needs " + p + ".mass > 0 (" + who + ")");
+          break;
+        case ElementKind::Dashpot: net_gt(p + ".damping", e.damping, 0.0, who); break;
+        case ElementKind::Bar:
+          net_gt(p + ".mass", e.mass, 0.0, who);
+          net_gt(p + ".youngs_modulus", e.youngs_modulus, 0.0, who);
+          net_gt(p + ".area", e.area, 0.0, who);
+          net_gt(p + ".length", e.length, 0.0, who);
+          if (e.elements < 1 || e.elements > 100000)
+            net_fail(p + ".elements", std::to_string(e.elements), range_rule(1, 100000) + " (" + who + ")");
+          net_ge(p + ".rayleigh_alpha", e.rayleigh_alpha, 0.0, who);
+          net_ge(p + ".rayleigh_beta", e.rayleigh_beta, 0.0, who);
+          break;
+        case ElementKind::Lever:
+          if (!(std::isfinite(e.ratio) && e.ratio != 0.0))
+            net_fail(p + ".ratio", fmt_num(e.ratio), "must be finite and != 0 (" + who + ")");
+          break;
+      }
+    }
+
+    // ---- contacts
+    std::map<std::string, std::size_t> contact_index;
+    for (std::size_t i = 0; i < n.contacts.size(); ++i) {
+      const ContactPointSpec& c = n.contacts[i];
+      const std::string p = elem("contacts", i);
+      const std::string who = contact_label(c, i);
+      if (c.name.empty()) net_fail(p + ".name", "\"\"", "must not be empty (contact names are required)");
+      const auto [it, fresh] = contact_index.emplace(c.name, i);
+      if (!fresh)
+        net_fail(p + ".name", quote(c.name), "must be unique (" + elem("contacts", it->second) + " has the same name)");
+      const std::size_t want = c.kind == ContactPointKind::Lash ? 2 : 1;
+      if (c.nodes.size() != want)
+        net_fail(p + ".nodes", quoted_names(c.nodes),
+                 "must name exactly " + std::to_string(want) + (want == 1 ? " node" : " nodes") + ", has " +
+                     std::to_string(c.nodes.size()) + " (" + who + ")");
+      for (std::size_t k = 0; k < want; ++k)
+        node_ref(elem(p + ".nodes", k), c.nodes[k], false, who, "\"ground\" cannot be a node of a contact");
+      if (want == 2 && c.nodes[0] == c.nodes[1])
+        net_fail(p + ".nodes", quoted_names(c.nodes), "must name two different nodes (" + who + ")");
+      // A cam contact acts on the scene's cam ([cam], always present).
+      net_ge(p + ".clearance", c.clearance, 0.0, who);
+      if (c.restitution) {
+        net_finite(p + ".restitution", *c.restitution, who);
+        if (!(*c.restitution >= 0.0 && *c.restitution <= 1.0))
+          net_fail(p + ".restitution", fmt_num(*c.restitution), "must be >= 0 and <= 1 (" + who + ")");
+      }
+      if (c.penalty_stiffness) net_gt(p + ".penalty_stiffness", *c.penalty_stiffness, 0.0, who);
+      if (c.penalty_damping) net_ge(p + ".penalty_damping", *c.penalty_damping, 0.0, who);
+    }
+
+    // ---- levers: each node the output of at most one lever, no cycles
+    std::map<std::string, std::size_t> lever_of_output;  // output node -> element index
+    for (std::size_t i = 0; i < n.elements.size(); ++i) {
+      const ElementSpec& e = n.elements[i];
+      if (e.kind != ElementKind::Lever) continue;
+      const auto [it, fresh] = lever_of_output.emplace(e.nodes[1], i);
+      if (!fresh)
+        net_fail(elem(elem("elements", i) + ".nodes", 1), quote(e.nodes[1]),
+                 "is already the output of " + element_label(n.elements[it->second], it->second) + " (" +
+                     elem("elements", it->second) + "); a node is the output of at most one lever (" +
+                     element_label(e, i) + ")");
+    }
+    for (std::size_t i = 0; i < n.elements.size(); ++i) {
+      const ElementSpec& e = n.elements[i];
+      if (e.kind != ElementKind::Lever) continue;
+      std::string cur = e.nodes[0];
+      for (std::size_t steps = 0; steps <= lever_of_output.size(); ++steps) {
+        auto it = lever_of_output.find(cur);
+        if (it == lever_of_output.end()) break;
+        if (it->second == i)
+          net_fail(elem("elements", i) + ".nodes", quoted_names(e.nodes),
+                   "levers form a cycle through node '" + e.nodes[1] + "' (" + element_label(e, i) + ")");
+        cur = n.elements[it->second].nodes[0];
+      }
+    }
+
+    // ---- dangling nodes
+    for (std::size_t i = 0; i < n.nodes.size(); ++i)
+      if (!used[i])
+        net_fail(elem("nodes", i) + ".name", quote(n.nodes[i].name),
+                 "node '" + n.nodes[i].name + "' is dangling: no element or contact uses it");
+
+    // ---- floating subsystems: components joined by springs (k > 0 or with mass), bars and
+    // levers must be held to ground by a spring with k > 0 or a bar.
+    const std::size_t nn = n.nodes.size();
+    std::vector<std::size_t> parent(nn);
+    for (std::size_t i = 0; i < nn; ++i) parent[i] = i;
+    auto root = [&](std::size_t i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    std::vector<bool> anchored(nn, false);
+    for (const auto& e : n.elements) {
+      const bool stiff = (e.kind == ElementKind::Spring && e.stiffness > 0) || e.kind == ElementKind::Bar;
+      const bool joins = stiff || e.kind == ElementKind::Lever || (e.kind == ElementKind::Spring && e.mass > 0);
+      if (!joins) continue;
+      const bool g0 = e.nodes[0] == "ground", g1 = e.nodes[1] == "ground";
+      if (g0 || g1) {
+        if (stiff) anchored[node_index.at(g0 ? e.nodes[1] : e.nodes[0])] = true;
+        continue;
+      }
+      parent[root(node_index.at(e.nodes[0]))] = root(node_index.at(e.nodes[1]));
+    }
+    std::vector<bool> comp_anchored(nn, false);
+    for (std::size_t i = 0; i < nn; ++i)
+      if (anchored[i]) comp_anchored[root(i)] = true;
+    for (std::size_t i = 0; i < nn; ++i)
+      if (!comp_anchored[root(i)])
+        net_fail(elem("nodes", i) + ".name", quote(n.nodes[i].name),
+                 "node '" + n.nodes[i].name + "' floats: no spring or bar connects it to ground");
+
+    // ---- mass: after lever elimination (a lever's output is tied to its input), every
+    // remaining unknown needs positive mass from node masses, bars or springs with mass.
+    auto unknown_of = [&](std::string name) {
+      for (std::size_t steps = 0; steps <= lever_of_output.size(); ++steps) {
+        auto it = lever_of_output.find(name);
+        if (it == lever_of_output.end()) break;
+        name = n.elements[it->second].nodes[0];
+      }
+      return node_index.at(name);
+    };
+    std::vector<bool> has_mass(nn, false);
+    for (std::size_t i = 0; i < nn; ++i)
+      if (n.nodes[i].mass > 0) has_mass[unknown_of(n.nodes[i].name)] = true;
+    for (const auto& e : n.elements) {
+      const bool massive = e.kind == ElementKind::Bar || (e.kind == ElementKind::Spring && e.mass > 0);
+      if (!massive) continue;
+      for (const auto& name : e.nodes)
+        if (name != "ground") has_mass[unknown_of(name)] = true;
+    }
+    for (std::size_t i = 0; i < nn; ++i)
+      if (unknown_of(n.nodes[i].name) == i && !has_mass[i])
+        net_fail(elem("nodes", i) + ".mass", fmt_num(n.nodes[i].mass),
+                 "node '" + n.nodes[i].name +
+                     "' has no mass (give it mass, or connect a bar or a spring with mass to it or to a node "
+                     "tied to it by a lever)");
   }
 
  private:
@@ -914,17 +1523,22 @@ void for_each_scene_entry(const Scene& scene, const std::function<void(const Sce
   }
 }
 
+void for_each_network_entry(
+    const Scene& scene,
+    const std::function<void(const std::string& array, std::size_t index, const std::vector<SceneEntry>& keys)>& visit) {
+  const NetworkSpec& n = scene.network;
+  for (std::size_t i = 0; i < n.nodes.size(); ++i) visit("nodes", i, node_entries(n.nodes[i]));
+  for (std::size_t i = 0; i < n.elements.size(); ++i) visit("elements", i, element_entries(n.elements[i]));
+  for (std::size_t i = 0; i < n.contacts.size(); ++i) visit("contacts", i, contact_entries(n.contacts[i]));
+}
+
 std::string to_toml(const Scene& scene_in) {
   Scene resolved = scene_in;
   resolve_defaults(resolved);
   std::ostringstream os;
   os << "# camdyn scene (every key written; see docs/interface.md)\n";
   std::string current;
-  for_each_scene_entry(resolved, [&](const SceneEntry& e) {
-    if (!e.table.empty() && e.table != current) {
-      current = e.table;
-      os << "\n[" << e.table << "]\n";
-    }
+  auto write_entry = [&](const SceneEntry& e) {
     os << e.key << " = ";
     switch (e.kind) {
       case SceneEntry::Kind::Real: os << toml_float(e.real); break;
@@ -937,8 +1551,26 @@ std::string to_toml(const Scene& scene_in) {
         os << "]";
         break;
       }
+      case SceneEntry::Kind::Names: {
+        os << "[";
+        for (std::size_t i = 0; i < e.names.size(); ++i) os << (i ? ", " : "") << quote(e.names[i]);
+        os << "]";
+        break;
+      }
     }
     os << "\n";
+  };
+  for_each_scene_entry(resolved, [&](const SceneEntry& e) {
+    if (!e.table.empty() && e.table != current) {
+      current = e.table;
+      os << "\n[" << e.table << "]\n";
+    }
+    write_entry(e);
+  });
+  // The network (follower.kind = "network"): [[nodes]], [[elements]], [[contacts]].
+  for_each_network_entry(resolved, [&](const std::string& array, std::size_t, const std::vector<SceneEntry>& keys) {
+    os << "\n[[" << array << "]]\n";
+    for (const auto& e : keys) write_entry(e);
   });
   return os.str();
 }

@@ -225,6 +225,23 @@ TEST_F(BadInput, MalformedScenesAndCommandLinesExitTwo) {
                 {"not representable"}),
       file_case("unterminated string", "u3.toml", "title = \"never closed\n", {":1:"}),
       // command lines
+      // network scenes (issue 16)
+      file_case("network: lever ratio 0", "w1.toml",
+                "[follower]\nkind = \"network\"\n[[nodes]]\nname = \"a\"\nmass = 1\n[[nodes]]\nname = \"b\"\n"
+                "[[elements]]\ntype = \"spring\"\nnodes = [\"a\", \"ground\"]\nstiffness = 100\n"
+                "[[elements]]\nname = \"rocker\"\ntype = \"lever\"\nnodes = [\"a\", \"b\"]\nratio = 0\n"
+                "[[contacts]]\nname = \"cam\"\ntype = \"cam\"\nnodes = [\"a\"]\n",
+                {"w1.toml:16", "elements[1].ratio", "!= 0", "lever 'rocker'"}),
+      file_case("network: dangling node", "w2.toml",
+                "[follower]\nkind = \"network\"\n[[nodes]]\nname = \"a\"\nmass = 1\n[[nodes]]\nname = \"spare\"\n"
+                "mass = 1\n[[elements]]\ntype = \"spring\"\nnodes = [\"a\", \"ground\"]\nstiffness = 100\n"
+                "[[contacts]]\nname = \"cam\"\ntype = \"cam\"\nnodes = [\"a\"]\n",
+                {"w2.toml:7", "nodes[1].name", "node 'spare' is dangling"}),
+      file_case("network: key of another element type", "w3.toml",
+                "[follower]\nkind = \"network\"\n[[nodes]]\nname = \"a\"\nmass = 1\n"
+                "[[elements]]\ntype = \"spring\"\nnodes = [\"a\", \"ground\"]\nstiffness = 100\nratio = 2\n"
+                "[[contacts]]\nname = \"cam\"\ntype = \"cam\"\nnodes = [\"a\"]\n",
+                {"w3.toml:10", "elements[0].ratio", "not a key of a spring element"}),
       set_case("--set NaN", {"follower.mass=nan"}, {"follower.mass", "finite"}),
       set_case("--set absurd rtol", {"solver.rtol=1e-30"}, {"solver.rtol", ">= 1e-14"}),
       set_case("--set missing key", {"=3"}, {"KEY=VALUE"}),

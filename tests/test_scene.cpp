@@ -40,7 +40,7 @@ std::string override_error(Scene s, const std::string& assignment) {
 const std::string kCamKeys =
     "profile, angles_deg, radii, base_radius, lift_angles_deg, lift, radius, eccentricity, speed_rev_s, "
     "speed_table_t, speed_table_rev_s, theta0_deg";
-const std::string kTopKeys = "title, cam, follower, spring, contact, solver, run";
+const std::string kTopKeys = "title, cam, follower, spring, contact, solver, run, nodes, elements, contacts";
 
 }  // namespace
 
@@ -52,7 +52,7 @@ TEST(SceneEnums, RoundTripEverySpelling) {
     ASSERT_TRUE(parse_enum(s, &v));
     EXPECT_STREQ(to_string(v), s);
   }
-  for (const char* s : {"rigid", "elastic_bar"}) {
+  for (const char* s : {"rigid", "elastic_bar", "network"}) {
     FollowerKind v;
     ASSERT_TRUE(parse_enum(s, &v));
     EXPECT_STREQ(to_string(v), s);
@@ -369,7 +369,7 @@ TEST(SceneMalformed, ExactMessages) {
       {"wrong type: string in array", "[cam]\nradii = [2.0, 2.0,\n  \"x\", 2.0]\n",
        "bad.toml:3: key 'cam.radii[2]' = \"x\": must be a number"},
       {"wrong type: number for enum", "[follower]\nkind = 1\n",
-       "bad.toml:2: key 'follower.kind' = 1: must be one of \"rigid\", \"elastic_bar\""},
+       "bad.toml:2: key 'follower.kind' = 1: must be one of \"rigid\", \"elastic_bar\", \"network\""},
       {"negative mass", "[follower]\nmass = -1\n", "bad.toml:2: key 'follower.mass' = -1: must be > 0"},
       {"zero E", "[follower]\nkind = \"elastic_bar\"\nyoungs_modulus = 0\n",
        "bad.toml:3: key 'follower.youngs_modulus' = 0: must be > 0"},

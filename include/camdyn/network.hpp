@@ -38,9 +38,11 @@ enum class BarMass { Consistent, Lumped };
 const char* to_string(ElementKind v);       // "spring" | "dashpot" | "bar" | "lever"
 const char* to_string(ContactPointKind v);  // "cam" | "lash" | "stop"
 const char* to_string(StopSide v);          // "below" | "above"
+const char* to_string(BarMass v);           // "lumped" | "consistent"
 bool parse_enum(std::string_view s, ElementKind* out);
 bool parse_enum(std::string_view s, ContactPointKind* out);
 bool parse_enum(std::string_view s, StopSide* out);
+bool parse_enum(std::string_view s, BarMass* out);
 
 /// A node of the network: one displacement (after levers are eliminated, a node tied as a
 /// lever's output is not an unknown of its own).

@@ -5,6 +5,7 @@
 // (model.hpp) turns a Scene into the smallest model with exactly the effects it asks for.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -259,7 +260,7 @@ std::string to_toml(const Scene& scene);
 /// One key of a scene with its value, as the writers (to_toml, the summary's "options")
 /// see it. Enumerations arrive as their spelling in `text`.
 struct SceneEntry {
-  enum class Kind { Real, Int, Bool, Str, Array };
+  enum class Kind { Real, Int, Bool, Str, Array, Names };
   std::string table;  ///< "" for a top-level key
   std::string key;
   Kind kind = Kind::Real;
@@ -268,10 +269,19 @@ struct SceneEntry {
   bool boolean = false;
   std::string text;
   std::vector<double> array;
+  std::vector<std::string> names;  ///< Kind::Names: an array of strings (a network entry's nodes)
 };
 /// Visit every key of `scene` in file order (top-level keys first, each table contiguous):
 /// the one list of scene keys behind the loader, to_toml and the summary JSON.
 void for_each_scene_entry(const Scene& scene, const std::function<void(const SceneEntry&)>& visit);
+/// Visit the network of `scene`: every [[nodes]], then [[elements]], then [[contacts]]
+/// entry, as `visit(array, index, keys)` with array "nodes" | "elements" | "contacts" and
+/// the entry's keys in file order (SceneEntry::table = array). Only the keys of the entry's
+/// type are given; an element's name only when it is not empty, a contact's restitution,
+/// penalty_stiffness and penalty_damping only when set. Nothing for a scene without network.
+void for_each_network_entry(
+    const Scene& scene,
+    const std::function<void(const std::string& array, std::size_t index, const std::vector<SceneEntry>& keys)>& visit);
 
 /// Content equality (every field except `source`); exact comparison of doubles.
 bool operator==(const CamSpec& a, const CamSpec& b);
