@@ -210,7 +210,9 @@ class ErkOde final : public EngineBase {
     check(ERKStepSetInitStep(mem, h), "ERKStepSetInitStep");
     check(ERKStepSetStopTime(mem, t + h), "ERKStepSetStopTime");
     double tret = t;
-    check(ERKStepEvolve(mem, t + h, y_.get(), &tret, ARK_ONE_STEP), "ERKStepEvolve");
+    // A root inside the step (root functions set): go on to t + h (same step, no new one).
+    while (check(ERKStepEvolve(mem, t + h, y_.get(), &tret, ARK_ONE_STEP), "ERKStepEvolve") == ARK_ROOT_RETURN) {
+    }
     if (tret != t + h) throw SundialsError("ERKStepEvolve (trial step ended short of t + h)", -1);
     y_out = map(y_.get());
     check(ERKStepGetEstLocalErrors(mem, tmp_.get()), "ERKStepGetEstLocalErrors");
@@ -305,7 +307,9 @@ class DirkOde final : public EngineBase {
     check(ARKStepGetNumLinSolvSetups(mem, &nls), "ARKStepGetNumLinSolvSetups");
     setups_.base = nls;
     double tret = t;
-    check(ARKStepEvolve(mem, t + h, y_.get(), &tret, ARK_ONE_STEP), "ARKStepEvolve");
+    // A root inside the step (root functions set): go on to t + h (same step, no new one).
+    while (check(ARKStepEvolve(mem, t + h, y_.get(), &tret, ARK_ONE_STEP), "ARKStepEvolve") == ARK_ROOT_RETURN) {
+    }
     check(ARKStepGetNumLinSolvSetups(mem, &nls), "ARKStepGetNumLinSolvSetups");
     stats_.lin_setups += setups_.delta(nls);
     // A Newton failure makes ARKODE retry smaller: the step would not be of h.
@@ -391,7 +395,8 @@ class CvodeOde final : public EngineBase {
     steps_.base = 0;
     setups_.base = 0;
     double tret = t;
-    check(CVode(mem, t + h, y_.get(), &tret, CV_NORMAL), "CVode");
+    while (check(CVode(mem, t + h, y_.get(), &tret, CV_NORMAL), "CVode") == CV_ROOT_RETURN) {
+    }  // roots (if set) do not end a trial step
     y_out = map(y_.get());
     count();
     double h0 = 0;

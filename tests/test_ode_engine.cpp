@@ -279,6 +279,21 @@ TEST_P(OdeTrial, ThrowingRhsBecomesSundialsError) {
   EXPECT_LT(osc_error(1e-3, y1), 1e-9);
 }
 
+// Root functions (meant for native mode) do not cut a trial step short: the step of h is
+// the same with and without them.
+TEST_P(OdeTrial, RootsDoNotCutTrialSteps) {
+  const Case c = GetParam();
+  auto plain = OdeEngine::make(c.integ, spec(c.integ), oscillator(c.exact_jacobian), true);
+  auto rooted = OdeEngine::make(c.integ, spec(c.integ), oscillator(c.exact_jacobian), true);
+  rooted->set_roots(1, [](double, const double* y, double* g) { g[0] = y[0] - 0.5; });
+  Eigen::VectorXd a, b;
+  const double h = 0.03;  // x = 0.5 at t = 0.0209 inside the step
+  const double ea = plain->step(0.0, y0(), h, a);
+  const double eb = rooted->step(0.0, y0(), h, b);
+  EXPECT_EQ(ea, eb);
+  EXPECT_LE((a - b).cwiseAbs().maxCoeff(), 1e-12 * a.cwiseAbs().maxCoeff());
+}
+
 INSTANTIATE_TEST_SUITE_P(Engines, OdeTrial,
                          testing::Values(Case{Integrator::ArkodeErk, false, "erk"},
                                          Case{Integrator::ArkodeDirk, true, "dirk_exactJ"},
