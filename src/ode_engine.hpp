@@ -15,8 +15,10 @@
 //   * native stepping: reinit(t, y), then advance(tout) takes one internal,
 //     error-controlled step, never past tout, stopping at a root of the root functions.
 // Every SUNDIALS flag is checked (negative → SundialsError naming the call); the callbacks
-// catch every exception and return −1 (recoverable: the step is retried smaller), so none
-// crosses SUNDIALS.
+// catch every exception and return −1, so none crosses SUNDIALS. SUNDIALS treats −1 as an
+// unrecoverable failure: the step fails and step()/advance() throw SundialsError, whose
+// message carries the exception's what(); the engine is usable again after reinit()/step()
+// from a saved state. Trial-mode engines ignore SolverSpec::max_step (h is the caller's).
 #pragma once
 
 #include <Eigen/Core>
@@ -33,7 +35,8 @@ namespace camdyn {
 struct OdeSystem {
   /// Number of unknowns, ≥ 1.
   int size = 0;
-  /// ydot = f(t, y). May throw (the engine's callback turns it into a recoverable failure).
+  /// ydot = f(t, y). May throw (the engine's callback turns it into a failed step:
+  /// SundialsError from step()/advance()).
   std::function<void(double t, const double* y, double* ydot)> rhs;
   /// Optional dense Jacobian J = ∂f/∂y (size × size, column-major Eigen matrix, already
   /// sized). Empty: SUNDIALS' difference-quotient Jacobian (implicit engines only).
