@@ -62,6 +62,12 @@ class Mechanism {
   const std::vector<MechanismContact>& contacts() const { return contacts_; }
   /// The contact shown in history.csv's standard columns: the first cam contact (or 0).
   int primary() const { return primary_; }
+  /// Number of cam contacts.
+  int cam_contacts() const {
+    int k = 0;
+    for (const MechanismContact& c : contacts_) k += c.cam;
+    return k;
+  }
 
   /// Named nodes (scene order) and their displacement q_node = L_row · q.
   const std::vector<std::string>& node_names() const { return node_names_; }

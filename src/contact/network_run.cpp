@@ -23,6 +23,28 @@ NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const Mechanism> mech, O
   sum_.model = mk_.description();
   sum_.min_gap = INFINITY;
   unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
+  // The base circle: min over θ of X_C (a scan of 3600 angles, refined by golden section
+  // around the smallest sample), so that a cam contact's gap sees the lift X_C − X_base.
+  if (mk_.cam_contacts() > 0) {
+    const double d = 2.0 * M_PI / 3600.0;
+    double best = INFINITY, th_best = 0.0;
+    for (int i = 0; i < 3600; ++i) {
+      const double X = cam_.evaluate(i * d).X_C;
+      if (X < best) {
+        best = X;
+        th_best = i * d;
+      }
+    }
+    double a = th_best - d, b = th_best + d;
+    const double gr = 0.6180339887498949;
+    double c = b - gr * (b - a), e = a + gr * (b - a);
+    double fc = cam_.evaluate(c).X_C, fe = cam_.evaluate(e).X_C;
+    for (int i = 0; i < 60; ++i) {
+      if (fc < fe) { b = e; e = c; fe = fc; c = b - gr * (b - a); fc = cam_.evaluate(c).X_C; }
+      else { a = c; c = e; fc = fe; e = a + gr * (b - a); fe = cam_.evaluate(e).X_C; }
+    }
+    x_base_ = std::min({best, fc, fe});
+  }
 }
 
 std::vector<std::string> NetworkRun::extra_columns(const Mechanism& mech) {
@@ -40,7 +62,9 @@ std::vector<std::string> NetworkRun::extra_columns(const Mechanism& mech) {
 }
 
 CamMotion NetworkRun::cam_at(double t) const {
-  return cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
+  CamMotion m = cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
+  m.X -= x_base_;
+  return m;
 }
 double NetworkRun::gap(int j, const Eigen::VectorXd& y, const CamMotion& cm) const {
   const MechanismContact& c = mk_.contacts()[j];

@@ -51,6 +51,7 @@ class NetworkRun {
   virtual double contact_dissipation(double /*t*/, const Eigen::VectorXd& /*y*/) const { return 0.0; }
 
   // ---- geometry and forces
+  /// The cam's lift above its base circle at t: X = X_C − min_θ X_C, Ẋ_C, Ẍ_C.
   CamMotion cam_at(double t) const;
   /// g_j = T_j q + g₀_j − X_C·[cam], ġ_j, and the cam's part of g̈_j (−Ẍ_C·[cam]).
   double gap(int j, const Eigen::VectorXd& y, const CamMotion& cm) const;
@@ -109,6 +110,7 @@ class NetworkRun {
   double t_ = 0, work_ = 0, dissipated_ = 0, E0_ = 0, V0_ = 0, last_row_t_ = -1;
   Eigen::VectorXd y_, F_;
   std::vector<char> active_;
+  double x_base_ = 0.0;     // the base circle's X_C: cam_at() returns the lift X_C − x_base_
   bool unilateral_ = true;  // false: contact.separation = false or holonomic (never release)
   long next_out_ = 1;
   double F_ref_ = 0.0;        // largest contact force so far (force thresholds)
