@@ -38,7 +38,7 @@ int main() {
   camdyn::Scene s = camdyn::paper_case(\"A\");
   s.run.t_end = 0.01;
   const auto r = camdyn::run_batch({s, s}, 2);
-  std::printf(\"%s\\\\n\", r[0].BriefReport().c_str());
+  std::printf(\"%s\\n\", r[0].BriefReport().c_str());
   return r[0].finished && r[1].steps == r[0].steps ? 0 : 1;
 }
 ")
