@@ -13,6 +13,7 @@
 #include "camdyn/cam.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -187,7 +188,21 @@ struct Cam::Impl {
   double rb = 0;
   // derived
   double lift = 0, min_rho = 0;
-  mutable std::size_t hint = 0;
+  // Segment of the last contact point: where the next search starts. The segment found
+  // is the unique k with tab_phi[k] ≤ target < tab_phi[k+1] whatever the hint, so
+  // concurrent const calls on one Cam (threads) only race on speed, not on results; a
+  // relaxed atomic makes that race defined behaviour.
+  struct Hint {
+    mutable std::atomic<std::size_t> k{0};
+    Hint() = default;
+    Hint(const Hint& o) : k(o.k.load(std::memory_order_relaxed)) {}
+    Hint& operator=(const Hint& o) {
+      k.store(o.k.load(std::memory_order_relaxed), std::memory_order_relaxed);
+      return *this;
+    }
+    std::size_t get() const { return k.load(std::memory_order_relaxed); }
+    void set(std::size_t v) const { k.store(v, std::memory_order_relaxed); }
+  } hint;
 
   void build_points(const CamSpec& spec);
   void build_circle(const CamSpec& spec);
@@ -357,7 +372,7 @@ void Cam::Impl::build_points(const CamSpec& spec) {
   auto h_at = [this](double th) { return evaluate(th).X_C; };
   const double hmin = periodic_min(h_at, 0.0, kTwoPi, N);
   lift = hmax - hmin;
-  hint = 0;
+  hint.set(0);
 }
 
 double Cam::Impl::contact_alpha(double theta, double ct, double st, Derivs* out) const {
@@ -368,7 +383,7 @@ double Cam::Impl::contact_alpha(double theta, double ct, double st, Derivs* out)
   if (!(u < kTwoPi)) u = 0.0;
   const double target = tab_phi[0] + u;
 
-  std::size_t k = hint;
+  std::size_t k = hint.get();
   if (!(k < N && tab_phi[k] <= target && target < tab_phi[k + 1])) {
     if (k + 1 < N && tab_phi[k + 1] <= target && target < tab_phi[k + 2]) {
       k = k + 1;
@@ -380,7 +395,7 @@ double Cam::Impl::contact_alpha(double theta, double ct, double st, Derivs* out)
       k = (k == 0) ? 0 : std::min(k - 1, N - 1);
     }
   }
-  hint = k;
+  hint.set(k);
 
   double lo = tab_alpha[k], hi = tab_alpha[k + 1];
   double al = lo + (target - tab_phi[k]) / (tab_phi[k + 1] - tab_phi[k]) * (hi - lo);

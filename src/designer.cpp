@@ -1,13 +1,9 @@
-// camdyn — required contact force, jump speed, batch runs (designer.hpp).
+// camdyn — required contact force and jump speed (designer.hpp; batch runs: batch.cpp).
 #include "camdyn/designer.hpp"
-
-#include <time.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <mutex>
-#include <thread>
 
 #include "camdyn/cam.hpp"
 #include "camdyn/output.hpp"
@@ -213,51 +209,6 @@ JumpResult jump_speed(const Scene& scene_in, const JumpOptions& o) {
   res.jump_speed_rev_s = dir * 0.5 * (lo + hi);
   res.theta_deg = th_hi;
   return res;
-}
-
-// ---- batch ------------------------------------------------------------------------------
-
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-std::vector<Summary> run_batch(const std::vector<Scene>& scenes, int threads,
-                               const std::function<void(std::size_t, const Summary&)>& on_done,
-                               const std::atomic<bool>* stop) {
-  std::vector<Summary> out(scenes.size());
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads), std::max<std::size_t>(1, scenes.size())));
-  std::atomic<std::size_t> next{0};
-  std::mutex mu;
-  auto worker = [&] {
-    for (;;) {
-      if (stop && stop->load()) return;
-      const std::size_t i = next.fetch_add(1);
-      if (i >= scenes.size()) return;
-      Summary s;
-      const double c0 = thread_cpu_seconds();
-      try {
-        Simulator sim(scenes[i]);
-        s = sim.run(nullptr, stop);
-      } catch (const std::exception& e) {
-        s = Summary{};
-        s.scene = scenes[i].title;
-        s.finished = false;
-        s.message = e.what();
-      }
-      s.cpu_seconds = thread_cpu_seconds() - c0;
-      std::lock_guard<std::mutex> lock(mu);
-      out[i] = std::move(s);
-      if (on_done) on_done(i, out[i]);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  return out;
 }
 
 }  // namespace camdyn

@@ -528,6 +528,7 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
   JsonObject o(out, 0);
   o.str("scene", s.scene.empty() ? resolved.title : s.scene);
   o.boolean("finished", s.finished);
+  o.str("termination", to_string(s.termination));
   o.str("message", s.message);
   o.num("t_end", s.t_end);
   o.num("t_end_requested", resolved.run.t_end);

@@ -34,14 +34,30 @@ inline std::string fmt(double x) {
   return b;
 }
 
-/// A step that cannot be completed; the run ends (finished = false) with its message.
+/// A run that cannot go on (or is asked to stop); the run ends (finished = false) with
+/// its termination kind and message.
 class StepFailure : public std::runtime_error {
-  using std::runtime_error::runtime_error;
+ public:
+  StepFailure(Termination kind, const std::string& what)
+      : std::runtime_error(what), kind_(kind) {}
+  /// A step that failed for a reason without its own Termination value.
+  explicit StepFailure(const std::string& what) : StepFailure(Termination::StepFailure, what) {}
+  Termination kind() const { return kind_; }
+
+ private:
+  Termination kind_;
 };
 /// A contact iteration that did not converge: recoverable, the step is retried with Δt/2.
 class IterationFailure : public StepFailure {
  public:
-  IterationFailure() : StepFailure("contact iteration did not converge") {}
+  IterationFailure()
+      : StepFailure(Termination::IterationFailure, "contact iteration did not converge") {}
+};
+/// The step size fell below the floor (message "step size underflow (h = …)").
+class StepSizeUnderflow : public StepFailure {
+ public:
+  explicit StepSizeUnderflow(double h)
+      : StepFailure(Termination::StepSizeUnderflow, "step size underflow (h = " + fmt(h) + ")") {}
 };
 
 struct Clock {
@@ -55,7 +71,9 @@ struct Clock {
 
 /// The run machinery every contact method shares: the initial state, output times and
 /// rows (dense rows through dense_row_at), the energy ledger, statistics, events, the
-/// designer results, stop and failure handling. A contact method derives from it and
+/// designer results, stop (caller's flag, observer's Stop) and failure handling (every end
+/// of a run sets Summary::termination: a StepFailure carries its kind, SundialsError is
+/// SolverError, any other exception Error). A contact method derives from it and
 /// implements run_method(), the loop over its accepted steps, calling after_step() once
 /// per accepted step (docs: README "One data path").
 class RunContext {
@@ -104,14 +122,25 @@ class RunContext {
     emit_row();
     designer_step(cm0.X);
     next_out_ = 1;
+    auto end_run = [&](Termination kind, const char* what) {
+      sum_.finished = false;
+      sum_.termination = kind;
+      sum_.message = "at t = " + fmt(t_) + ": " + what;
+      // Keep the last accepted state (not after an observer's Stop: it saw its last row).
+      if (last_row_t_ < t_ && !observer_stop_) emit_row();
+    };
     try {
+      if (observer_stop_) throw_observer_stop();
       run_method();
       sum_.finished = true;
+      sum_.termination = Termination::Finished;
       sum_.message = "finished";
+    } catch (const StepFailure& e) {
+      end_run(e.kind(), e.what());
+    } catch (const SundialsError& e) {
+      end_run(Termination::SolverError, e.what());
     } catch (const std::exception& e) {
-      sum_.finished = false;
-      sum_.message = "at t = " + fmt(t_) + ": " + e.what();
-      if (last_row_t_ < t_) emit_row();  // keep the last accepted state
+      end_run(Termination::Error, e.what());
     }
     sum_.t_end = t_;
     sum_.rhs_evals += engine_->stats().rhs_evals;
@@ -183,7 +212,10 @@ class RunContext {
     r.work_cam = W;
     r.dissipated = D;
     last_row_t_ = t;
-    if (obs_) obs_->on_row(r);
+    if (obs_ && obs_->on_output(r) == ObserverAction::Stop) observer_stop_ = true;
+  }
+  [[noreturn]] static void throw_observer_stop() {
+    throw StepFailure(Termination::StoppedByObserver, "stopped by observer");
   }
 
   // impulse: the impact impulse applied at the instant (0: none); t_event: the event time
@@ -224,17 +256,20 @@ class RunContext {
     if (out_dt() <= 0.0) {
       emit_row();
     } else {
-      while (next_out_ * out_dt() <= t_ * (1 + 1e-12) + 1e-300 && next_out_ * out_dt() <= sc_.run.t_end * (1 + 1e-12)) {
+      while (!observer_stop_ && next_out_ * out_dt() <= t_ * (1 + 1e-12) + 1e-300 && next_out_ * out_dt() <= sc_.run.t_end * (1 + 1e-12)) {
         const double to = double(next_out_) * out_dt();
         ++next_out_;
         if (!(to < t_ && dense_row_at(to))) emit_row();  // inside the step: dense output
       }
-      if (t_ >= sc_.run.t_end && last_row_t_ < t_) emit_row();
+      if (!observer_stop_ && t_ >= sc_.run.t_end && last_row_t_ < t_) emit_row();
     }
-    if (stop_ && stop_->load()) throw StepFailure(stop_reason_);
+    if (observer_stop_) throw_observer_stop();
+    if (stop_ && stop_->load()) throw StepFailure(Termination::StoppedByCaller, stop_reason_);
     if (sum_.steps + sum_.rejected_steps > sc_.run.max_steps)
-      throw StepFailure("run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
-    if (!y_.allFinite() || !std::isfinite(F_)) throw StepFailure("non-finite state");
+      throw StepFailure(Termination::MaxSteps,
+                        "run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
+    if (!y_.allFinite() || !std::isfinite(F_))
+      throw StepFailure(Termination::NonFinite, "non-finite state");
     if (obs_ && (sum_.steps & 255) == 0) {
       const double w = progress_clock_.wall();
       if (w - last_progress_ > 0.2) {
@@ -269,8 +304,7 @@ class RunContext {
       hs = rem;
     else if (rem < 2.0 * hs)
       hs = 0.5 * rem;
-    if (hs <= 1e-14 * std::max(1.0, std::abs(t_)))
-      throw StepFailure("step size underflow (h = " + fmt(hs) + ")");
+    if (hs <= 1e-14 * std::max(1.0, std::abs(t_))) throw StepSizeUnderflow(hs);
     return hs;
   }
 
@@ -321,6 +355,7 @@ class RunContext {
   detail::DesignerStats designer_;
   Summary sum_;
   bool bilateral_ = false, contact_ = false;
+  bool observer_stop_ = false;  // an observer returned ObserverAction::Stop
   double tol_u_ = 1e-8;
   double t_ = 0, F_ = 0, E0_ = 0, V0_ = 0, work_ = 0, dissipated_ = 0, last_row_t_ = -1;
   long next_out_ = 1;

@@ -23,6 +23,23 @@ const std::vector<std::string>& history_columns() {
   return cols;
 }
 
+const char* to_string(Termination v) {
+  switch (v) {
+    case Termination::Finished: return "finished";
+    case Termination::StoppedByObserver: return "stopped_by_observer";
+    case Termination::StoppedByCaller: return "stopped_by_caller";
+    case Termination::MaxSteps: return "max_steps";
+    case Termination::StepSizeUnderflow: return "step_size_underflow";
+    case Termination::IterationFailure: return "iteration_failure";
+    case Termination::NonFinite: return "non_finite";
+    case Termination::StepFailure: return "step_failure";
+    case Termination::SolverError: return "solver_error";
+    case Termination::InvalidScene: return "invalid_scene";
+    case Termination::Error: return "error";
+  }
+  return "error";
+}
+
 Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   resolve_defaults(scene_);
   validate(scene_);
@@ -75,7 +92,7 @@ std::string Summary::BriefReport() const {
     << " steps (" << rejected_steps << " rejected), " << rhs_evals << " rhs evals, "
     << separations << " separations, " << impacts << " impacts, max force "
     << fmt(max_contact_force) << ", cpu " << fmt(cpu_seconds) << " s";
-  if (!finished) o << " — " << message;
+  if (!finished) o << " — " << message << " [" << to_string(termination) << "]";
   return o.str();
 }
 
@@ -91,9 +108,12 @@ std::string Summary::FullReport() const {
     << "  contact model:      " << contact_model << "\n"
     << "  integrator:         " << integrator << "\n"
     << "  finished:           " << (finished ? "yes" : "no") << " (" << message << ")\n"
+    << "  termination:        " << to_string(termination) << "\n"
     << "  t reached:          " << fmt(t_end) << "\n"
     << "  steps:              " << steps << " accepted, " << rejected_steps << " rejected\n"
     << "  rhs evaluations:    " << rhs_evals << "\n"
+    << "  linear solver:      " << lin_setups << " factorisations, " << lin_analyses
+    << " symbolic analyses\n"
     << "  contact iterations: " << contact_iterations << " (" << iteration_failures
     << " iteration failures)\n";
   lv("displacement level", level_u);

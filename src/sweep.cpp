@@ -21,10 +21,10 @@
 #include <map>
 #include <mutex>
 #include <sstream>
-#include <thread>
 
 #include "camdyn/designer.hpp"
 #include "camdyn/output.hpp"
+#include "thread_pool.hpp"
 
 namespace camdyn {
 
@@ -401,36 +401,25 @@ SweepResult run_sweep(const Scene& base, const SweepOptions& o) {
   std::vector<long> todo;
   for (long i = 0; i < plan.total; ++i)
     if (!journal.done(i)) todo.push_back(i);
-  int jobs = o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  jobs = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(jobs), std::max<std::size_t>(1, todo.size())));
-  std::atomic<std::size_t> next{0};
   std::mutex mu;
   std::string io_error;
   const auto w0 = std::chrono::steady_clock::now();
-  auto worker = [&] {
-    for (;;) {
-      if (o.stop && o.stop->load()) return;
-      const std::size_t k = next.fetch_add(1);
-      if (k >= todo.size()) return;
-      const std::string block = run_sweep_point(plan, todo[k], o.timing, o.point_timeout_seconds, o.stop);
-      if (block.empty()) return;  // stopped
-      std::lock_guard<std::mutex> lock(mu);
-      try {
-        journal.append(block);
-        ++res.computed;
-      } catch (const std::exception& e) {
-        io_error = e.what();
-        return;
-      }
-      if (o.progress)
-        o.progress(journal.done_count(), plan.total, journal.failed_count(),
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count());
+  detail::parallel_for(todo.size(), o.jobs, o.stop, [&](std::size_t k) {
+    const std::string block = run_sweep_point(plan, todo[k], o.timing, o.point_timeout_seconds, o.stop);
+    if (block.empty()) return false;  // stopped
+    std::lock_guard<std::mutex> lock(mu);
+    try {
+      journal.append(block);
+      ++res.computed;
+    } catch (const std::exception& e) {
+      io_error = e.what();
+      return false;
     }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < jobs; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+    if (o.progress)
+      o.progress(journal.done_count(), plan.total, journal.failed_count(),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count());
+    return true;
+  });
   if (!io_error.empty()) throw std::runtime_error(io_error);
   res.failed = journal.failed_count();
   res.interrupted = journal.done_count() < plan.total;

@@ -3,6 +3,9 @@
 # against that installation only, and builds examples/library once more with pkg-config.
 #
 #   -DCAMDYN_BINARY_DIR=  the build to install (static: the main build)
+#   -DCAMDYN_VERSION=     the project version: the examples must ask for its MAJOR.MINOR,
+#                         find_package(camdyn <it> REQUIRED) must succeed and
+#                         find_package(camdyn <major+1>.0 REQUIRED) must fail
 #   -DSHARED=ON           instead: build the library alone with BUILD_SHARED_LIBS=ON from
 #                         CAMDYN_SOURCE_DIR into WORK_DIR/camdyn-build (generator GENERATOR)
 #                         and install that; the consumers must then link libcamdyn.so (ldd)
@@ -60,6 +63,37 @@ foreach(example downstream library)
     endif()
   endif()
 endforeach()
+
+# Versioned find_package: the examples ask for this project's MAJOR.MINOR; asking for the
+# exact installed version works, a later major version fails (SameMajorVersion).
+if(CAMDYN_VERSION)
+  string(REGEX MATCH "^[0-9]+\\.[0-9]+" major_minor "${CAMDYN_VERSION}")
+  foreach(example downstream library)
+    file(READ ${CAMDYN_SOURCE_DIR}/examples/${example}/CMakeLists.txt text)
+    if(NOT text MATCHES "find_package\\(camdyn ${major_minor} REQUIRED\\)")
+      message(FATAL_ERROR "examples/${example}/CMakeLists.txt does not ask for camdyn ${major_minor} "
+                          "(the project version is ${CAMDYN_VERSION})")
+    endif()
+  endforeach()
+  string(REGEX MATCH "^[0-9]+" major "${CAMDYN_VERSION}")
+  math(EXPR next_major "${major} + 1")
+  foreach(want ${CAMDYN_VERSION} ${next_major}.0)
+    set(dir ${WORK_DIR}/version_${want})
+    file(WRITE ${dir}/CMakeLists.txt "cmake_minimum_required(VERSION 3.25)
+project(camdyn_version_check LANGUAGES C CXX)
+find_package(camdyn ${want} REQUIRED)
+message(STATUS \"found camdyn \${camdyn_VERSION}\")
+")
+    execute_process(COMMAND ${CMAKE_COMMAND} -S ${dir} -B ${dir}/build -DCMAKE_PREFIX_PATH=${prefix}
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(want STREQUAL CAMDYN_VERSION AND rc)
+      message(FATAL_ERROR "find_package(camdyn ${want} REQUIRED) failed:\n${out}\n${err}")
+    elseif(NOT want STREQUAL CAMDYN_VERSION AND NOT rc)
+      message(FATAL_ERROR "find_package(camdyn ${want} REQUIRED) accepted version ${CAMDYN_VERSION}")
+    endif()
+    message(STATUS "find_package(camdyn ${want} REQUIRED): ${rc}")
+  endforeach()
+endif()
 
 # pkg-config (camdyn.pc): the library example once more, compiled and linked by hand.
 find_program(PKG_CONFIG pkg-config)

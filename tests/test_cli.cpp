@@ -444,7 +444,7 @@ TEST(Output, SummaryJsonHasEveryKey) {
        {"scene", "finished", "message", "t_end", "steps", "rejected_steps", "rhs_evals",
         "contact_iterations", "separations", "impacts", "max_contact_force", "min_gap",
         "max_penetration", "cpu_seconds", "wall_seconds", "options", "integrator",
-        "contact_model", "iterations", "displacement", "velocity", "acceleration",
+        "contact_model", "termination", "iterations", "displacement", "velocity", "acceleration",
         "iteration_failures", "first_tensile_time", "energy_residual", "model", "events",
         // options: every table and a few keys
         "cam", "follower", "spring", "contact", "solver", "run", "angles_deg", "radii",

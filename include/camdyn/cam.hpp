@@ -37,8 +37,9 @@ struct CamMotion {
 };
 
 /// A convex cam profile. Construction validates it; evaluation tracks the contact point
-/// from the previous call (O(1) per call, no dense scan). Not thread-safe: use one Cam
-/// per thread (copies are cheap and independent).
+/// from the previous call (O(1) per call, no dense scan). Thread-safe: the const members
+/// may be called concurrently on one Cam (the hint is a relaxed atomic, and the contact
+/// point found does not depend on it, only the search's cost); copies are independent.
 class Cam {
  public:
   /// @throws SceneError (file "<cam>") with the offending key, value and rule: too few

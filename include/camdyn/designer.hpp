@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "camdyn/batch.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/simulator.hpp"
 
@@ -70,20 +71,8 @@ struct JumpResult {
 /// @throws SceneError on bad input (speed table given, bad options, no bracket found).
 JumpResult jump_speed(const Scene& scene, const JumpOptions& options = JumpOptions{});
 
-// ---- batch runs -------------------------------------------------------------------------
-
-/// Run every scene, `threads` at a time (≤ 0: std::thread::hardware_concurrency()), from
-/// a dynamic queue (an atomic next index: a slow scene does not hold up the others).
-/// Runs are independent and deterministic, so results do not depend on `threads`
-/// (except cpu/wall seconds). An invalid scene gives a Summary with finished = false and
-/// the error as message. `on_done(i, summary)` (may be empty) is called under a mutex.
-/// Summary::cpu_seconds is the run's own thread CPU time.
-std::vector<Summary> run_batch(const std::vector<Scene>& scenes, int threads = 0,
-                               const std::function<void(std::size_t, const Summary&)>& on_done = {},
-                               const std::atomic<bool>* stop = nullptr);
-
-/// Thread CPU time of the calling thread [s] (CLOCK_THREAD_CPUTIME_ID).
-double thread_cpu_seconds();
+// Batch runs (run_batch, simulate_batch, thread_cpu_seconds): camdyn/batch.hpp, included
+// above for the callers that found them here.
 
 // ---- sweeps -------------------------------------------------------------------------------
 

@@ -67,9 +67,32 @@ struct LevelStats {
   double mean() const { return steps ? double(total) / double(steps) : 0.0; }
 };
 
+/// How a run ended (Summary::termination). Every end of a run sets exactly one; the
+/// message (Summary::message) gives the details ("at t = T: …").
+enum class Termination {
+  Finished,           ///< reached run.t_end (finished = true; the only such value)
+  StoppedByObserver,  ///< an Observer returned ObserverAction::Stop from on_output
+  StoppedByCaller,    ///< the caller's stop flag was set (Simulator::run's `stop`: Ctrl-C in
+                      ///< the CLI, a sweep's point timeout, Python's observer returning False)
+  MaxSteps,           ///< run.max_steps (accepted + rejected steps) reached
+  StepSizeUnderflow,  ///< the step size fell below 1e-14·max(1, t)
+  IterationFailure,   ///< a contact iteration did not converge and was not retried
+  NonFinite,          ///< the state or the contact force became NaN or infinite
+  StepFailure,        ///< a step could not be completed for another reason (see message)
+  SolverError,        ///< a SUNDIALS call failed (e.g. CVODE's error test or convergence)
+  InvalidScene,       ///< run_batch only: the scene failed validation (message: SceneError)
+  Error,              ///< any other exception (e.g. a mass matrix that is not positive
+                      ///< definite); the message is its what()
+};
+/// "finished", "stopped_by_observer", "stopped_by_caller", "max_steps",
+/// "step_size_underflow", "iteration_failure", "non_finite", "step_failure",
+/// "solver_error", "invalid_scene", "error" (summary.json's "termination").
+const char* to_string(Termination v);
+
 struct Summary {
   std::string scene;
-  bool finished = false;
+  bool finished = false;  ///< termination == Termination::Finished
+  Termination termination = Termination::Error;
   std::string message;
   double t_end = 0;  ///< time reached
   long steps = 0, rejected_steps = 0, rhs_evals = 0;
@@ -115,10 +138,25 @@ struct Summary {
   std::string FullReport() const;
 };
 
+/// What an observer wants after seeing a row (Observer::on_output).
+enum class ObserverAction { Continue, Stop };
+
 /// Receives output as it is computed (so a failing run keeps what it computed).
 struct Observer {
   virtual ~Observer() = default;
+  /// Called for every history row, in time order (through the default on_output).
   virtual void on_row(const HistoryRow&) {}
+  /// Called for every history row; the run calls this, not on_row. The default calls
+  /// on_row and continues, so an observer that only overrides on_row works unchanged.
+  /// Returning Stop ends the run cleanly at the accepted step that produced the row: no
+  /// further rows are delivered (the stopping row is the last), and the Summary says
+  /// finished = false, termination = StoppedByObserver, message "at t = T: stopped by
+  /// observer", t_end = T = that step's end (= row.t unless the row is dense output
+  /// inside the step). Stop on the initial row (t = 0) ends the run before any step.
+  virtual ObserverAction on_output(const HistoryRow& row) {
+    on_row(row);
+    return ObserverAction::Continue;
+  }
   virtual void on_event(const ContactEvent&) {}
   /// Called about every 0.2 s of wall time.
   virtual void on_progress(double /*t*/, double /*t_end*/, long /*steps*/) {}
@@ -144,8 +182,9 @@ class Simulator {
   explicit Simulator(Scene scene);
   ~Simulator();
   /// Run to t_end. Never throws for a simulation failure: the summary says
-  /// finished = false and why. `stop` (may be null) is polled each step (Ctrl-C); once it
-  /// is set the run ends with finished = false and message "at t = T: <stop_reason>"
+  /// finished = false, how (termination) and why (message). `stop` (may be null) is polled each step (Ctrl-C); once it
+  /// is set the run ends with finished = false, termination = StoppedByCaller and message
+  /// "at t = T: <stop_reason>"
   /// (the CLI's Ctrl-C keeps the default; a library caller passes e.g. "stopped by caller").
   Summary run(Observer* observer = nullptr, const std::atomic<bool>* stop = nullptr,
               const std::string& stop_reason = "interrupted (SIGINT)");

@@ -388,7 +388,7 @@ class LeeLocated final : public RunContext {
       double hs = relocating ? h_try : fit_step(h, t_next);
       h_try = -1.0;
       if (hs <= hmin_rel * std::max(1.0, std::abs(t_)))
-        throw StepFailure("step size underflow (h = " + fmt(hs) + ")");
+        throw StepSizeUnderflow(hs);
       const double t1 = (!relocating && hs == t_next - t_) ? t_next : t_ + hs;
       hs = t1 - t_;
       const CamMotion cm = cam_at(t1);

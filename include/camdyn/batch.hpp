@@ -1,0 +1,58 @@
+// camdyn — many runs at once: run_batch (summaries) and simulate_batch (summaries and
+// history rows), on worker threads from a dynamic queue.
+//
+// Thread safety: each run builds its own Simulator (model, Cam, engines, SUNDIALS
+// context); nothing mutable is shared between runs. Cam is safe to share as well (its
+// contact-point search hint is a relaxed atomic), the scene key table and the contact
+// method registry are function-local statics initialised once. The one exception is
+// register_contact_method (a test hook): register before starting a batch.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "camdyn/scene.hpp"
+#include "camdyn/simulator.hpp"
+
+namespace camdyn {
+
+/// Run every scene, `threads` at a time, from a dynamic queue (an atomic next index: a
+/// slow scene does not hold up the others); the calling thread is one of the workers.
+/// Runs are independent and deterministic, so every result but cpu_seconds and
+/// wall_seconds is bitwise identical to Simulator(scene).run() one by one, for any
+/// `threads`.
+/// @param threads  worker threads; ≤ 0: std::thread::hardware_concurrency(); at most
+///                 scenes.size() are started.
+/// @param on_done  called as (index, summary) after each run, under a mutex (so it may
+///                 write shared state); may be empty. It must not throw.
+/// @param stop     may be null; polled before each run and every step of a run: once set,
+///                 runs in progress end with termination = StoppedByCaller and scenes not
+///                 yet started keep a default Summary (termination = Error, empty message).
+/// @pre  scenes need not be resolved or valid: each is resolved and validated like
+///       Simulator's constructor does. register_contact_method is not called meanwhile.
+/// @return one Summary per scene, in the order of `scenes`. An invalid scene gives
+///       finished = false, termination = InvalidScene and the SceneError text as message;
+///       any other exception thrown while building a run, termination = Error.
+///       Summary::cpu_seconds is the run's own thread CPU time.
+/// @throws std::system_error if a worker thread cannot be started (nothing else: failures
+///       of a run are in its Summary).
+std::vector<Summary> run_batch(const std::vector<Scene>& scenes, int threads = 0,
+                               const std::function<void(std::size_t, const Summary&)>& on_done = {},
+                               const std::atomic<bool>* stop = nullptr);
+
+/// As run_batch, keeping every run's history rows too (RunResult, as simulate()): the
+/// rows of scene i are bitwise identical to simulate(scenes[i]).rows for any `threads`.
+/// Memory: all rows of all runs are held (one HistoryRow is 96 bytes).
+/// @pre, @throws and the meaning of threads, on_done and stop: as run_batch. A scene that
+///       failed before running has no rows.
+std::vector<RunResult> simulate_batch(
+    const std::vector<Scene>& scenes, int threads = 0,
+    const std::function<void(std::size_t, const RunResult&)>& on_done = {},
+    const std::atomic<bool>* stop = nullptr);
+
+/// Thread CPU time of the calling thread [s] (CLOCK_THREAD_CPUTIME_ID).
+double thread_cpu_seconds();
+
+}  // namespace camdyn
