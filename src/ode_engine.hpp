@@ -18,7 +18,7 @@
 // catch every exception and return −1, so none crosses SUNDIALS. SUNDIALS treats −1 as an
 // unrecoverable failure: the step fails and step()/advance() throw SundialsError, whose
 // message carries the exception's what(); the engine is usable again after reinit()/step()
-// from a saved state. Trial-mode engines ignore SolverSpec::max_step (h is the caller's).
+// from a saved state. ERK/DIRK trial steps ignore SolverSpec::max_step (h is the caller's).
 #pragma once
 
 #include <Eigen/Core>
