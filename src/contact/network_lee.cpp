@@ -333,8 +333,7 @@ class NetworkLee final : public NetworkRun {
       const bool relocating = h_try > 0.0;
       double hs = relocating ? h_try : fit_step(h, t_next);
       h_try = -1.0;
-      if (hs <= 1e-14 * std::max(1.0, std::abs(t_)))
-        throw StepFailure("step size underflow (h = " + fmt(hs) + ")");
+      if (hs <= 1e-14 * std::max(1.0, std::abs(t_))) throw StepSizeUnderflow(hs);
       const double t1 = (!relocating && hs == t_next - t_) ? t_next : t_ + hs;
       hs = t1 - t_;
       const CamMotion cm1 = cam_at(t1);

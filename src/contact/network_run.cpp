@@ -257,7 +257,7 @@ void NetworkRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
     r.extra.push_back(v[i]);
   }
   last_row_t_ = t;
-  if (obs_) obs_->on_row(r);
+  if (obs_ && obs_->on_output(r) == ObserverAction::Stop) observer_stop_ = true;
 }
 
 void NetworkRun::record_event(const char* kind, int contact, double v, double impulse,
@@ -291,18 +291,19 @@ void NetworkRun::after_step(double h, double dW, double P_prev, double P_end) {
   if (out_dt() <= 0.0) {
     emit_row();
   } else {
-    while (next_out_ * out_dt() <= t_ * (1 + 1e-12) + 1e-300 &&
+    while (!observer_stop_ && next_out_ * out_dt() <= t_ * (1 + 1e-12) + 1e-300 &&
            next_out_ * out_dt() <= sc_.run.t_end * (1 + 1e-12)) {
       const double to = double(next_out_) * out_dt();
       ++next_out_;
       if (!(to < t_ && dense_row_at(to))) emit_row();
     }
-    if (t_ >= sc_.run.t_end && last_row_t_ < t_) emit_row();
+    if (!observer_stop_ && t_ >= sc_.run.t_end && last_row_t_ < t_) emit_row();
   }
-  if (stop_ && stop_->load()) throw StepFailure(stop_reason_);
+  if (observer_stop_) throw StepFailure(Termination::StoppedByObserver, "stopped by observer");
+  if (stop_ && stop_->load()) throw StepFailure(Termination::StoppedByCaller, stop_reason_);
   if (sum_.steps + sum_.rejected_steps > sc_.run.max_steps)
-    throw StepFailure("run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
-  if (!y_.allFinite() || !F_.allFinite()) throw StepFailure("non-finite state");
+    throw StepFailure(Termination::MaxSteps, "run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
+  if (!y_.allFinite() || !F_.allFinite()) throw StepFailure(Termination::NonFinite, "non-finite state");
   if (obs_ && (sum_.steps & 255) == 0) obs_->on_progress(t_, sc_.run.t_end, sum_.steps);
 }
 
@@ -314,8 +315,7 @@ double NetworkRun::fit_step(double h, double t_next) const {
     hs = rem;
   else if (rem < 2.0 * hs)
     hs = 0.5 * rem;
-  if (hs <= 1e-14 * std::max(1.0, std::abs(t_)))
-    throw StepFailure("step size underflow (h = " + fmt(hs) + ")");
+  if (hs <= 1e-14 * std::max(1.0, std::abs(t_))) throw StepSizeUnderflow(hs);
   return hs;
 }
 
@@ -355,14 +355,24 @@ Summary NetworkRun::run() {
                    c.t.dot(a), gap(p, y_, cm0));
   }
   next_out_ = 1;
+  auto end_run = [&](Termination kind, const char* what) {
+    sum_.finished = false;
+    sum_.termination = kind;
+    sum_.message = "at t = " + fmt(t_) + ": " + what;
+    if (last_row_t_ < t_ && !observer_stop_) emit_row();  // keep the last accepted state
+  };
   try {
+    if (observer_stop_) throw StepFailure(Termination::StoppedByObserver, "stopped by observer");
     run_method();
     sum_.finished = true;
+    sum_.termination = Termination::Finished;
     sum_.message = "finished";
+  } catch (const StepFailure& e) {
+    end_run(e.kind(), e.what());
+  } catch (const SundialsError& e) {
+    end_run(Termination::SolverError, e.what());
   } catch (const std::exception& e) {
-    sum_.finished = false;
-    sum_.message = "at t = " + fmt(t_) + ": " + e.what();
-    if (last_row_t_ < t_) emit_row();
+    end_run(Termination::Error, e.what());
   }
   sum_.t_end = t_;
   for (const auto& e : engines_) {

@@ -111,7 +111,8 @@ class NetworkRun {
   Eigen::VectorXd y_, F_;
   std::vector<char> active_;
   double x_base_ = 0.0;     // the base circle's X_C: cam_at() returns the lift X_C − x_base_
-  bool unilateral_ = true;  // false: contact.separation = false or holonomic (never release)
+  bool unilateral_ = true;
+  bool observer_stop_ = false;  // an observer returned ObserverAction::Stop  // false: contact.separation = false or holonomic (never release)
   long next_out_ = 1;
   double F_ref_ = 0.0;        // largest contact force so far (force thresholds)
   double v_impact_ref_ = 0.0;  // first approach velocity (sticking threshold)
