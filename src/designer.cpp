@@ -122,6 +122,9 @@ bool separates(const Scene& base, double speed, double* theta_deg) {
     throw SceneError(base.source, 0, "cam.speed_rev_s", num(speed),
                      "jump speed: the simulation failed there (" + r.message + ")");
   if (theta_deg) *theta_deg = r.first_separation_theta_deg;
+  // A network separates every cycle somewhere (the valve leaves its seat, a lash opens):
+  // it jumps when its cam contact separates on the lift (the designer's first separation).
+  if (s.follower.kind == FollowerKind::Network) return !std::isnan(r.first_separation_theta_deg);
   return r.separations > 0;
 }
 
@@ -167,7 +170,10 @@ JumpResult jump_speed(const Scene& scene_in, const JumpOptions& o) {
   Scene rigid = scene;
   rigid.follower.kind = FollowerKind::Rigid;
   rigid.follower.damping = 0.0;
-  double est = std::abs(jump_closed_form(rigid, o, dir).jump_speed_rev_s);
+  // (a network has no rigid-body estimate: the bracket starts around the scene's speed)
+  double est = scene.follower.kind == FollowerKind::Network
+                   ? std::abs(scene.cam.speed_rev_s)
+                   : std::abs(jump_closed_form(rigid, o, dir).jump_speed_rev_s);
   if (!std::isfinite(est) || est <= 0) est = 1.0;
   double lo = o.lo_rev_s > 0 ? o.lo_rev_s : 0.5 * est;
   double hi = o.hi_rev_s > 0 ? o.hi_rev_s : 1.5 * est;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cstddef>
 #include <cstring>
 #include <string>
 #include <thread>
@@ -65,8 +66,20 @@ void expect_same_summary(const Summary& a, const Summary& b, const std::string& 
 void expect_same_rows(const std::vector<HistoryRow>& a, const std::vector<HistoryRow>& b,
                       const std::string& what) {
   ASSERT_EQ(a.size(), b.size()) << what;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    ASSERT_EQ(std::memcmp(&a[i], &b[i], sizeof(HistoryRow)), 0) << what << ", row " << i;
+  // every number bitwise (not the struct's bytes: padding and the extra vector's pointer)
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const HistoryRow &x = a[i], &y = b[i];
+    const double xs[] = {x.t, x.theta, x.u_c, x.v_c, x.a_c, x.contact_force, x.gap,
+                         x.kinetic, x.potential, x.work_cam, x.dissipated};
+    const double ys[] = {y.t, y.theta, y.u_c, y.v_c, y.a_c, y.contact_force, y.gap,
+                         y.kinetic, y.potential, y.work_cam, y.dissipated};
+    ASSERT_EQ(std::memcmp(xs, ys, sizeof xs), 0) << what << ", row " << i;
+    ASSERT_EQ(x.in_contact, y.in_contact) << what << ", row " << i;
+    ASSERT_EQ(a[i].extra.size(), b[i].extra.size()) << what << ", row " << i;
+    if (!a[i].extra.empty())
+      ASSERT_EQ(std::memcmp(a[i].extra.data(), b[i].extra.data(), a[i].extra.size() * sizeof(double)), 0)
+          << what << ", row " << i;
+  }
 }
 
 TEST(Batch, TwoThreadsAreBitwiseSerial) {

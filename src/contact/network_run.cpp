@@ -264,7 +264,14 @@ void NetworkRun::record_event(const char* kind, int contact, double v, double im
                               double t_event) {
   const double te = std::isnan(t_event) ? t_ : t_event;
   ContactEvent e{te, kind, v, drive_.theta(te), impulse, mk_.contacts()[contact].name};
-  if (contact == mk_.primary()) designer_.event(e);
+  // The designer results follow the primary contact (the cam's). A cam contact with lash
+  // opens at the end of every lift event as the cam returns to its base circle: only a
+  // separation while the cam is lifted past the clearance is a float (a jump).
+  if (contact == mk_.primary()) {
+    const MechanismContact& c = mk_.contacts()[contact];
+    const bool on_lift = !c.cam || cam_at(te).X > c.g0 + 1e-6 * cam_.lift();
+    if (std::string(kind) != "separation" || on_lift) designer_.event(e);
+  }
   sum_.events.push_back(e);
   if (obs_) obs_->on_event(e);
 }
