@@ -39,6 +39,7 @@ class NetworkEvent final : public NetworkRun {
   OdeEngine* eng_;
   Eigen::VectorXd yv_;
   std::vector<int> set_;  // the active set the right-hand side uses
+  double gap_thr_ = 1e-3 * sc_.contact.tol_u;
 
   void restart() {
     set_ = active_list();
@@ -52,11 +53,15 @@ class NetworkEvent final : public NetworkRun {
       const CamMotion cm = cam_at(t);
       Eigen::VectorXd F;
       if (!set_.empty()) F = held_forces(yv_, cm, set_);
-      for (int j = 0; j < m_; ++j) g[j] = active_[j] ? F[j] : gap(j, yv_, cm);
+      // Offsets keep every function away from zero at a restart (SUNDIALS stops with
+      // "root found at and very near t" on a function that stays at zero): a gap triggers
+      // at −10⁻³ tol_u, a force at −10⁻¹² of the largest force so far.
+      const double F_thr = 1e-12 * std::max(F_ref_, mk_.f0().cwiseAbs().maxCoeff());
+      for (int j = 0; j < m_; ++j) g[j] = active_[j] ? F[j] + F_thr : gap(j, yv_, cm) + gap_thr_;
     });
     restart();
     Eigen::VectorXd y1(2 * n_);
-    const double gap_thr = 1e-3 * sc_.contact.tol_u;
+    const double gap_thr = gap_thr_;
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       const double tout = next_output_time();
       const double Pw_prev = cam_power(F_, cam_at(t_));
@@ -67,6 +72,7 @@ class NetworkEvent final : public NetworkRun {
       y_ = y1;
       const CamMotion cm = cam_at(t_);
       F_ = held_forces(y_, cm, set_);
+      if (m_) F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
       const double dW = 0.5 * h * (Pw_prev + cam_power(F_, cm));
       const double P_end = dissipation_power(t_, y_);
       bool changed = false;
@@ -84,10 +90,12 @@ class NetworkEvent final : public NetworkRun {
             closing.push_back(j);
           }
         }
-        // other open contacts closed at the same instant take part too
+        // other open contacts closing at the same instant take part too (not one that
+        // has just been released: it leaves at zero speed)
+        const double v_eps = 1e-6 * v_impact_ref_;
         for (int j = 0; j < m_; ++j)
-          if (!active_[j] && std::find(closing.begin(), closing.end(), j) == closing.end() &&
-              gap(j, y_, cm) <= gap_thr && gap_rate(j, y_, cm) < 0.0)
+          if (!active_[j] && eng_->root_info()[j] == 0 && gap(j, y_, cm) <= gap_thr &&
+              gap_rate(j, y_, cm) < -v_eps)
             closing.push_back(j);
         if (!closing.empty())
           resolve_impact(closing, cm);

@@ -23,9 +23,13 @@ NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const Mechanism> mech, O
   sum_.model = mk_.description();
   sum_.min_gap = INFINITY;
   unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
-  // The base circle: min over θ of X_C (a scan of 3600 angles, refined by golden section
-  // around the smallest sample), so that a cam contact's gap sees the lift X_C − X_base.
-  if (mk_.cam_contacts() > 0) {
+  // The base circle, so that a cam contact's gap sees the lift X_C − X_base: a lift table
+  // gives it (cam.base_radius: the table's L = 0, also where its spline rings a little
+  // below zero between knots); otherwise min over θ of X_C (a scan of 3600 angles, refined
+  // by golden section around the smallest sample).
+  if (sc.cam.profile == CamProfileKind::Lift) {
+    x_base_ = sc.cam.base_radius;
+  } else if (mk_.cam_contacts() > 0) {
     const double d = 2.0 * M_PI / 3600.0;
     double best = INFINITY, th_best = 0.0;
     for (int i = 0; i < 3600; ++i) {
@@ -178,8 +182,10 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
       for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, S[l]);
     }
     const Eigen::VectorXd Ps = Wss.completeOrthogonalDecomposition().solve(rhs);
+    // An impulse that would pull by a trace (the velocity drift of an active contact, or
+    // round-off) is not a pull: only one below −1e-6 of the largest leaves S.
     int worst = -1;
-    const double thr = 1e-12 * std::max(1.0, Ps.cwiseAbs().maxCoeff());
+    const double thr = 1e-6 * Ps.cwiseAbs().maxCoeff();
     for (int i = 0; i < k; ++i)
       if (unilateral_ && Ps[i] < -thr && (worst < 0 || Ps[i] < Ps[worst])) worst = i;
     if (worst < 0) {
@@ -195,14 +201,18 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
   work_ += W_imp;
   dissipated_ += W_imp - (T_after - T_before);
   for (int j : closing) {
-    if (-gd[j] > 0.0) {
+    if (-gd[j] > 1e-9 * v_impact_ref_) {  // a touch at zero approach speed is no impact
       ++sum_.impacts;
       record_event("impact", j, -gd[j], P[j]);
     }
     if (stick[j] && std::find(S.begin(), S.end(), j) != S.end()) active_[j] = 1;
   }
-  for (int j = 0; j < m_; ++j)  // active contacts left out of S separate
-    if (active_[j] && !is_closing[j] && std::find(S.begin(), S.end(), j) == S.end()) {
+  // An active contact left out of S (its impulse would pull) separates if the impulse of
+  // the others opens it; otherwise the acceleration level decides (settle_active).
+  const double v_eps = 1e-6 * std::max(v_impact_ref_, 1e-300);
+  for (int j = 0; j < m_; ++j)
+    if (active_[j] && !is_closing[j] && std::find(S.begin(), S.end(), j) == S.end() &&
+        gap_rate(j, y_, cm) > v_eps) {
       active_[j] = 0;
       ++sum_.separations;
       record_event("separation", j, 0.0);
