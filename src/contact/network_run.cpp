@@ -13,6 +13,10 @@
 namespace camdyn {
 namespace detail {
 
+namespace {
+constexpr double kFloatLift = 0.01;  // a float: the cam above clearance + 1 % of its lift
+}  // namespace
+
 NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const Mechanism> mech, Observer* obs,
                        const std::atomic<bool>* stop)
     : sc_(sc), mech_(std::move(mech)), mk_(*mech_), cam_(sc.cam), drive_(sc.cam), obs_(obs),
@@ -161,13 +165,21 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
   for (int j = 0; j < m_; ++j) gd[j] = gap_rate(j, y_, cm);
   Eigen::VectorXd a_free;
   acceleration(y_, Eigen::VectorXd::Zero(m_), a_free);
+  // Sticking speed of each contact: below it an approach is a touch (the speed a contact
+  // reaches falling through 10⁻³ tol_u under its relative acceleration, ×4).
+  for (int j : closing)
+    if (v_impact_ref_ == 0.0 && -gd[j] > 0.0) v_impact_ref_ = -gd[j];
+  Eigen::VectorXd v_stick(m_);
+  for (int j = 0; j < m_; ++j) {
+    const double rel_acc = std::abs(mk_.contacts()[j].t.dot(a_free) - cam_acc(j, cm));
+    v_stick[j] = std::max(1e-6 * v_impact_ref_, 4.0 * std::sqrt(2.0 * rel_acc * 1e-3 * sc_.contact.tol_u));
+  }
+  bool soft = true;  // every closing contact only touches
   for (int j : closing) {
     const double approach = -gd[j];
     const double e = mk_.contacts()[j].restitution;
-    if (v_impact_ref_ == 0.0 && approach > 0.0) v_impact_ref_ = approach;
-    const double rel_acc = std::abs(mk_.contacts()[j].t.dot(a_free) - cam_acc(j, cm));
-    const double v_stick = std::max(1e-6 * v_impact_ref_, 4.0 * std::sqrt(2.0 * rel_acc * 1e-3 * sc_.contact.tol_u));
-    stick[j] = !unilateral_ || e == 0.0 || (1.0 + e) * approach < v_stick;
+    stick[j] = !unilateral_ || e == 0.0 || (1.0 + e) * approach < v_stick[j];
+    soft = soft && approach < v_stick[j];
   }
   Eigen::VectorXd P = Eigen::VectorXd::Zero(m_);
   for (;;) {
@@ -184,13 +196,22 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
     const Eigen::VectorXd Ps = Wss.completeOrthogonalDecomposition().solve(rhs);
     // An impulse that would pull by a trace (the velocity drift of an active contact, or
     // round-off) is not a pull: only one below −1e-6 of the largest leaves S.
+    // A touch (soft): a contact whose pull would change its own speed by less than its
+    // sticking speed keeps it: the sandwich of a valve landing on its seat while the rocker
+    // still rests on it is then held by both, and the acceleration level decides which
+    // contact lets go (without it the two contacts traded places at the sticking speed
+    // every few nanoseconds, and the step size underflowed).
     int worst = -1;
     const double thr = 1e-6 * Ps.cwiseAbs().maxCoeff();
+    auto pulls = [&](int i) {
+      if (!unilateral_ || !(Ps[i] < -thr)) return false;
+      return !(soft && -Ps[i] * mk_.W()(S[i], S[i]) < v_stick[S[i]]);
+    };
     for (int i = 0; i < k; ++i)
-      if (unilateral_ && Ps[i] < -thr && (worst < 0 || Ps[i] < Ps[worst])) worst = i;
+      if (pulls(i) && (worst < 0 || Ps[i] < Ps[worst])) worst = i;
     if (worst < 0) {
       P.setZero();
-      for (int i = 0; i < k; ++i) P[S[i]] = std::max(Ps[i], unilateral_ ? 0.0 : Ps[i]);
+      for (int i = 0; i < k; ++i) P[S[i]] = (unilateral_ && !soft) ? std::max(Ps[i], 0.0) : Ps[i];
       break;
     }
     S.erase(S.begin() + worst);  // it would pull: it leaves (or stays open)
@@ -201,7 +222,7 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
   work_ += W_imp;
   dissipated_ += W_imp - (T_after - T_before);
   for (int j : closing) {
-    if (-gd[j] > 1e-9 * v_impact_ref_) {  // a touch at zero approach speed is no impact
+    if (-gd[j] > 1e-9 * std::max(v_impact_ref_, v_stick[j])) {  // a touch at zero speed is no impact
       ++sum_.impacts;
       record_event("impact", j, -gd[j], P[j]);
     }
@@ -275,11 +296,13 @@ void NetworkRun::record_event(const char* kind, int contact, double v, double im
   const double te = std::isnan(t_event) ? t_ : t_event;
   ContactEvent e{te, kind, v, drive_.theta(te), impulse, mk_.contacts()[contact].name};
   // The designer results follow the primary contact (the cam's). A cam contact with lash
-  // opens at the end of every lift event as the cam returns to its base circle: only a
-  // separation while the cam is lifted past the clearance is a float (a jump).
+  // opens at the end of every lift event as the cam returns to its base circle, a few µm
+  // above the clearance (the chain's deflection under load): only a separation while the
+  // cam is lifted past the clearance by more than kFloatLift of its lift is a float (a
+  // jump: first_separation_theta_deg, camdyn jump).
   if (contact == mk_.primary()) {
     const MechanismContact& c = mk_.contacts()[contact];
-    const bool on_lift = !c.cam || cam_at(te).X > c.g0 + 1e-6 * cam_.lift();
+    const bool on_lift = !c.cam || cam_at(te).X > c.g0 + kFloatLift * cam_.lift();
     if (std::string(kind) != "separation" || on_lift) designer_.event(e);
   }
   sum_.events.push_back(e);
