@@ -18,6 +18,7 @@
 #include <string>
 
 #include "camdyn/cam.hpp"
+#include "camdyn/designer.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/simulator.hpp"
 #include "mechanism.hpp"
@@ -238,32 +239,44 @@ INSTANTIATE_TEST_SUITE_P(Methods, ValveSeat, ::testing::ValuesIn(kExactMethods),
 //   F = m_eq Ẍ + k_eq X + P_eq ≥ 0,  m_eq = m_t + r² m_v, k_eq = k_t + r² k_v, P_eq = P_t + r P_v,
 // at constant ω: Ẍ = h″ω², so the follower floats first at
 //   ω_f² = min over h″ < 0 of (k_eq X + P_eq) / (−m_eq h″).
-TEST(RigidTrain, FloatSpeedMatchesTheRequiredForceClosedForm) {
-  const double mt = 0.04, mv = 0.05, r = 1.5, kt = 2e3, kv = 3e4, Pt = 20.0, Pv = 250.0;
-  Scene s = net_scene(10.0);
-  s.network.nodes = {node("tappet", mt), node("valve", mv)};
-  s.network.elements = {lever("tappet", "valve", r), spring("tappet", "ground", kt, Pt),
-                        spring("valve", "ground", kv, Pv)};
-  s.network.contacts = {contact("cam", ContactPointKind::Cam, {"tappet"})};
-  const double meq = mt + r * r * mv, keq = kt + r * r * kv, Peq = Pt + r * Pv;
-  // closed form on the cam's own geometry (lift above the base circle)
-  const Cam cam(s.cam);
-  double Xmin = INFINITY;
-  for (int i = 0; i < 36000; ++i) Xmin = std::min(Xmin, cam.evaluate(i * 2 * M_PI / 36000).X_C);
-  auto ratio = [&](double th) {
-    const CamPoint p = cam.evaluate(th);
-    return p.d2X_dtheta2 < 0 ? (keq * (p.X_C - Xmin) + Peq) / (-meq * p.d2X_dtheta2) : INFINITY;
-  };
-  double best = INFINITY, th_best = 0;
-  for (int i = 0; i < 3600; ++i)
-    if (ratio(i * 2 * M_PI / 3600) < best) best = ratio(th_best = i * 2 * M_PI / 3600);
-  double a = th_best - 2 * M_PI / 3600, b = th_best + 2 * M_PI / 3600;
-  for (int i = 0; i < 100; ++i) {
-    const double c1 = a + (b - a) / 3, c2 = b - (b - a) / 3;
-    (ratio(c1) < ratio(c2) ? b : a) = ratio(c1) < ratio(c2) ? c2 : c1;
+struct RigidTrain {
+  double mt = 0.04, mv = 0.05, r = 1.5, kt = 2e3, kv = 3e4, Pt = 20.0, Pv = 250.0;
+  Scene scene() const {
+    Scene s = net_scene(10.0);
+    s.network.nodes = {node("tappet", mt), node("valve", mv)};
+    s.network.elements = {lever("tappet", "valve", r), spring("tappet", "ground", kt, Pt),
+                          spring("valve", "ground", kv, Pv)};
+    s.network.contacts = {contact("cam", ContactPointKind::Cam, {"tappet"})};
+    return s;
   }
-  const double w_f = std::sqrt(ratio(0.5 * (a + b)));  // rad/s
-  const double n_f = w_f / (2 * M_PI);                 // rev/s
+  // The float speed [rev/s] from the required force on the cam's own geometry (lift above
+  // the base circle), scanned and refined by ternary search.
+  double closed_form_rev_s() const {
+    const Scene s = scene();
+    const double meq = mt + r * r * mv, keq = kt + r * r * kv, Peq = Pt + r * Pv;
+    const Cam cam(s.cam);
+    double Xmin = INFINITY;
+    for (int i = 0; i < 36000; ++i) Xmin = std::min(Xmin, cam.evaluate(i * 2 * M_PI / 36000).X_C);
+    auto ratio = [&](double th) {
+      const CamPoint p = cam.evaluate(th);
+      return p.d2X_dtheta2 < 0 ? (keq * (p.X_C - Xmin) + Peq) / (-meq * p.d2X_dtheta2) : INFINITY;
+    };
+    double best = INFINITY, th_best = 0;
+    for (int i = 0; i < 3600; ++i)
+      if (ratio(i * 2 * M_PI / 3600) < best) best = ratio(th_best = i * 2 * M_PI / 3600);
+    double a = th_best - 2 * M_PI / 3600, b = th_best + 2 * M_PI / 3600;
+    for (int i = 0; i < 100; ++i) {
+      const double c1 = a + (b - a) / 3, c2 = b - (b - a) / 3;
+      (ratio(c1) < ratio(c2) ? b : a) = ratio(c1) < ratio(c2) ? c2 : c1;
+    }
+    return std::sqrt(ratio(0.5 * (a + b))) / (2 * M_PI);
+  }
+};
+
+TEST(RigidTrain, FloatSpeedMatchesTheRequiredForceClosedForm) {
+  const RigidTrain train;
+  const Scene s = train.scene();
+  const double n_f = train.closed_form_rev_s();
   for (double f : {1.0 - 1e-4, 1.0 + 1e-4}) {
     Scene sf = s;
     sf.cam.speed_rev_s = n_f * f;
@@ -275,6 +288,20 @@ TEST(RigidTrain, FloatSpeedMatchesTheRequiredForceClosedForm) {
     else
       EXPECT_GT(rr.sum.separations, 0) << "does not float above the closed-form speed " << n_f;
   }
+}
+
+// camdyn jump on a network: bisection on "the cam contact separates on the lift".
+TEST(RigidTrain, JumpSpeedBySimulationMatchesTheClosedForm) {
+  const RigidTrain train;
+  Scene s = train.scene();
+  s.run.t_end = 1.0 / 150.0;  // a revolution at the lowest speed tried
+  JumpOptions o;
+  o.rel_tol = 1e-6;
+  o.lo_rev_s = 150.0;
+  o.hi_rev_s = 250.0;
+  const JumpResult r = jump_speed(s, o);
+  EXPECT_EQ(r.method, "simulation");
+  EXPECT_NEAR(r.jump_speed_rev_s, train.closed_form_rev_s(), 1e-5 * train.closed_form_rev_s());
 }
 
 // ---- multi-mass valve spring --------------------------------------------------------------
