@@ -222,7 +222,7 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
   work_ += W_imp;
   dissipated_ += W_imp - (T_after - T_before);
   for (int j : closing) {
-    if (-gd[j] > 1e-9 * std::max(v_impact_ref_, v_stick[j])) {  // a touch at zero speed is no impact
+    if (-gd[j] > 0.0) {
       ++sum_.impacts;
       record_event("impact", j, -gd[j], P[j]);
     }
