@@ -14,11 +14,17 @@ are applied first and the scene is validated once, so their order never matters.
 Bad input raises :class:`SceneError` (a :class:`ValueError`) whose message is the one the
 CLI prints after ``camdyn: ``.
 
+Follower networks (valve trains, ``follower.kind = "network"``) run the same way; their
+history also has ``F_<contact>``, ``gap_<contact>``, ``in_<contact>``, ``u_<node>``,
+``v_<node>`` and their events a ``contact``. :func:`network_scene` builds one from Python
+objects (dicts or :class:`Node`, :class:`Element`, :class:`Contact`).
+
 Example::
 
     import camdyn
     r = camdyn.run("examples/case_A.toml", **{"run.t_end": 0.2})
     r.summary["max_contact_force"], r.history["contact_force"], r.events
+    v = camdyn.run("examples/ohc_bucket_tappet.toml").history["u_valve"]
 """
 
 from __future__ import annotations

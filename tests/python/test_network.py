@@ -5,6 +5,7 @@ events' contact, the model description; the library's error messages.
 Run by ctest (label "python") like test_camdyn.py.
 """
 
+import json
 import math
 import os
 import pathlib
@@ -141,6 +142,10 @@ def test_network_history_and_events_equal_cli(tmp_path):
     assert list(data.dtype.names) == list(r.history)
     for name in r.history:
         np.testing.assert_array_equal(r.history[name], data[name], err_msg=name)
+    with open(tmp_path / "summary.json") as f:
+        ref = json.load(f)
+    assert list(r.summary) == list(ref)
+    assert r.summary["model"] == ref["model"] and len(ref["model"]["network"]) == 7
     ev = (tmp_path / "events.csv").read_text().splitlines()
     assert ev[0].endswith(",contact")
     assert [line.rsplit(",", 1)[1] for line in ev[1:]] == [e["contact"] for e in r.events]
