@@ -517,6 +517,8 @@ std::string model_json(const ModelDescription& m, int indent) {
   c.boolean("varying_speed", m.varying_speed);
   c.str("contact", m.contact);
   c.strs("rhs_terms", m.rhs_terms);
+  // Network followers: one line per assembled element and contact (FullReport's lines).
+  if (!m.network.empty()) c.strs("network", m.network);
   c.close();
   return t;
 }

@@ -14,19 +14,26 @@ are applied first and the scene is validated once, so their order never matters.
 Bad input raises :class:`SceneError` (a :class:`ValueError`) whose message is the one the
 CLI prints after ``camdyn: ``.
 
+Follower networks (valve trains, ``follower.kind = "network"``) run the same way; their
+history also has ``F_<contact>``, ``gap_<contact>``, ``in_<contact>``, ``u_<node>``,
+``v_<node>`` and their events a ``contact``. :func:`network_scene` builds one from Python
+objects (dicts or :class:`Node`, :class:`Element`, :class:`Contact`).
+
 Example::
 
     import camdyn
     r = camdyn.run("examples/case_A.toml", **{"run.t_end": 0.2})
     r.summary["max_contact_force"], r.history["contact_force"], r.events
+    v = camdyn.run("examples/ohc_bucket_tappet.toml").history["u_valve"]
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import os
-from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Tuple
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -44,6 +51,11 @@ __all__ = [
     "sweep",
     "history_columns",
     "to_toml",
+    "network_scene",
+    "Node",
+    "Element",
+    "Contact",
+    "NETWORK_ARRAYS",
     "__version__",
 ]
 
@@ -70,6 +82,11 @@ def _toml_value(value: Any, where: str) -> str:
         return repr(x)  # shortest round-trip text: the C++ side reads back the same double
     if isinstance(value, str):
         return json.dumps(value, ensure_ascii=False)  # a valid TOML basic string
+    if _is_dataclass_instance(value):
+        value = _entry_dict(value)
+    if isinstance(value, Mapping):  # an inline table (e.g. an entry of an array of tables)
+        return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(v, f'{where}.{k}')}"
+                               for k, v in value.items() if v is not None) + "}"
     if isinstance(value, (list, tuple, np.ndarray)):
         return "[" + ", ".join(_toml_value(v, where) for v in value) + "]"
     raise TypeError(f"camdyn: {where}: cannot write a {type(value).__name__} as a TOML value")
@@ -79,26 +96,59 @@ def _toml_key(k: str) -> str:
     return k if k and all(c.isascii() and (c.isalnum() or c in "_-") for c in k) else json.dumps(k)
 
 
+def _is_dataclass_instance(x: Any) -> bool:
+    return dataclasses.is_dataclass(x) and not isinstance(x, type)
+
+
+def _entry_dict(entry: Any) -> Dict[str, Any]:
+    """A network entry (a mapping or a :class:`Node` / :class:`Element` / :class:`Contact`)
+    as a dict; dataclass fields left at None are left out (the library's default)."""
+    if _is_dataclass_instance(entry):
+        return {f.name: getattr(entry, f.name) for f in dataclasses.fields(entry)
+                if getattr(entry, f.name) is not None}
+    if isinstance(entry, Mapping):
+        return dict(entry)
+    raise TypeError(f"camdyn: a network entry must be a dict or a camdyn.Node/Element/Contact, "
+                    f"not {type(entry).__name__}")
+
+
+def _is_table_array(v: Any) -> bool:
+    """A non-empty list/tuple of dicts (or entry dataclasses): a TOML array of tables."""
+    return (isinstance(v, (list, tuple)) and len(v) > 0
+            and all(isinstance(x, Mapping) or _is_dataclass_instance(x) for x in v))
+
+
 def to_toml(scene: Mapping[str, Any]) -> str:
-    """TOML text of a nested dict scene (tables as sub-dicts, any depth)."""
+    """TOML text of a nested dict scene (tables as sub-dicts, any depth; a list of dicts —
+    the network's ``nodes``, ``elements``, ``contacts`` — as an array of tables
+    ``[[nodes]]``, in list order)."""
 
     lines: List[str] = []
 
-    def table(d: Mapping[str, Any], path: List[str]) -> None:
-        subs = []
-        if path:
-            lines.append("[" + ".".join(_toml_key(p) for p in path) + "]")
+    def body(d: Mapping[str, Any], path: List[str]) -> None:
+        subs, arrays = [], []
         for k, v in d.items():
             if not isinstance(k, str):
                 raise TypeError(f"camdyn: scene keys must be strings, got {k!r}")
+            if v is None:  # left out: the library's default
+                continue
             if isinstance(v, Mapping):
                 subs.append((k, v))
+            elif _is_table_array(v):
+                arrays.append((k, v))
             else:
                 lines.append(f"{_toml_key(k)} = {_toml_value(v, '.'.join(path + [k]))}")
+        # Sub-tables and arrays of tables after the keys (a key after a header would
+        # belong to that table).
         for k, v in subs:
-            table(v, path + [k])
+            lines.append("[" + ".".join(_toml_key(p) for p in path + [k]) + "]")
+            body(v, path + [k])
+        for k, v in arrays:
+            for entry in v:
+                lines.append("[[" + ".".join(_toml_key(p) for p in path + [k]) + "]]")
+                body(_entry_dict(entry), path + [k])
 
-    table(scene, [])
+    body(scene, [])
     return "\n".join(lines) + "\n"
 
 
@@ -121,6 +171,37 @@ def _assignments(overrides: Mapping[str, Any]) -> List[str]:
     return out
 
 
+#: The network's arrays of tables; as keyword overrides they replace the whole array.
+NETWORK_ARRAYS = ("nodes", "elements", "contacts")
+
+
+def _scene_spec(scene: Any, overrides: Mapping[str, Any]) -> Tuple[str, str, str, List[str]]:
+    """(kind, text, source, assignments) for the C++ side.
+
+    ``nodes=[...]``, ``elements=[...]``, ``contacts=[...]`` overrides (the CLI's ``--set``
+    has no such keys) replace the scene's array: the scene is taken as a dict (a file or
+    TOML text through its resolved form, which needs Python ≥ 3.11's tomllib), the arrays
+    replaced, and the result passed as a dict scene (source ``<dict>``).
+    """
+    arrays = {k: v for k, v in overrides.items() if k in NETWORK_ARRAYS}
+    rest = {k: v for k, v in overrides.items() if k not in NETWORK_ARRAYS}
+    if arrays:
+        if isinstance(scene, Mapping):
+            base = dict(scene)
+        else:
+            try:
+                import tomllib
+            except ImportError as e:  # Python < 3.11
+                raise TypeError("camdyn: nodes/elements/contacts overrides need a dict scene "
+                                "(or Python >= 3.11 for a file or TOML text)") from e
+            kind, text, source = _scene_args(scene)
+            base = tomllib.loads(_camdyn.resolved_scene(kind, text, source, []))
+        for k, v in arrays.items():
+            base[k] = [_entry_dict(e) for e in v]
+        scene = base
+    return (*_scene_args(scene), _assignments(rest))
+
+
 def _scene_args(scene: Any) -> Tuple[str, str, str]:
     """(kind, text, source) for the C++ side."""
     if scene is None:
@@ -140,6 +221,94 @@ def _scene_args(scene: Any) -> Tuple[str, str, str]:
         f"not {type(scene).__name__}")
 
 
+# ---- networks (valve trains): a user-defined follower from Python objects -------------
+
+@dataclasses.dataclass
+class Node:
+    """A ``[[nodes]]`` entry (docs/interface.md "Networks"). None: the library default."""
+    name: str
+    mass: Optional[float] = None
+    initial_displacement: Optional[float] = None
+    initial_velocity: Optional[float] = None
+
+
+@dataclasses.dataclass
+class Element:
+    """An ``[[elements]]`` entry: ``type`` "spring" | "dashpot" | "bar" | "lever",
+    ``nodes`` = [lower, upper] ([input, output] for a lever; "ground" may end a spring,
+    dashpot or bar). Only the keys of its type may be set (others stay None)."""
+    type: str
+    nodes: Sequence[str]
+    name: Optional[str] = None
+    stiffness: Optional[float] = None
+    preload: Optional[float] = None
+    damping: Optional[float] = None
+    mass: Optional[float] = None
+    masses: Optional[int] = None
+    youngs_modulus: Optional[float] = None
+    area: Optional[float] = None
+    length: Optional[float] = None
+    elements: Optional[int] = None
+    mass_matrix: Optional[str] = None
+    rayleigh_alpha: Optional[float] = None
+    rayleigh_beta: Optional[float] = None
+    ratio: Optional[float] = None
+
+
+@dataclasses.dataclass
+class Contact:
+    """A ``[[contacts]]`` entry: ``type`` "cam" ([node]) | "lash" ([lower, upper]) |
+    "stop" ([node], ``side`` "below" | "above"). Its history columns are F_<name>,
+    gap_<name>, in_<name>."""
+    name: str
+    type: str
+    nodes: Sequence[str]
+    clearance: Optional[float] = None
+    side: Optional[str] = None
+    restitution: Optional[float] = None
+    penalty_stiffness: Optional[float] = None
+    penalty_damping: Optional[float] = None
+
+
+def network_scene(nodes: Iterable[Any], elements: Iterable[Any] = (),
+                  contacts: Iterable[Any] = (), cam: Optional[Mapping[str, Any]] = None,
+                  title: Optional[str] = None, validate: bool = True,
+                  **tables: Any) -> Dict[str, Any]:
+    """A network scene (``follower.kind = "network"``) as a dict, from Python objects.
+
+    Args:
+        nodes, elements, contacts: the ``[[nodes]]``, ``[[elements]]``, ``[[contacts]]``
+            entries, in order: dicts with the TOML keys, or :class:`Node`,
+            :class:`Element`, :class:`Contact`.
+        cam: the ``[cam]`` table (None: the library's default cam).
+        title: the scene title.
+        validate: check the scene now (raises :class:`SceneError` with the library's
+            message, source ``<dict>``); else at the first use.
+        **tables: other tables, e.g. ``contact={"model": "lee"}``,
+            ``run={"t_end": 0.1}``, ``solver={...}``; ``follower`` is merged with
+            ``kind = "network"``.
+
+    Returns:
+        the scene dict, usable wherever a scene is (:func:`run`, :func:`resolved_scene`,
+        :func:`to_toml`, …); it is the scene the equivalent TOML file describes.
+    """
+    scene: Dict[str, Any] = {}
+    if title is not None:
+        scene["title"] = title
+    if cam is not None:
+        scene["cam"] = dict(cam)
+    follower = dict(tables.pop("follower", None) or {})
+    follower["kind"] = "network"
+    scene["follower"] = follower
+    scene.update(tables)
+    scene["nodes"] = [_entry_dict(n) for n in nodes]
+    scene["elements"] = [_entry_dict(e) for e in elements]
+    scene["contacts"] = [_entry_dict(c) for c in contacts]
+    if validate:
+        resolved_scene(scene)
+    return scene
+
+
 # ---- results ---------------------------------------------------------------------------
 
 class Result:
@@ -149,9 +318,15 @@ class Result:
         summary: dict with exactly the keys of summary.json (``finished``, ``message``,
             ``steps``, ``max_contact_force``, ``options`` — the resolved scene —, …).
         history: dict, history column name → 1-D ``numpy.float64`` array, one entry per
-            output row (``in_contact`` as 0.0 / 1.0).
+            output row (``in_contact`` as 0.0 / 1.0). Network scenes then have the
+            extra columns, in order: ``F_<c>``, ``gap_<c>``, ``in_<c>`` for each contact
+            c, then ``u_<n>``, ``v_<n>`` for each node n (as history.csv).
         events: list of dicts with keys ``t``, ``kind`` ("impact" | "separation" |
-            "tensile"), ``impact_velocity``, ``theta``, ``impulse``.
+            "tensile"), ``impact_velocity``, ``theta``, ``impulse``; network scenes also
+            ``contact`` (the contact's name, as events.csv).
+
+    ``summary["model"]["network"]`` (network scenes): the model description, one line per
+    assembled element and contact.
     """
 
     __slots__ = ("summary", "history", "events")
@@ -198,16 +373,14 @@ def run(scene: Any = None, observer: Optional[Callable[[Dict[str, float]], Any]]
     """
     if observer is not None and not callable(observer):
         raise TypeError("camdyn.run: observer must be callable")
-    kind, text, source = _scene_args(scene)
-    summary_text, history, events = _camdyn.run(kind, text, source, _assignments(overrides),
-                                                observer)
+    kind, text, source, assignments = _scene_spec(scene, overrides)
+    summary_text, history, events = _camdyn.run(kind, text, source, assignments, observer)
     return Result(json.loads(summary_text), history, events)
 
 
 def resolved_scene(scene: Any = None, **overrides: Any) -> str:
     """The scene as TOML with every default filled in (``camdyn scene --resolved``)."""
-    kind, text, source = _scene_args(scene)
-    return _camdyn.resolved_scene(kind, text, source, _assignments(overrides))
+    return _camdyn.resolved_scene(*_scene_spec(scene, overrides))
 
 
 def jump_speed(scene: Any = None, options: Optional[Mapping[str, Any]] = None,
@@ -223,8 +396,7 @@ def jump_speed(scene: Any = None, options: Optional[Mapping[str, Any]] = None,
         ("closed-form" | "simulation"), ``theta_deg``, ``lo_rev_s``, ``hi_rev_s``,
         ``simulations``.
     """
-    kind, text, source = _scene_args(scene)
-    return _camdyn.jump_speed(kind, text, source, _assignments(overrides), dict(options or {}))
+    return _camdyn.jump_speed(*_scene_spec(scene, overrides), dict(options or {}))
 
 
 def cam_motion(scene: Any, t: Any, **overrides: Any) -> Tuple[Any, Any, Any]:
@@ -234,9 +406,8 @@ def cam_motion(scene: Any, t: Any, **overrides: Any) -> Tuple[Any, Any, Any]:
     (cam.hpp: Cam::motion with the drive θ(t), ω(t), ω̇(t)). ``t`` a float gives floats,
     an array gives arrays of its shape.
     """
-    kind, text, source = _scene_args(scene)
     ta = np.asarray(t, dtype=np.float64)
-    X, Xd, Xdd = _camdyn.cam_motion(kind, text, source, _assignments(overrides), ta.ravel())
+    X, Xd, Xdd = _camdyn.cam_motion(*_scene_spec(scene, overrides), ta.ravel())
     if ta.ndim == 0:
         return float(X[0]), float(Xd[0]), float(Xdd[0])
     return X.reshape(ta.shape), Xd.reshape(ta.shape), Xdd.reshape(ta.shape)
@@ -257,8 +428,7 @@ def run_batch(scenes: Iterable[Any], threads: int = 0) -> List[Dict[str, Any]]:
             scene, overrides = item
         else:
             scene, overrides = item, {}
-        kind, text, source = _scene_args(scene)
-        specs.append((kind, text, source, _assignments(overrides)))
+        specs.append(_scene_spec(scene, overrides))
     return [json.loads(t) for t in _camdyn.run_batch(specs, int(threads))]
 
 

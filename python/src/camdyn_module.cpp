@@ -17,6 +17,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <future>
 #include <cstring>
@@ -105,12 +106,15 @@ void row_values(const HistoryRow& r, double* v) {
 constexpr std::size_t kColumns = 12;
 
 /// Keeps every row; calls the Python observer (GIL taken) for each one; polls signals.
+/// The observer's dict has the history_columns(), then (network scenes) the `extra`
+/// columns (Simulator::extra_columns()).
 class PyObserver : public Observer {
  public:
-  PyObserver(py::object callback, std::atomic<bool>* stop)
+  PyObserver(py::object callback, std::atomic<bool>* stop, const std::vector<std::string>& extra)
       : callback_(std::move(callback)), stop_(stop) {
     if (!callback_.is_none()) {
       for (const auto& c : history_columns()) keys_.emplace_back(py::str(c));
+      for (const auto& c : extra) keys_.emplace_back(py::str(c));
     }
   }
   ~PyObserver() override {
@@ -130,6 +134,8 @@ class PyObserver : public Observer {
       row_values(r, v);
       py::dict d;
       for (std::size_t i = 0; i < kColumns; ++i) d[keys_[i]] = py::float_(v[i]);
+      for (std::size_t i = kColumns; i < keys_.size(); ++i)
+        d[keys_[i]] = py::float_(i - kColumns < r.extra.size() ? r.extra[i - kColumns] : NAN);
       const py::object res = callback_(d);
       if (res.ptr() == Py_False) stop_->store(true);  // "return False" stops the run
     } catch (py::error_already_set& e) {
@@ -168,13 +174,16 @@ class PyObserver : public Observer {
   std::unique_ptr<py::error_already_set> pending_;
 };
 
-/// run(): (summary JSON text, {column: float64 array}, [event dicts]).
+/// run(): (summary JSON text, {column: float64 array}, [event dicts]). Network scenes:
+/// the history has the extra columns (F_<contact>, gap_<contact>, in_<contact>, u_<node>,
+/// v_<node>) after the standard ones, and each event dict has "contact".
 py::tuple run_scene(const std::string& kind, const std::string& text, const std::string& source,
                     const std::vector<std::string>& overrides, py::object observer) {
   const Scene sc = build_scene(kind, text, source, overrides);
   std::unique_ptr<Simulator> sim = make_simulator(sc);
   std::atomic<bool> stop{false};
-  PyObserver obs(std::move(observer), &stop);
+  const std::vector<std::string>& extra = sim->extra_columns();
+  PyObserver obs(std::move(observer), &stop, extra);
   Summary summary;
   {
     py::gil_scoped_release nogil;
@@ -205,6 +214,15 @@ py::tuple run_scene(const std::string& kind, const std::string& text, const std:
   }
   py::dict history;
   for (std::size_t c = 0; c < kColumns; ++c) history[py::str(history_columns()[c])] = cols[c];
+  for (std::size_t c = 0; c < extra.size(); ++c) {
+    py::array_t<double> col(n);
+    double* p = col.mutable_data();
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const auto& x = rows[static_cast<std::size_t>(i)].extra;
+      p[i] = c < x.size() ? x[c] : NAN;
+    }
+    history[py::str(extra[c])] = col;
+  }
 
   py::list events;
   for (const auto& e : summary.events) {
@@ -214,6 +232,7 @@ py::tuple run_scene(const std::string& kind, const std::string& text, const std:
     d["impact_velocity"] = e.impact_velocity;
     d["theta"] = e.theta;
     d["impulse"] = e.impulse;
+    if (!extra.empty()) d["contact"] = e.contact;  // network scenes (as events.csv)
     events.append(d);
   }
   return py::make_tuple(summary_json(summary, sc), history, events);
