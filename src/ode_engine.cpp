@@ -376,6 +376,7 @@ class CvodeOde final : public EngineBase {
     if (spec.max_step > 0) check(CVodeSetMaxStep(mem, spec.max_step), "CVodeSetMaxStep");
     check(CVodeSetLinearSolver(mem, ls_.get(), A_.get()), "CVodeSetLinearSolver");
     if (sys_.jacobian) check(CVodeSetJacFn(mem, &EngineBase::jac_cb), "CVodeSetJacFn");
+    if (sys_.max_order > 0) check(CVodeSetMaxOrd(mem, sys_.max_order), "CVodeSetMaxOrd");
   }
   ~CvodeOde() override { mem_.reset(); }  // CVodeFree before the solver and matrix it uses
   const char* name() const override { return "cvode-bdf"; }

@@ -45,6 +45,9 @@ struct OdeSystem {
   /// exact Jacobian; trial steps are then exactly affine in anything f depends on
   /// linearly). Needs `jacobian`.
   bool linear = false;
+  /// cvode-bdf only: the largest BDF order (0: CVODE's default 5). Orders ≥ 3 are not
+  /// A-stable: an undamped stiff system (a chain of stiff springs and bars) wants ≤ 2.
+  int max_order = 0;
 };
 
 class OdeEngine {

@@ -31,12 +31,16 @@ SPEEDS = (25.0, 75.0)  # rev/s
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", default="valve_train.png", help="PNG to write (default: %(default)s)")
+    ap.add_argument("--scene", default=str(SCENE),
+                    help="network scene with a node 'valve' and a contact 'seat' (default: the OHC example)")
+    ap.add_argument("--speeds", type=float, nargs="+", default=list(SPEEDS),
+                    help="cam speeds [rev/s] (default: %(default)s)")
     args = ap.parse_args(argv)
 
     runs = []
-    for speed in SPEEDS:
+    for speed in args.speeds:
         # one revolution; the cam contact and the seat are contacts 'cam' and 'seat'
-        r = camdyn.run(SCENE, **{"cam.speed_rev_s": speed, "run.t_end": 1.0 / speed})
+        r = camdyn.run(args.scene, **{"cam.speed_rev_s": speed, "run.t_end": 1.0 / speed})
         s = r.summary
         counts = Counter((e["contact"], e["kind"]) for e in r.events)
         print(f"{speed:g} rev/s: finished={s['finished']}, {s['steps']} steps, "

@@ -101,6 +101,7 @@ class NetworkLee final : public NetworkRun {
       if (mk_.damped()) J.bottomRightCorner(n_, n_) = -mk_.MinvC();
     };
     sys.linear = true;
+    sys.max_order = 2;  // cvode-bdf: A-stable BDF on the undamped stiff chain (as elastic bars)
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, true));
     eng_ = engines_.back().get();
     F0_ = F1_ = Fc_ = Eigen::VectorXd::Zero(m_);
