@@ -20,9 +20,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "camdyn/follower_system.hpp"
 #include "camdyn/model_description.hpp"
 #include "camdyn/scene.hpp"
 
@@ -38,61 +40,114 @@ struct MechanismContact {
   double restitution = 0.0, penalty_stiffness = 0.0, penalty_damping = 0.0;
 };
 
-class Mechanism {
+/// What the network methods integrate: M q̈ = r(t, q, q̇) + TᵀF with constant M and contact
+/// rows T. Two kinds: the linear Mechanism assembled from a network scene, and a user's
+/// FollowerSystem (include/camdyn/follower_system.hpp) through an adapter.
+class MechanicalSystem {
+ public:
+  virtual ~MechanicalSystem() = default;
+  int n() const { return n_; }  ///< unknowns
+  int m() const { return int(contacts_.size()); }
+  const Eigen::MatrixXd& MinvTt() const { return MinvTt_; }  ///< M⁻¹Tᵀ (n × m)
+  const Eigen::MatrixXd& T() const { return T_; }            ///< m × n
+  const Eigen::MatrixXd& W() const { return W_; }            ///< T M⁻¹ Tᵀ
+  const std::vector<MechanismContact>& contacts() const { return contacts_; }
+  /// The contact shown in history.csv's standard columns: the first cam contact (or 0).
+  int primary() const { return primary_; }
+  int cam_contacts() const {
+    int k = 0;
+    for (const MechanismContact& c : contacts_) k += c.cam;
+    return k;
+  }
+  /// Named nodes and their displacement q_node = L_row · q.
+  const std::vector<std::string>& node_names() const { return node_names_; }
+  const Eigen::MatrixXd& L() const { return L_; }  ///< named nodes × unknowns
+  const Eigen::VectorXd& q0() const { return q0_; }
+  const Eigen::VectorXd& v0() const { return v0_; }
+  const ModelDescription& description() const { return desc_; }
+  /// A typical force (thresholds): the largest preload.
+  double force_scale() const { return force_scale_; }
+
+  /// true: r affine in (q, q̇) with constant coefficients (Lee's step map is affine).
+  virtual bool linear() const = 0;
+  /// a = M⁻¹(r(t, q, v) + TᵀF) (F over all contacts, or empty); homogeneous (linear only):
+  /// without r's constant part.
+  virtual void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F,
+                            double* a, bool homogeneous = false) const = 0;
+  /// ∂a/∂q, ∂a/∂v without contacts (n × n); false if not available.
+  virtual bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
+                                     Eigen::MatrixXd& dadv) const = 0;
+  virtual double kinetic_energy(const double* v) const = 0;
+  /// Up to a constant.
+  virtual double potential_energy(const double* q) const = 0;
+  virtual double damping_power(const double* v) const = 0;
+
+ protected:
+  /// T_, MinvTt_ (through solve), W_, primary_ from contacts_.
+  template <class Solve>
+  void finish_contacts(Solve solve) {
+    T_.resize(m(), n_);
+    for (int j = 0; j < m(); ++j) T_.row(j) = contacts_[j].t;
+    MinvTt_.resize(n_, m());
+    for (int j = 0; j < m(); ++j) {
+      const Eigen::VectorXd b = T_.row(j).transpose();
+      Eigen::VectorXd x(n_);
+      solve(b.data(), x.data());
+      MinvTt_.col(j) = x;
+    }
+    W_ = T_ * MinvTt_;
+    primary_ = 0;
+    for (int j = 0; j < m(); ++j)
+      if (contacts_[j].cam) {
+        primary_ = j;
+        break;
+      }
+  }
+  int n_ = 0, primary_ = 0;
+  Eigen::MatrixXd MinvTt_, T_, W_, L_;
+  Eigen::VectorXd q0_, v0_;
+  std::vector<MechanismContact> contacts_;
+  std::vector<std::string> node_names_;
+  ModelDescription desc_;
+  double force_scale_ = 0.0;
+};
+
+/// The linear mechanism of a network scene: r = f₀ − Kq − Cq̇.
+class Mechanism final : public MechanicalSystem {
  public:
   /// @pre validate(scene) passed and scene.follower.kind == Network.
   /// @throws std::invalid_argument on a mass matrix that is not positive definite.
   explicit Mechanism(const Scene& scene);
 
-  int n() const { return n_; }  ///< unknowns (after lever elimination)
-  int m() const { return int(contacts_.size()); }
   const Eigen::MatrixXd& M() const { return M_; }
   const Eigen::MatrixXd& K() const { return K_; }
   const Eigen::MatrixXd& C() const { return C_; }  ///< zero-sized if undamped
   bool damped() const { return C_.size() > 0; }
   const Eigen::VectorXd& f0() const { return f0_; }
   const Eigen::MatrixXd& Minv() const { return Minv_; }
-  /// M⁻¹K, M⁻¹C (empty if undamped), M⁻¹f₀, M⁻¹Tᵀ (n × m).
+  /// M⁻¹K, M⁻¹C (empty if undamped), M⁻¹f₀.
   const Eigen::MatrixXd& MinvK() const { return MinvK_; }
   const Eigen::MatrixXd& MinvC() const { return MinvC_; }
   const Eigen::VectorXd& Minvf0() const { return Minvf0_; }
-  const Eigen::MatrixXd& MinvTt() const { return MinvTt_; }
-  const Eigen::MatrixXd& T() const { return T_; }  ///< m × n
-  const Eigen::MatrixXd& W() const { return W_; }  ///< T M⁻¹ Tᵀ
-  const std::vector<MechanismContact>& contacts() const { return contacts_; }
-  /// The contact shown in history.csv's standard columns: the first cam contact (or 0).
-  int primary() const { return primary_; }
-  /// Number of cam contacts.
-  int cam_contacts() const {
-    int k = 0;
-    for (const MechanismContact& c : contacts_) k += c.cam;
-    return k;
-  }
 
-  /// Named nodes (scene order) and their displacement q_node = L_row · q.
-  const std::vector<std::string>& node_names() const { return node_names_; }
-  const Eigen::MatrixXd& L() const { return L_; }  ///< named nodes × unknowns
-
-  const Eigen::VectorXd& q0() const { return q0_; }
-  const Eigen::VectorXd& v0() const { return v0_; }
-
-  /// a = M⁻¹(f₀ − Kq − Cv + TᵀF) (F over all contacts; homogeneous: without f₀).
-  void acceleration(const double* q, const double* v, const Eigen::VectorXd& F, double* a,
-                    bool homogeneous = false) const;
-  double kinetic_energy(const double* v) const;
+  bool linear() const override { return true; }
+  void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
+                    bool homogeneous = false) const override;
+  bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
+                             Eigen::MatrixXd& dadv) const override;
+  double kinetic_energy(const double* v) const override;
   /// ½qᵀKq − f₀ᵀq (up to a constant).
-  double potential_energy(const double* q) const;
-  double damping_power(const double* v) const;
-
-  const ModelDescription& description() const { return desc_; }
+  double potential_energy(const double* q) const override;
+  double damping_power(const double* v) const override;
 
  private:
-  int n_ = 0, primary_ = 0;
-  Eigen::MatrixXd M_, K_, C_, Minv_, MinvK_, MinvC_, MinvTt_, T_, W_, L_;
-  Eigen::VectorXd f0_, Minvf0_, q0_, v0_;
-  std::vector<MechanismContact> contacts_;
-  std::vector<std::string> node_names_;
-  ModelDescription desc_;
+  Eigen::MatrixXd M_, K_, C_, Minv_, MinvK_, MinvC_;
+  Eigen::VectorXd f0_, Minvf0_;
 };
+
+/// A user's follower as the system the network methods integrate (src/mechanism.cpp).
+/// @throws SceneError (file "<follower>") naming the offending contact field.
+std::shared_ptr<const MechanicalSystem> make_user_system(const Scene& scene,
+                                                         std::shared_ptr<const FollowerSystem> follower);
 
 }  // namespace camdyn

@@ -51,6 +51,16 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   }
 }
 
+Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower) : scene_(std::move(scene)) {
+  resolve_defaults(scene_);
+  validate(scene_);
+  if (scene_.solver.integrator == Integrator::Ida)
+    throw SceneError(scene_.source, 0, "solver.integrator", "ida",
+                     "a user-defined follower runs on arkode-erk, arkode-dirk or cvode-bdf");
+  mech_ = make_user_system(scene_, std::move(follower));
+  extra_columns_ = detail::NetworkRun::extra_columns(*mech_);
+}
+
 const ModelDescription& Simulator::description() const {
   return mech_ ? mech_->description() : model_->description();
 }

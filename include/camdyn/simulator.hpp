@@ -20,7 +20,8 @@
 
 namespace camdyn {
 
-class FollowerModel;  // camdyn/model.hpp (Eigen): include it to use Simulator::model()
+class FollowerModel;   // camdyn/model.hpp
+class FollowerSystem;  // camdyn/follower_system.hpp (Eigen): include it to use Simulator::model()
 
 /// One output row (docs/interface.md history.csv, then energy columns).
 struct HistoryRow {
@@ -180,6 +181,12 @@ class Simulator {
  public:
   /// @throws SceneError on an invalid scene.
   explicit Simulator(Scene scene);
+  /// Bring your own follower (camdyn/follower_system.hpp): the scene gives the cam, the
+  /// contact method, the engine and the run; `follower` replaces the scene's follower
+  /// (follower.*, [spring], the network tables are not used). Runs with Lee's method,
+  /// penalty, event-driven or holonomic on arkode-erk, arkode-dirk, cvode-bdf.
+  /// @throws SceneError on an invalid scene or follower (file "<follower>").
+  Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower);
   ~Simulator();
   /// Run to t_end. Never throws for a simulation failure: the summary says
   /// finished = false, how (termination) and why (message). `stop` (may be null) is polled each step (Ctrl-C); once it
@@ -200,7 +207,7 @@ class Simulator {
  private:
   Scene scene_;
   std::shared_ptr<const FollowerModel> model_;      // rigid, elastic_bar
-  std::shared_ptr<const class Mechanism> mech_;     // network
+  std::shared_ptr<const class MechanicalSystem> mech_;  // network or a user's follower
   std::vector<std::string> extra_columns_;
 };
 

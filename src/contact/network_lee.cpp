@@ -88,19 +88,28 @@ double first_below(const std::function<double(double)>& f, double f0, double f1,
 
 class NetworkLee final : public NetworkRun {
  public:
-  NetworkLee(const Scene& sc, std::shared_ptr<const Mechanism> mech, Observer* obs,
+  NetworkLee(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
              const std::atomic<bool>* stop)
       : NetworkRun(sc, std::move(mech), obs, stop) {
     OdeSystem sys;
     sys.size = 2 * n_;
     sys.rhs = [this](double t, const double* y, double* yd) { rhs(t, y, yd); };
-    sys.jacobian = [this](double, const double*, Eigen::MatrixXd& J) {
-      J.setZero();
-      J.topRightCorner(n_, n_).setIdentity();
-      J.bottomLeftCorner(n_, n_) = -mk_.MinvK();
-      if (mk_.damped()) J.bottomRightCorner(n_, n_) = -mk_.MinvC();
-    };
-    sys.linear = true;
+    // The mechanism's own Jacobian (the force shape does not depend on the state); a
+    // user's follower without one: difference quotients.
+    {
+      Eigen::MatrixXd dq, dv;
+      const Eigen::VectorXd q0 = mk_.q0(), v0 = mk_.v0();
+      if (mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq, dv))
+        sys.jacobian = [this](double t, const double* y, Eigen::MatrixXd& J) {
+          Eigen::MatrixXd dadq, dadv;
+          mk_.acceleration_jacobian(t, y, y + n_, dadq, dadv);
+          J.setZero();
+          J.topRightCorner(n_, n_).setIdentity();
+          J.bottomLeftCorner(n_, n_) = dadq;
+          J.bottomRightCorner(n_, n_) = dadv;
+        };
+    }
+    sys.linear = mk_.linear() && bool(sys.jacobian);
     sys.max_order = 2;  // cvode-bdf: A-stable BDF on the undamped stiff chain (as elastic bars)
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, true));
     eng_ = engines_.back().get();
@@ -120,7 +129,7 @@ class NetworkLee final : public NetworkRun {
     const double x = (t - s_t0_) / s_h_;
     for (int j = 0; j < m_; ++j) fs_[j] = F0_[j] + (F1_[j] - F0_[j]) * x + Fc_[j] * 4.0 * x * (1.0 - x);
     std::copy(y + n_, y + 2 * n_, yd);
-    mk_.acceleration(y, y + n_, fs_, yd + n_, homogeneous_);
+    mk_.acceleration(t, y, y + n_, fs_, yd + n_, homogeneous_);
   }
   double integrate(double t, const Eigen::VectorXd& from, double h, Eigen::VectorXd& out) {
     s_t0_ = t;
@@ -223,7 +232,7 @@ class NetworkLee final : public NetworkRun {
     const StepData& s = *dense_;
     interpolate(s, to, yi_);
     const CamMotion cm = cam_at(to);
-    Eigen::VectorXd F = held_forces(yi_, cm, s.set);
+    Eigen::VectorXd F = held_forces(to, yi_, cm, s.set);
     for (int j : s.set) F[j] = unilateral_ ? std::max(F[j], 0.0) : F[j];
     std::vector<char> act(m_, 0);
     for (int j : s.set) act[j] = 1;
@@ -255,7 +264,8 @@ class NetworkLee final : public NetworkRun {
     double err = integrate(t_, y_, hs, y1);
     const int k = int(set.size());
     if (k == 0) return err;
-    const bool affine = eng_->estimates_error();
+    // affine step map: a one-step engine on a linear system (else Lee's constants, iterated)
+    const bool affine = eng_->estimates_error() && mk_.linear();
     Eigen::VectorXd le = eng_->local_error();
     Eigen::MatrixXd J(2 * k, 2 * k);
     Responses* R = affine ? &responses(hs, set) : nullptr;
@@ -356,7 +366,7 @@ class NetworkLee final : public NetworkRun {
         continue;
       }
       // acceleration level
-      const Eigen::VectorXd Fa = held_forces(y1, cm1, set);
+      const Eigen::VectorXd Fa = held_forces(t1, y1, cm1, set);
       double err_c = 0.0, pc = 5.0;
       for (int j : set) {
         ++sum_.level_a.total;
@@ -393,8 +403,8 @@ class NetworkLee final : public NetworkRun {
       s.s0 = F0_;
       s.s1 = F1_;
       s.sc = Fc_;
-      acceleration(y_, F_, s.a0);
-      acceleration(y1, Fa, s.a1);
+      acceleration(t_, y_, F_, s.a0);
+      acceleration(t1, y1, Fa, s.a1);
       F_ref_ = std::max({F_ref_, F_.cwiseAbs().maxCoeff(), Fa.cwiseAbs().maxCoeff()});
       const double F_thr = 1e-12 * std::max(F_ref_, 1e-300);
       const double F_sep = std::min(rtol, 1e-6) * F_ref_;
@@ -407,7 +417,7 @@ class NetworkLee final : public NetworkRun {
           auto f = [&](double x) {
             const double tau = s.t0 + x * hs;
             interpolate(s, tau, yi_);
-            return held_forces(yi_, cam_at(tau), set)[j];
+            return held_forces(tau, yi_, cam_at(tau), set)[j];
           };
           const double x = first_below(f, F_[j], Fa[j], F_thr, hs, t1);
           if (x >= 0.0 && x < x_first) {
@@ -495,7 +505,7 @@ class NetworkLee final : public NetworkRun {
 
 }  // namespace
 
-std::unique_ptr<NetworkRun> make_network_lee(const Scene& sc, std::shared_ptr<const Mechanism> mech,
+std::unique_ptr<NetworkRun> make_network_lee(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
                                              Observer* obs, const std::atomic<bool>* stop) {
   return std::make_unique<NetworkLee>(sc, std::move(mech), obs, stop);
 }

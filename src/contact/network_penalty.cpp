@@ -16,7 +16,7 @@ namespace {
 
 class NetworkPenalty final : public NetworkRun {
  public:
-  NetworkPenalty(const Scene& sc, std::shared_ptr<const Mechanism> mech, Observer* obs,
+  NetworkPenalty(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                  const std::atomic<bool>* stop)
       : NetworkRun(sc, std::move(mech), obs, stop) {
     OdeSystem sys;
@@ -26,25 +26,30 @@ class NetworkPenalty final : public NetworkRun {
       yv_ = Y;
       forces(t, yv_, fv_);
       std::copy(y + n_, y + 2 * n_, yd);
-      mk_.acceleration(y, y + n_, fv_, yd + n_);
+      mk_.acceleration(t, y, y + n_, fv_, yd + n_);
     };
-    sys.jacobian = [this](double t, const double* y, Eigen::MatrixXd& J) {
-      const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
-      yv_ = Y;
-      const CamMotion cm = cam_at(t);
-      Eigen::MatrixXd Kt = mk_.K(), Ct = mk_.damped() ? mk_.C() : Eigen::MatrixXd::Zero(n_, n_);
-      for (int j = 0; j < m_; ++j) {
-        double dq = 0, dv = 0;  // dF/ds, dF/dŝ
-        law(j, -gap(j, yv_, cm), -gap_rate(j, yv_, cm), nullptr, &dq, &dv);
-        const Eigen::RowVectorXd& tj = mk_.contacts()[j].t;
-        Kt += dq * tj.transpose() * tj;  // F = f(s), s = −t q: ∂(tᵀF)/∂q = −dq tᵀt
-        Ct += dv * tj.transpose() * tj;
-      }
-      J.setZero();
-      J.topRightCorner(n_, n_).setIdentity();
-      J.bottomLeftCorner(n_, n_) = -mk_.Minv() * Kt;
-      J.bottomRightCorner(n_, n_) = -mk_.Minv() * Ct;
-    };
+    Eigen::MatrixXd dq0, dv0;
+    const Eigen::VectorXd q0 = mk_.q0(), v0 = mk_.v0();
+    if (mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq0, dv0))
+      sys.jacobian = [this](double t, const double* y, Eigen::MatrixXd& J) {
+        const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
+        yv_ = Y;
+        const CamMotion cm = cam_at(t);
+        Eigen::MatrixXd dadq, dadv;
+        mk_.acceleration_jacobian(t, y, y + n_, dadq, dadv);
+        for (int j = 0; j < m_; ++j) {
+          double dq = 0, dv = 0;  // dF/ds, dF/dŝ
+          law(j, -gap(j, yv_, cm), -gap_rate(j, yv_, cm), nullptr, &dq, &dv);
+          // F = f(s, ŝ), s = −T_j q: ∂(M⁻¹T_jᵀF)/∂q = −dq M⁻¹T_jᵀT_j
+          const Eigen::RowVectorXd& tj = mk_.contacts()[j].t;
+          dadq.noalias() -= dq * mk_.MinvTt().col(j) * tj;
+          dadv.noalias() -= dv * mk_.MinvTt().col(j) * tj;
+        }
+        J.setZero();
+        J.topRightCorner(n_, n_).setIdentity();
+        J.bottomLeftCorner(n_, n_) = dadq;
+        J.bottomRightCorner(n_, n_) = dadv;
+      };
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
     eng_ = engines_.back().get();
     fv_.resize(m_);
@@ -171,7 +176,7 @@ class NetworkPenalty final : public NetworkRun {
 
 }  // namespace
 
-std::unique_ptr<NetworkRun> make_network_penalty(const Scene& sc, std::shared_ptr<const Mechanism> mech,
+std::unique_ptr<NetworkRun> make_network_penalty(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
                                                  Observer* obs, const std::atomic<bool>* stop) {
   return std::make_unique<NetworkPenalty>(sc, std::move(mech), obs, stop);
 }

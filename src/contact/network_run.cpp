@@ -17,7 +17,7 @@ namespace {
 constexpr double kFloatLift = 0.01;  // a float: the cam above clearance + 1 % of its lift
 }  // namespace
 
-NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const Mechanism> mech, Observer* obs,
+NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                        const std::atomic<bool>* stop)
     : sc_(sc), mech_(std::move(mech)), mk_(*mech_), cam_(sc.cam), drive_(sc.cam), obs_(obs),
       stop_(stop), n_(mk_.n()), m_(mk_.m()), designer_(sc, cam_.lift()) {
@@ -55,7 +55,7 @@ NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const Mechanism> mech, O
   }
 }
 
-std::vector<std::string> NetworkRun::extra_columns(const Mechanism& mech) {
+std::vector<std::string> NetworkRun::extra_columns(const MechanicalSystem& mech) {
   std::vector<std::string> c;
   for (const MechanismContact& k : mech.contacts()) {
     c.push_back("F_" + k.name);
@@ -85,18 +85,18 @@ double NetworkRun::gap_rate(int j, const Eigen::VectorXd& y, const CamMotion& cm
 double NetworkRun::cam_acc(int j, const CamMotion& cm) const {
   return mk_.contacts()[j].cam ? cm.Xddot : 0.0;
 }
-void NetworkRun::acceleration(const Eigen::VectorXd& y, const Eigen::VectorXd& F,
+void NetworkRun::acceleration(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F,
                               Eigen::VectorXd& a) const {
   a.resize(n_);
-  mk_.acceleration(y.data(), y.data() + n_, F, a.data());
+  mk_.acceleration(t, y.data(), y.data() + n_, F, a.data());
 }
 
-Eigen::VectorXd NetworkRun::held_forces(const Eigen::VectorXd& y, const CamMotion& cm,
+Eigen::VectorXd NetworkRun::held_forces(double t, const Eigen::VectorXd& y, const CamMotion& cm,
                                         const std::vector<int>& set) const {
   Eigen::VectorXd F = Eigen::VectorXd::Zero(m_);
   if (set.empty()) return F;
   Eigen::VectorXd a0;
-  acceleration(y, F, a0);  // free acceleration
+  acceleration(t, y, F, a0);  // free acceleration
   const int k = int(set.size());
   Eigen::MatrixXd Wss(k, k);
   Eigen::VectorXd b(k);
@@ -123,7 +123,7 @@ std::vector<int> NetworkRun::active_list() const {
 void NetworkRun::settle_active(const CamMotion& cm) {
   for (;;) {
     const std::vector<int> set = active_list();
-    F_ = held_forces(y_, cm, set);
+    F_ = held_forces(t_, y_, cm, set);
     if (!unilateral_) return;  // holonomic: contacts never release
     F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
     const double thr = 1e-12 * std::max(F_ref_, 1e-300);
@@ -164,7 +164,7 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
   Eigen::VectorXd gd(m_);
   for (int j = 0; j < m_; ++j) gd[j] = gap_rate(j, y_, cm);
   Eigen::VectorXd a_free;
-  acceleration(y_, Eigen::VectorXd::Zero(m_), a_free);
+  acceleration(t_, y_, Eigen::VectorXd::Zero(m_), a_free);
   // Sticking speed of each contact: below it an approach is a touch (the speed a contact
   // reaches falling through 10⁻³ tol_u under its relative acceleration, ×4).
   for (int j : closing)
@@ -261,7 +261,7 @@ void NetworkRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
   const int p = mk_.primary();
   const CamMotion cm = cam_at(t);
   Eigen::VectorXd a;
-  acceleration(y, F, a);
+  acceleration(t, y, F, a);
   const MechanismContact& c = mk_.contacts()[p];
   HistoryRow r;
   r.t = t;
@@ -324,7 +324,7 @@ void NetworkRun::after_step(double h, double dW, double P_prev, double P_end) {
   const int p = mk_.primary();
   const MechanismContact& c = mk_.contacts()[p];
   Eigen::VectorXd a;
-  acceleration(y_, F_, a);
+  acceleration(t_, y_, F_, a);
   const double th = drive_.theta(t_);
   designer_.step(t_, th, c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.tail(n_)), c.t.dot(a), gap(p, y_, cm));
   if (active_[p]) designer_.sample_force(t_, th, F_[p]);
@@ -390,7 +390,7 @@ Summary NetworkRun::run() {
     const int p = mk_.primary();
     const MechanismContact& c = mk_.contacts()[p];
     Eigen::VectorXd a;
-    acceleration(y_, F_, a);
+    acceleration(t_, y_, F_, a);
     designer_.step(0.0, drive_.theta(0.0), c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.tail(n_)),
                    c.t.dot(a), gap(p, y_, cm0));
   }
@@ -434,16 +434,16 @@ Summary NetworkRun::run() {
 namespace camdyn {
 namespace detail {
 
-std::unique_ptr<NetworkRun> make_network_lee(const Scene&, std::shared_ptr<const Mechanism>, Observer*,
+std::unique_ptr<NetworkRun> make_network_lee(const Scene&, std::shared_ptr<const MechanicalSystem>, Observer*,
                                              const std::atomic<bool>*);
-std::unique_ptr<NetworkRun> make_network_penalty(const Scene&, std::shared_ptr<const Mechanism>,
+std::unique_ptr<NetworkRun> make_network_penalty(const Scene&, std::shared_ptr<const MechanicalSystem>,
                                                  Observer*, const std::atomic<bool>*);
-std::unique_ptr<NetworkRun> make_network_event(const Scene&, std::shared_ptr<const Mechanism>,
+std::unique_ptr<NetworkRun> make_network_event(const Scene&, std::shared_ptr<const MechanicalSystem>,
                                                Observer*, const std::atomic<bool>*);
 
 // The network methods: Lee's located step (lee; holonomic = Lee with contacts that never
 // release), the penalty baseline, the event-driven method.
-std::unique_ptr<NetworkRun> make_network_method(const Scene& scene, std::shared_ptr<const Mechanism> mech,
+std::unique_ptr<NetworkRun> make_network_method(const Scene& scene, std::shared_ptr<const MechanicalSystem> mech,
                                                 Observer* obs, const std::atomic<bool>* stop) {
   switch (scene.contact.model) {
     case ContactModel::Lee:

@@ -29,7 +29,7 @@ namespace detail {
 
 class NetworkRun {
  public:
-  NetworkRun(const Scene& sc, std::shared_ptr<const Mechanism> mech, Observer* obs,
+  NetworkRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
              const std::atomic<bool>* stop);
   virtual ~NetworkRun() = default;
   NetworkRun(const NetworkRun&) = delete;
@@ -38,7 +38,7 @@ class NetworkRun {
   Summary run();
 
   /// Names of HistoryRow::extra for a mechanism.
-  static std::vector<std::string> extra_columns(const Mechanism& mech);
+  static std::vector<std::string> extra_columns(const MechanicalSystem& mech);
 
  protected:
   /// The method's loop over accepted steps from (t_, y_, F_, active_) to t_end.
@@ -58,11 +58,11 @@ class NetworkRun {
   double gap_rate(int j, const Eigen::VectorXd& y, const CamMotion& cm) const;
   double cam_acc(int j, const CamMotion& cm) const;
   /// a = M⁻¹(f₀ − Kq − Cv + TᵀF).
-  void acceleration(const Eigen::VectorXd& y, const Eigen::VectorXd& F, Eigen::VectorXd& a) const;
+  void acceleration(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F, Eigen::VectorXd& a) const;
   /// The acceleration level: forces on the contacts of `set` that keep g̈ = 0 there
   /// (W_SS F_S = Ẍ_C,S − T_S M⁻¹(f₀ − Kq − Cv)), zero elsewhere; least squares of minimum
   /// norm if W_SS is singular (two contacts on one rigid chain).
-  Eigen::VectorXd held_forces(const Eigen::VectorXd& y, const CamMotion& cm,
+  Eigen::VectorXd held_forces(double t, const Eigen::VectorXd& y, const CamMotion& cm,
                               const std::vector<int>& set) const;
   /// Active contacts as a list.
   std::vector<int> active_list() const;
@@ -97,8 +97,8 @@ class NetworkRun {
   double next_output_time() const;
 
   const Scene& sc_;
-  std::shared_ptr<const Mechanism> mech_;
-  const Mechanism& mk_;
+  std::shared_ptr<const MechanicalSystem> mech_;
+  const MechanicalSystem& mk_;
   Cam cam_;
   CamDrive drive_;
   Observer* obs_;
@@ -122,7 +122,7 @@ class NetworkRun {
 
 /// The network method a scene asks for (contact.model: lee | penalty | event | holonomic).
 std::unique_ptr<NetworkRun> make_network_method(const Scene& scene,
-                                                std::shared_ptr<const Mechanism> mech,
+                                                std::shared_ptr<const MechanicalSystem> mech,
                                                 Observer* obs, const std::atomic<bool>* stop);
 
 }  // namespace detail
