@@ -195,12 +195,12 @@ struct SceneInfo {
 std::vector<ContactEvent> switch_events(const std::vector<ContactEvent>& ev, double t_max) {
   double vmax = 0;
   for (const auto& e : ev)
-    if (e.kind == "impact") vmax = std::max(vmax, std::fabs(e.impact_velocity));
+    if (e.type == EventKind::Impact) vmax = std::max(vmax, std::fabs(e.impact_velocity));
   std::vector<ContactEvent> out;
   for (const auto& e : ev) {
     if (e.t > t_max * (1 + 1e-12)) continue;
-    if (e.kind == "separation" ||
-        (e.kind == "impact" && std::fabs(e.impact_velocity) > 1e-6 * vmax))
+    if (e.type == EventKind::Separation ||
+        (e.type == EventKind::Impact && std::fabs(e.impact_velocity) > 1e-6 * vmax))
       out.push_back(e);
   }
   return out;
@@ -262,7 +262,7 @@ Comparison compare(const SceneInfo& si, const Grid& g, const std::vector<Contact
     for (const auto& re : si.ref_events) {
       double best = si.dt * double(si.n - 1);  // none of this kind: the whole run
       for (const auto& me : mine)
-        if (me.kind == re.kind) best = std::min(best, std::fabs(me.t - re.t));
+        if (me.type == re.type) best = std::min(best, std::fabs(me.t - re.t));
       e = std::max(e, best);
     }
     c.event_err = e;

@@ -41,10 +41,10 @@ void DesignerStats::sample_force(double /*t*/, double theta, double F) {
 }
 
 void DesignerStats::event(const ContactEvent& e) {
-  if (e.kind == "separation") {
+  if (e.type == EventKind::Separation) {
     if (std::isnan(first_sep_)) first_sep_ = angle_deg_mod360(e.theta);
     sample_force(e.t, e.theta, 0.0);  // the force reaches zero at a separation
-  } else if (e.kind == "impact") {
+  } else if (e.type == EventKind::Impact) {
     if (std::isnan(first_imp_)) first_imp_ = angle_deg_mod360(e.theta);
     if (std::isnan(max_vimp_theta_) || e.impact_velocity > max_vimp_) {
       max_vimp_ = e.impact_velocity;

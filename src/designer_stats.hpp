@@ -29,7 +29,7 @@ class DesignerStats {
 
   /// A contact force sample F ≥ 0 at time t, cam angle θ, while in contact.
   void sample_force(double t, double theta, double F);
-  /// An impact or separation event (kind "impact"/"separation"; others ignored).
+  /// An impact or separation event (type Impact/Separation; others ignored).
   void event(const ContactEvent& e);
   /// An accepted step end (state of the contact face). The first call is the start.
   void step(double t, double theta, double u, double v, double a, double gap);

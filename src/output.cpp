@@ -1,6 +1,7 @@
 // camdyn — output files (see output.hpp).
 #include "camdyn/output.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -371,35 +372,47 @@ std::string history_csv(const std::vector<HistoryRow>& rows, const std::vector<s
   return out;
 }
 
-std::string events_csv(const std::vector<ContactEvent>& events, bool with_contact) {
-  std::string out = with_contact ? "t,kind,impact_velocity,theta,impulse,contact\n"
-                                 : "t,kind,impact_velocity,theta,impulse\n";
-  for (const auto& e : events) {
-    append_double(out, e.t);
-    out += ',';
-    // kinds are plain words; quote defensively if one ever holds a comma or quote
-    if (e.kind.find_first_of(",\"\n") == std::string::npos) {
-      out += e.kind;
-    } else {
-      out += '"';
-      for (char c : e.kind) {
-        if (c == '"') out += '"';
-        out += c;
-      }
-      out += '"';
+namespace {
+
+const char* events_header(bool with_contact) {
+  return with_contact ? "t,kind,impact_velocity,theta,impulse,contact\n"
+                      : "t,kind,impact_velocity,theta,impulse\n";
+}
+
+void append_event(std::string& out, const ContactEvent& e, bool with_contact) {
+  append_double(out, e.t);
+  out += ',';
+  // kind: the (deprecated) string when set, else the type's name
+  const std::string_view kind = e.kind.empty() ? std::string_view(to_string(e.type)) : e.kind;
+  // kinds are plain words; quote defensively if one ever holds a comma or quote
+  if (kind.find_first_of(",\"\n") == std::string_view::npos) {
+    out += kind;
+  } else {
+    out += '"';
+    for (char c : kind) {
+      if (c == '"') out += '"';
+      out += c;
     }
-    out += ',';
-    append_double(out, e.impact_velocity);
-    out += ',';
-    append_double(out, e.theta);
-    out += ',';
-    append_double(out, e.impulse);
-    if (with_contact) {
-      out += ',';
-      out += e.contact;  // names are [A-Za-z0-9_-]
-    }
-    out += '\n';
+    out += '"';
   }
+  out += ',';
+  append_double(out, e.impact_velocity);
+  out += ',';
+  append_double(out, e.theta);
+  out += ',';
+  append_double(out, e.impulse);
+  if (with_contact) {
+    out += ',';
+    out += e.contact;  // names are [A-Za-z0-9_-]
+  }
+  out += '\n';
+}
+
+}  // namespace
+
+std::string events_csv(const std::vector<ContactEvent>& events, bool with_contact) {
+  std::string out = events_header(with_contact);
+  for (const auto& e : events) append_event(out, e, with_contact);
   return out;
 }
 
@@ -413,6 +426,101 @@ void HistoryWriter::clear() {
 void HistoryWriter::write(const std::string& dir) const {
   write_history_file(join_path(dir, "history.csv"), rows_, extra_);
   write_file_atomic(join_path(dir, "events.csv"), events_csv(events_, !extra_.empty()));
+}
+
+// ---- streaming writer -----------------------------------------------------------------
+
+StreamingHistoryWriter::StreamingHistoryWriter(std::string dir, std::vector<std::string> extra,
+                                               std::size_t chunk_bytes)
+    : with_contact_(!extra.empty()), chunk_(chunk_bytes) {
+  const std::string pid = std::to_string(static_cast<long>(::getpid()));
+  hist_.path = join_path(dir, "history.csv");
+  ev_.path = join_path(dir, "events.csv");
+  for (File* file : {&hist_, &ev_}) {
+    file->tmp = file->path + ".tmp." + pid;
+    file->f = std::fopen(file->tmp.c_str(), "wb");
+    if (!file->f) {
+      const std::string reason = std::strerror(errno);
+      if (hist_.f) {
+        std::fclose(hist_.f);
+        std::remove(hist_.tmp.c_str());
+      }
+      throw std::runtime_error("cannot create '" + file->tmp + "': " + reason);
+    }
+  }
+  hist_.buf.reserve(chunk_ + 4096);
+  ev_.buf.reserve(std::min<std::size_t>(chunk_, 4096) + 512);
+  hist_.buf = csv_header(all_columns(extra));
+  ev_.buf = events_header(with_contact_);
+}
+
+StreamingHistoryWriter::~StreamingHistoryWriter() {
+  if (done_) return;
+  done_ = true;
+  try {
+    close_and_rename(hist_, false);
+  } catch (...) {
+  }
+  try {
+    close_and_rename(ev_, false);
+  } catch (...) {
+  }
+}
+
+void StreamingHistoryWriter::write_out(File& file) {
+  if (!file.f) throw std::runtime_error("'" + file.tmp + "' is closed");
+  if (!file.buf.empty() &&
+      std::fwrite(file.buf.data(), 1, file.buf.size(), file.f) != file.buf.size()) {
+    throw std::runtime_error("cannot write '" + file.tmp + "': " + std::strerror(errno));
+  }
+  file.buf.clear();
+  if (std::fflush(file.f) != 0) {
+    throw std::runtime_error("cannot write '" + file.tmp + "': " + std::strerror(errno));
+  }
+}
+
+void StreamingHistoryWriter::close_and_rename(File& file, bool sync) {
+  if (!file.f) return;
+  write_out(file);
+  if (sync && ::fsync(::fileno(file.f)) != 0 && errno != EINVAL && errno != EROFS) {
+    throw std::runtime_error("cannot write '" + file.tmp + "': " + std::strerror(errno));
+  }
+  std::FILE* f = file.f;
+  file.f = nullptr;
+  if (std::fclose(f) != 0) {
+    throw std::runtime_error("cannot write '" + file.tmp + "': " + std::strerror(errno));
+  }
+  if (std::rename(file.tmp.c_str(), file.path.c_str()) != 0) {
+    throw std::runtime_error("cannot rename '" + file.tmp + "' to '" + file.path +
+                             "': " + std::strerror(errno));
+  }
+}
+
+void StreamingHistoryWriter::on_row(const HistoryRow& row) {
+  if (done_) return;
+  append_row(hist_.buf, row);
+  ++rows_;
+  if (hist_.buf.size() > chunk_) write_out(hist_);
+}
+
+void StreamingHistoryWriter::on_event(const ContactEvent& event) {
+  if (done_) return;
+  append_event(ev_.buf, event, with_contact_);
+  ++events_;
+  if (ev_.buf.size() > chunk_) write_out(ev_);
+}
+
+void StreamingHistoryWriter::flush() {
+  if (done_) return;
+  write_out(hist_);
+  write_out(ev_);
+}
+
+void StreamingHistoryWriter::finish() {
+  if (done_) return;
+  done_ = true;
+  close_and_rename(hist_, true);
+  close_and_rename(ev_, true);
 }
 
 // ---- summary.json -----------------------------------------------------------------------
@@ -592,10 +700,12 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
   {
     long impacts = 0, separations = 0, tensile = 0, other = 0;
     for (const auto& e : s.events) {
-      if (e.kind == "impact") ++impacts;
-      else if (e.kind == "separation") ++separations;
-      else if (e.kind == "tensile") ++tensile;
-      else ++other;
+      switch (e.type) {
+        case EventKind::Impact: ++impacts; break;
+        case EventKind::Separation: ++separations; break;
+        case EventKind::Tensile: ++tensile; break;
+        default: ++other;
+      }
     }
     std::string t;
     JsonObject c(t, o.child_indent());

@@ -220,9 +220,15 @@ class RunContext {
 
   // impulse: the impact impulse applied at the instant (0: none); t_event: the event time
   // when it is not the current time t_ (NaN); the event's cam angle is taken there.
-  void record_event(const char* kind, double v, double impulse = 0.0, double t_event = NAN) {
+  void record_event(EventKind kind, double v, double impulse = 0.0, double t_event = NAN) {
     const double te = std::isnan(t_event) ? t_ : t_event;
-    ContactEvent e{te, kind, v, drive_.theta(te), impulse};
+    ContactEvent e;
+    e.t = te;
+    e.kind = to_string(kind);
+    e.impact_velocity = v;
+    e.theta = drive_.theta(te);
+    e.impulse = impulse;
+    e.type = kind;
     designer_.event(e);
     sum_.events.push_back(e);
     if (obs_) obs_->on_event(e);
@@ -251,7 +257,7 @@ class RunContext {
     designer_step(cm.X);
     if (bilateral_ && F_ < 0.0 && sum_.first_tensile_time < 0) {
       sum_.first_tensile_time = t_;
-      record_event("tensile", 0.0);
+      record_event(EventKind::Tensile, 0.0);
     }
     if (out_dt() <= 0.0) {
       emit_row();

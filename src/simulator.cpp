@@ -23,6 +23,15 @@ const std::vector<std::string>& history_columns() {
   return cols;
 }
 
+const char* to_string(EventKind k) {
+  switch (k) {
+    case EventKind::Impact: return "impact";
+    case EventKind::Separation: return "separation";
+    case EventKind::Tensile: return "tensile";
+  }
+  return "impact";
+}
+
 const char* to_string(Termination v) {
   switch (v) {
     case Termination::Finished: return "finished";

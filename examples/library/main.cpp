@@ -18,7 +18,7 @@ struct Watch : camdyn::Observer {
     max_force = std::fmax(max_force, r.contact_force);
   }
   void on_event(const camdyn::ContactEvent& e) override {
-    if (e.kind == "separation")
+    if (e.type == camdyn::EventKind::Separation)
       std::printf("  separation at t = %.6f s, cam angle %.2f deg\n", e.t,
                   std::fmod(e.theta * 180 / M_PI, 360.0));
   }

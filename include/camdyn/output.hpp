@@ -6,6 +6,7 @@
 // null.
 #pragma once
 
+#include <cstddef>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -71,7 +72,8 @@ std::string json_string(std::string_view s);
 std::string history_csv(const std::vector<HistoryRow>& rows,
                         const std::vector<std::string>& extra_columns = {});
 /// events.csv text: header "t,kind,impact_velocity,theta,impulse" (with_contact: then
-/// ",contact", the contact's name — network scenes), one line per event.
+/// ",contact", the contact's name — network scenes), one line per event. The kind column
+/// is ContactEvent::kind when it is not empty, else to_string(ContactEvent::type).
 std::string events_csv(const std::vector<ContactEvent>& events, bool with_contact = false);
 
 /// An Observer that keeps every row and event in memory as they arrive, so a run that
@@ -95,6 +97,71 @@ class HistoryWriter : public Observer {
   std::vector<HistoryRow> rows_;
   std::vector<ContactEvent> events_;
   std::vector<std::string> extra_;
+};
+
+/// An Observer that writes DIR/history.csv and DIR/events.csv while the run goes, keeping
+/// at most about `chunk_bytes` of text per file in memory (O(1) in the number of rows).
+/// The files are byte-identical to HistoryWriter::write(DIR) for the same run and the same
+/// extra columns (header from history_columns() then `extra_columns`; events.csv gets the
+/// `contact` column when `extra_columns` is not empty, as events_csv(…, true)).
+///
+///   camdyn::Simulator sim(scene);
+///   camdyn::StreamingHistoryWriter w("out", sim.extra_columns());
+///   camdyn::Summary s = sim.run(&w);
+///   w.finish();  // out/history.csv, out/events.csv
+///
+/// Exact behaviour:
+///  - The constructor creates "DIR/history.csv.tmp.<pid>" and "DIR/events.csv.tmp.<pid>"
+///    (DIR must exist: see ensure_output_dir) and buffers both headers.
+///  - on_row / on_event append to a buffer; a buffer larger than chunk_bytes is written to
+///    its temporary file and flushed to the OS (fflush), so after a hard crash (the process
+///    killed) the rows up to the last chunk are in the temporary files. A write error
+///    throws std::runtime_error (inside Simulator::run: the run ends with Termination::Error).
+///  - finish() writes the rest, fsyncs, closes and renames both temporary files onto
+///    DIR/history.csv and DIR/events.csv (replacing them); afterwards rows and events are
+///    ignored. Calling it again does nothing. @throws std::runtime_error; on an error the
+///    temporary files are left as they are (nothing is deleted).
+///  - The destructor without finish() does the same as finish() (every row and event
+///    delivered so far ends up under the final names: a failed or stopped run keeps its
+///    rows) but never throws: an error there is swallowed and leaves the temporary files.
+///  - Nothing else is written to DIR; DIR/history.csv and DIR/events.csv are untouched
+///    until finish() or the destructor.
+class StreamingHistoryWriter : public Observer {
+ public:
+  /// @throws std::runtime_error if a temporary file cannot be created.
+  explicit StreamingHistoryWriter(std::string dir, std::vector<std::string> extra_columns = {},
+                                  std::size_t chunk_bytes = std::size_t(1) << 16);
+  StreamingHistoryWriter(const StreamingHistoryWriter&) = delete;
+  StreamingHistoryWriter& operator=(const StreamingHistoryWriter&) = delete;
+  ~StreamingHistoryWriter() override;
+
+  void on_row(const HistoryRow& row) override;
+  void on_event(const ContactEvent& event) override;
+
+  /// Write the buffered text to the temporary files now (fflush). @throws std::runtime_error.
+  void flush();
+  /// Complete both files (see above). @throws std::runtime_error.
+  void finish();
+
+  bool finished() const { return done_; }
+  long rows() const { return rows_; }      ///< rows received so far
+  long events() const { return events_; }  ///< events received so far
+  const std::string& history_path() const { return hist_.path; }  ///< DIR/history.csv
+  const std::string& events_path() const { return ev_.path; }     ///< DIR/events.csv
+
+ private:
+  struct File {
+    std::string path, tmp, buf;
+    std::FILE* f = nullptr;
+  };
+  void write_out(File& file);
+  void close_and_rename(File& file, bool sync);
+
+  File hist_, ev_;
+  bool with_contact_ = false;
+  bool done_ = false;
+  std::size_t chunk_;
+  long rows_ = 0, events_ = 0;
 };
 
 // ---- summary.json ---------------------------------------------------------------------

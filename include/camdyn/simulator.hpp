@@ -41,15 +41,30 @@ struct HistoryRow {
 /// Names of the history columns, in order.
 const std::vector<std::string>& history_columns();
 
+/// What a contact event is (ContactEvent::type).
+enum class EventKind {
+  Impact,      ///< the contact closes with an approach velocity
+  Separation,  ///< the contact opens
+  Tensile,     ///< holonomic contact: the constraint force starts to pull (first time)
+};
+/// "impact", "separation", "tensile" (events.csv's `kind` column, ContactEvent::kind).
+const char* to_string(EventKind k);
+
 /// A contact event.
 struct ContactEvent {
   double t = 0;
-  std::string kind;             ///< "impact" | "separation" | "tensile" (holonomic)
+  /// Deprecated: use `type`. Kept for source compatibility; every event the library makes
+  /// has kind == to_string(type). events_csv() writes `kind` when it is not empty, else
+  /// to_string(type); the library compares `type` only.
+  std::string kind;
   double impact_velocity = 0;   ///< relative approach velocity (impacts), else 0
   double theta = 0;             ///< cam angle at the event [rad] (as history.csv's theta)
   double impulse = 0;           ///< contact impulse applied at the instant (impacts resolved
                                 ///< as a Newton impulse: event-driven, Lee "located"), else 0
   std::string contact;          ///< network scenes: the contact's name ("" otherwise)
+  /// What the event is. Last member, so brace-initialisers written for the members above
+  /// still compile (they leave type = Impact: set it).
+  EventKind type = EventKind::Impact;
 };
 
 /// One Poincaré sample: the follower's contact face when the cam passes the section angle

@@ -224,13 +224,13 @@ class EventDriven final : public RunContext {
           if (!in_contact) start_free();
           if (impact) {
             ++sum_.impacts;
-            record_event("impact", approach, (y_[n_] - v0_pre) / Ms);
+            record_event(EventKind::Impact, approach, (y_[n_] - v0_pre) / Ms);
           }
         }
       }
       if (separation) {
         ++sum_.separations;
-        record_event("separation", 0.0);
+        record_event(EventKind::Separation, 0.0);
       }
       contact_ = in_contact;
       const double dW = std::isnan(dW_override) ? trapezoid_work(t_ - t_prev, Ft, Xdot_prev) : dW_override;

@@ -31,7 +31,7 @@ class IdaHolonomic final : public RunContext {
       F_ = ida.lambda();
       if (ida.hit_root() && sum_.first_tensile_time < 0) {
         sum_.first_tensile_time = t_;
-        record_event("tensile", 0.0);
+        record_event(EventKind::Tensile, 0.0);
         ida.set_tensile_root(false);
       }
       after_step(t_ - t_prev, ida.work() - W_prev, P_prev);

@@ -279,11 +279,11 @@ class LeeClassic final : public RunContext {
         const bool now_contact = bilateral_ || F_ > 0.0 || Fv > 0.0;
         if (!contact_ && now_contact && !bilateral_) {
           ++sum_.impacts;
-          record_event("impact", sdot_minus);
+          record_event(EventKind::Impact, sdot_minus);
           dissipated_ += 0.5 * (1.0 - e_rest * e_rest) * sdot_minus * sdot_minus / Ms;
         } else if (contact_ && !now_contact) {
           ++sum_.separations;
-          record_event("separation", 0.0);
+          record_event(EventKind::Separation, 0.0);
         }
         contact_ = now_contact;
         const bool held_throughout =

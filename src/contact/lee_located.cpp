@@ -374,7 +374,7 @@ class LeeLocated final : public RunContext {
       const CamMotion c0 = cam_at(t_);
       if (c0.Xddot - m_.contact_acceleration(y_.data(), y_.data() + n_, 0.0) < 0.0) {
         ++sum_.separations;
-        record_event("separation", 0.0);
+        record_event(EventKind::Separation, 0.0);
       }
       F_ = 0.0;
     }
@@ -445,7 +445,7 @@ class LeeLocated final : public RunContext {
             if (F_ <= F_sep || hx <= 1e-9 * hs || hx <= hmin_rel * std::max(1.0, std::abs(t_))) {
               // at the step's start: separate now
               ++sum_.separations;
-              record_event("separation", 0.0);
+              record_event(EventKind::Separation, 0.0);
               contact_ = false;
               F_ = 0.0;
               continue;
@@ -470,7 +470,7 @@ class LeeLocated final : public RunContext {
         F_ = Fa;
         if (separate) {
           ++sum_.separations;
-          record_event("separation", 0.0);
+          record_event(EventKind::Separation, 0.0);
           contact_ = false;
           F_ = 0.0;
           slope_prev_ = 0.0;
@@ -527,7 +527,7 @@ class LeeLocated final : public RunContext {
         dissipated_ += 0.5 * (stick ? 1.0 : 1.0 - e_rest * e_rest) * ap * ap / Ms;
         if (approach > 0.0) {
           ++sum_.impacts;
-          record_event("impact", approach, P);
+          record_event(EventKind::Impact, approach, P);
         }
         if (stick) {
           const double Fh = (cm.Xddot - m_.contact_acceleration(y_.data(), y_.data() + n_, 0.0)) / Ms;

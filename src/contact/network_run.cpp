@@ -294,7 +294,11 @@ void NetworkRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
 void NetworkRun::record_event(const char* kind, int contact, double v, double impulse,
                               double t_event) {
   const double te = std::isnan(t_event) ? t_ : t_event;
-  ContactEvent e{te, kind, v, drive_.theta(te), impulse, mk_.contacts()[contact].name};
+  const std::string_view k(kind);
+  const EventKind type = k == "separation" ? EventKind::Separation
+                         : k == "tensile"  ? EventKind::Tensile
+                                           : EventKind::Impact;
+  ContactEvent e{te, kind, v, drive_.theta(te), impulse, mk_.contacts()[contact].name, type};
   // The designer results follow the primary contact (the cam's). A cam contact with lash
   // opens at the end of every lift event as the cam returns to its base circle, a few µm
   // above the clearance (the chain's deflection under load): only a separation while the
@@ -303,7 +307,7 @@ void NetworkRun::record_event(const char* kind, int contact, double v, double im
   if (contact == mk_.primary()) {
     const MechanismContact& c = mk_.contacts()[contact];
     const bool on_lift = !c.cam || cam_at(te).X > c.g0 + kFloatLift * cam_.lift();
-    if (std::string(kind) != "separation" || on_lift) designer_.event(e);
+    if (e.type != EventKind::Separation || on_lift) designer_.event(e);
   }
   sum_.events.push_back(e);
   if (obs_) obs_->on_event(e);

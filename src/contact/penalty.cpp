@@ -79,10 +79,10 @@ class Penalty final : public RunContext {
       const bool now_contact = F_ > 0.0;
       if (!contact_ && now_contact) {
         ++sum_.impacts;
-        record_event("impact", cam_at(t_).Xdot - y_[n_]);
+        record_event(EventKind::Impact, cam_at(t_).Xdot - y_[n_]);
       } else if (contact_ && !now_contact) {
         ++sum_.separations;
-        record_event("separation", 0.0);
+        record_event(EventKind::Separation, 0.0);
       }
       contact_ = now_contact;
       after_step(h, trapezoid_work(h, Ft, Xdot_prev), P_prev);
