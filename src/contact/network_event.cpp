@@ -98,7 +98,7 @@ class NetworkEvent final : public NetworkRun {
           if (active_[j]) {
             active_[j] = 0;
             ++sum_.separations;
-            record_event("separation", j, 0.0);
+            record_event(EventKind::Separation, j, 0.0);
             released = true;
           } else {
             closing.push_back(j);

@@ -445,7 +445,7 @@ class NetworkLee final : public NetworkRun {
           // the held force is zero at the step's start: release now
           active_[who] = 0;
           ++sum_.separations;
-          record_event("separation", who, 0.0);
+          record_event(EventKind::Separation, who, 0.0);
           settle_active(cam_at(t_));
           slope_.setZero();
           continue;
@@ -472,7 +472,7 @@ class NetworkLee final : public NetworkRun {
           F_[j] = 0.0;
           slope_[j] = 0.0;
           ++sum_.separations;
-          record_event("separation", j, 0.0);
+          record_event(EventKind::Separation, j, 0.0);
           changed = true;
         }
       for (int j : set)

@@ -118,7 +118,6 @@ class NetworkPenalty final : public NetworkRun {
   void run_method() override {
     // The penalty's own equilibrium at t = 0: each contact carrying force F_j starts
     // penetrated by the s_j its law needs (ŝ = 0), by the M-weighted smallest shift.
-    const CamMotion cm0 = cam_at(0.0);
     std::vector<int> set = active_list();
     if (!set.empty()) {
       const int k = int(set.size());
@@ -161,10 +160,10 @@ class NetworkPenalty final : public NetworkRun {
         const bool now = F_[j] > 0.0 || (eng_->hit_root() && eng_->root_info()[j] < 0);
         if (!active_[j] && now) {
           ++sum_.impacts;
-          record_event("impact", j, -gap_rate(j, y_, cm));
+          record_event(EventKind::Impact, j, -gap_rate(j, y_, cm));
         } else if (active_[j] && !now) {
           ++sum_.separations;
-          record_event("separation", j, 0.0);
+          record_event(EventKind::Separation, j, 0.0);
         }
         active_[j] = now;
       }

@@ -136,7 +136,7 @@ void NetworkRun::settle_active(const CamMotion& cm) {
     }
     active_[worst] = 0;
     ++sum_.separations;
-    record_event("separation", worst, 0.0);
+    record_event(EventKind::Separation, worst, 0.0);
   }
 }
 
@@ -224,7 +224,7 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
   for (int j : closing) {
     if (-gd[j] > 0.0) {
       ++sum_.impacts;
-      record_event("impact", j, -gd[j], P[j]);
+      record_event(EventKind::Impact, j, -gd[j], P[j]);
     }
     if (stick[j] && std::find(S.begin(), S.end(), j) != S.end()) active_[j] = 1;
   }
@@ -236,7 +236,7 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
         gap_rate(j, y_, cm) > v_eps) {
       active_[j] = 0;
       ++sum_.separations;
-      record_event("separation", j, 0.0);
+      record_event(EventKind::Separation, j, 0.0);
     }
   settle_active(cm);
 }
@@ -291,14 +291,9 @@ void NetworkRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
   if (obs_ && obs_->on_output(r) == ObserverAction::Stop) observer_stop_ = true;
 }
 
-void NetworkRun::record_event(const char* kind, int contact, double v, double impulse,
-                              double t_event) {
+void NetworkRun::record_event(EventKind type, int contact, double v, double impulse, double t_event) {
   const double te = std::isnan(t_event) ? t_ : t_event;
-  const std::string_view k(kind);
-  const EventKind type = k == "separation" ? EventKind::Separation
-                         : k == "tensile"  ? EventKind::Tensile
-                                           : EventKind::Impact;
-  ContactEvent e{te, kind, v, drive_.theta(te), impulse, mk_.contacts()[contact].name, type};
+  ContactEvent e{te, to_string(type), v, drive_.theta(te), impulse, mk_.contacts()[contact].name, type};
   // The designer results follow the primary contact (the cam's). A cam contact with lash
   // opens at the end of every lift event as the cam returns to its base circle, a few µm
   // above the clearance (the chain's deflection under load): only a separation while the

@@ -86,7 +86,7 @@ class NetworkRun {
   void emit_row();
   void emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F,
                    const std::vector<char>& active, double W, double D);
-  void record_event(const char* kind, int contact, double v, double impulse = 0.0,
+  void record_event(EventKind type, int contact, double v, double impulse = 0.0,
                     double t_event = NAN);
   /// After an accepted step (state updated): dW the cam's work over the step, P_prev the
   /// dissipated power at its start (P_end at its end if not the current state's).
