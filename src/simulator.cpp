@@ -53,6 +53,10 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   resolve_defaults(scene_);
   validate(scene_);
   if (scene_.follower.kind == FollowerKind::Network) {
+    if (scene_.solver.integrator == Integrator::Ida)
+      throw SceneError(scene_.source, 0, "solver.integrator", "ida",
+                       "a network runs on arkode-erk, arkode-dirk or cvode-bdf (ida: single-follower "
+                       "holonomic scenes only)");
     mech_ = std::make_shared<const Mechanism>(scene_);
     extra_columns_ = detail::NetworkRun::extra_columns(*mech_);
   } else {
@@ -65,7 +69,8 @@ Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower
   validate(scene_);
   if (scene_.solver.integrator == Integrator::Ida)
     throw SceneError(scene_.source, 0, "solver.integrator", "ida",
-                     "a user-defined follower runs on arkode-erk, arkode-dirk or cvode-bdf");
+                     "a user-defined follower runs on arkode-erk, arkode-dirk or cvode-bdf (ida: "
+                     "single-follower holonomic scenes only)");
   mech_ = make_user_system(scene_, std::move(follower));
   extra_columns_ = detail::NetworkRun::extra_columns(*mech_);
 }

@@ -458,6 +458,21 @@ TEST(TwoContacts, LeeEventAndPenaltyAgreeOnImpulsesAndEnergyCloses) {
   EXPECT_LT(c.sum.energy_residual, 1e-3 * W);
 }
 
+// A network on IDA is bad input (exit 2 from the CLI), not a failed run.
+TEST(NetworkInput, IdaIsRejected) {
+  Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_bucket_tappet.toml");
+  s.contact.model = ContactModel::Holonomic;
+  s.solver.integrator = Integrator::Ida;
+  try {
+    Simulator sim(s);
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key(), "solver.integrator");
+    EXPECT_EQ(e.rule(), "a network runs on arkode-erk, arkode-dirk or cvode-bdf (ida: single-follower holonomic "
+                        "scenes only)");
+  }
+}
+
 // The full report lists the assembled network, and only what the scene asks for.
 TEST(NetworkDescription, ListsTheAssembledNetworkOnly) {
   const Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohv_pushrod_train.toml");
