@@ -100,7 +100,10 @@ class NetworkEvent final : public NetworkRun {
             ++sum_.separations;
             record_event(EventKind::Separation, j, 0.0);
             released = true;
-          } else {
+          } else if (gap_rate(j, y_, cm) < 0.0) {
+            // a gap that crosses its root while opening is the engine's interpolation
+            // error around a contact that has just let go (CVODE: 61 phantom re-closures
+            // in 5 revolutions of the OHC train at 75 rev/s): no impact
             closing.push_back(j);
           }
         }
@@ -119,7 +122,7 @@ class NetworkEvent final : public NetworkRun {
       } else if (eng_->hit_root()) {  // bilateral: a contact that closes stays closed
         std::vector<int> closing;
         for (int j = 0; j < m_; ++j)
-          if (!active_[j] && eng_->root_info()[j] < 0) closing.push_back(j);
+          if (!active_[j] && eng_->root_info()[j] < 0 && gap_rate(j, y_, cm) < 0.0) closing.push_back(j);
         if (!closing.empty()) {
           resolve_impact(closing, cm);
           changed = true;

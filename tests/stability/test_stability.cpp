@@ -429,3 +429,54 @@ TEST(Stability, TightAndLooseTolerances) {
 }
 
 }  // namespace
+
+// ---- valve trains (issue 16): several contacts over many revolutions, at over-speed ------
+// Every contact force ≥ 0 (Lee, event-driven), every gap ≥ −tol_u (Lee), the energy balance
+// (as run_checked) and as many impacts as separations per contact (± 1: a contact open at
+// the start or at the end).
+namespace {
+void check_network(const std::string& example, double speed, double revolutions, ContactModel model,
+                   camdyn::Integrator integ) {
+  Scene s = camdyn::load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/" + example);
+  s.cam.speed_rev_s = speed;
+  s.run.t_end = revolutions / speed;
+  s.run.output_dt = 1e-5;
+  s.contact.model = model;
+  s.solver.integrator = integ;
+  const Checked c = run_checked(s);
+  const camdyn::Simulator sim(s);
+  const std::vector<std::string>& cols = sim.extra_columns();
+  double worst_F = 0, worst_gap = 0;
+  for (const auto& row : c.r.rows)
+    for (size_t i = 0; i < cols.size(); ++i) {
+      if (cols[i].rfind("F_", 0) == 0) worst_F = std::min(worst_F, row.extra[i]);
+      if (cols[i].rfind("gap_", 0) == 0) worst_gap = std::min(worst_gap, row.extra[i]);
+    }
+  EXPECT_GE(worst_F, 0.0) << example;
+  if (model == ContactModel::Lee) EXPECT_GE(worst_gap, -s.contact.tol_u - 1e-12) << example;
+  for (const auto& ct : s.network.contacts) {
+    long imp = 0, sep = 0;
+    for (const auto& e : c.r.summary.events)
+      if (e.contact == ct.name) (e.type == camdyn::EventKind::Impact ? imp : sep) += 1;
+    EXPECT_LE(std::abs(imp - sep), 1) << example << " contact " << ct.name << ": " << imp << " impacts, " << sep
+                                      << " separations";
+  }
+  std::printf("[ network  ] %s at %g rev/s, %g revolutions, %s/%s: %ld steps, %ld impacts, energy residual "
+              "%.3g of 1e-3·E, min F %.3g N, min gap %.3g m, cpu %.3g s\n",
+              example.c_str(), speed, revolutions, camdyn::to_string(model), camdyn::to_string(integ),
+              c.r.summary.steps, c.r.summary.impacts, c.energy_worst, worst_F, worst_gap, c.r.summary.cpu_seconds);
+}
+}  // namespace
+
+TEST(Stability, ValveTrainOhcOverspeedTwentyRevolutionsLee) {
+  check_network("ohc_bucket_tappet.toml", 75.0, 20.0, ContactModel::Lee, camdyn::Integrator::ArkodeErk);
+}
+TEST(Stability, ValveTrainOhcOverspeedEventCvode) {
+  check_network("ohc_bucket_tappet.toml", 75.0, 5.0, ContactModel::Event, camdyn::Integrator::CvodeBdf);
+}
+TEST(Stability, ValveTrainOhvFiveRevolutionsLeeDirk) {
+  check_network("ohv_pushrod_train.toml", 45.0, 5.0, ContactModel::Lee, camdyn::Integrator::ArkodeDirk);
+}
+TEST(Stability, ValveTrainOhvHighSpeedLeeErk) {
+  check_network("ohv_pushrod_train.toml", 60.0, 10.0, ContactModel::Lee, camdyn::Integrator::ArkodeErk);
+}
