@@ -505,3 +505,48 @@ TEST(NetworkDescription, ListsTheAssembledNetworkOnly) {
 
 }  // namespace
 }  // namespace camdyn
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace camdyn {
+namespace {
+
+// camdyn sweep on a network: one row per speed, the float seen only above the jump speed
+// (OHC: 67.8 rev/s), the same numbers as a single run.
+TEST(NetworkSweep, SpeedSweepOfTheOhcTrain) {
+  Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_bucket_tappet.toml");
+  s.run.t_end = 0.02;
+  SweepOptions o;
+  o.axes = {SweepAxis{"cam.speed_rev_s", {25.0, 75.0}}};
+  o.jobs = 2;
+  o.timing = false;
+  o.out_dir = (std::filesystem::temp_directory_path() / "camdyn_network_sweep").string();
+  std::filesystem::remove_all(o.out_dir);
+  const SweepResult r = run_sweep(s, o);
+  EXPECT_EQ(r.computed, 2);
+  EXPECT_EQ(r.failed, 0);
+  std::ifstream f(r.csv_path);
+  std::string header, row25, row75;
+  std::getline(f, header);
+  std::getline(f, row25);
+  std::getline(f, row75);
+  auto field = [&](const std::string& row, const std::string& name) {
+    std::stringstream h(header), v(row);
+    std::string hn, vv;
+    while (std::getline(h, hn, ',') && std::getline(v, vv, ','))
+      if (hn == name) return vv;
+    return std::string("?");
+  };
+  EXPECT_EQ(field(row25, "finished"), "1");
+  EXPECT_EQ(field(row75, "finished"), "1");
+  EXPECT_EQ(field(row25, "first_separation_theta_deg"), "nan");  // no float at 25 rev/s
+  EXPECT_NE(field(row75, "first_separation_theta_deg"), "nan");  // floats at 75 rev/s
+  Scene s75 = s;
+  s75.cam.speed_rev_s = 75.0;
+  EXPECT_EQ(field(row75, "separations"), std::to_string(simulate(s75).summary.separations));
+}
+
+}  // namespace
+}  // namespace camdyn
