@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "lee_step_tools.hpp"
 #include "run_context.hpp"
 
 namespace camdyn {
@@ -92,7 +93,6 @@ class LeeLocated final : public RunContext {
     resp_next_ = (resp_next_ + 1) % kResponses;
     return r;
   }
-  static double grid_step(double h) { return std::exp2(std::floor(std::log2(h) * 8.0) / 8.0); }
   Eigen::VectorXd la_, le_, col0_, zero_;
 
   void fill_step_data(StepData& s, double t0, const Eigen::VectorXd& y0, double F0, double t1,
@@ -136,18 +136,7 @@ class LeeLocated final : public RunContext {
     y[n] = v;
     return 0.0;
   }
-  static void quintic(double u0, double v0, double a0, double u1, double v1, double a1, double h,
-                      double x, double* u, double* v, double* a) {
-    // p(x) on [0, 1] with p, p', p'' (in x) given at both ends.
-    const double p0 = u0, d0 = v0 * h, s0 = a0 * h * h, p1 = u1, d1 = v1 * h, s1 = a1 * h * h;
-    const double c0 = p0, c1 = d0, c2 = 0.5 * s0;
-    const double c3 = 10 * (p1 - p0) - 6 * d0 - 4 * d1 - 1.5 * s0 + 0.5 * s1;
-    const double c4 = -15 * (p1 - p0) + 8 * d0 + 7 * d1 + 1.5 * s0 - s1;
-    const double c5 = 6 * (p1 - p0) - 3 * d0 - 3 * d1 - 0.5 * s0 + 0.5 * s1;
-    if (u) *u = c0 + x * (c1 + x * (c2 + x * (c3 + x * (c4 + x * c5))));
-    if (v) *v = (c1 + x * (2 * c2 + x * (3 * c3 + x * (4 * c4 + x * 5 * c5)))) / h;
-    if (a) *a = (2 * c2 + x * (6 * c3 + x * (12 * c4 + x * 20 * c5))) / (h * h);
-  }
+
   // Gap (free) or force (held) along the step at x ∈ [0, 1].
   double switching_function(const StepData& s, double x) {
     const double tau = s.t0 + x * (s.t1 - s.t0);
@@ -422,7 +411,7 @@ class LeeLocated final : public RunContext {
         };
         if (err > 1.0) {
           ++sum_.rejected_steps;
-          h_fail_ = hs;
+          steps_.failed(hs);
           h = grid_step(hs * std::min(0.9, next_h()));
           continue;
         }
@@ -478,7 +467,7 @@ class LeeLocated final : public RunContext {
         dense_ = land ? nullptr : &sd_;
         after_step(hs, dW, P_prev);
         dense_ = nullptr;
-        if (!relocating) h = propose_step(hs, next_h());
+        if (!relocating) h = steps_.propose(hs, next_h());
         continue;
       }
       // ---- free step
@@ -488,7 +477,7 @@ class LeeLocated final : public RunContext {
       const double err_e = engine_->step(t_, y_, hs, y1);
       if (err_e > 1.0) {
         ++sum_.rejected_steps;
-        h_fail_ = hs;
+        steps_.failed(hs);
         h = grid_step(hs * std::max(0.2, std::min(0.9, 0.9 * std::pow(err_e, -1.0 / q))));
         continue;
       }
@@ -542,22 +531,12 @@ class LeeLocated final : public RunContext {
       dense_ = land ? nullptr : &sd_;
       after_step(hs, 0.0, P_prev, P_end);
       dense_ = nullptr;
-      if (!relocating) h = propose_step(hs, err_e > 0 ? 0.9 * std::pow(err_e, -1.0 / q) : 5.0);
+      if (!relocating) h = steps_.propose(hs, err_e > 0 ? 0.9 * std::pow(err_e, -1.0 / q) : 5.0);
     }
   }
   double slope_prev_ = 0.0;
-  // The next step after an accepted one of hs whose error asks for a factor fac. Grows
-  // only with a margin and not past 0.95 of the last size that failed the error test (an
-  // explicit engine's error estimate jumps at its stability limit: without the memory a
-  // bar on arkode-erk had 8–17 % of its steps rejected there); that memory relaxes by 2 %
-  // per step. Shrinks at once. Sizes on the grid 2^(k/8) (cached responses).
-  double h_fail_ = INFINITY;
-  double propose_step(double hs, double fac) {
-    h_fail_ *= 1.02;
-    fac = std::min(5.0, std::max(0.2, fac));
-    if (fac < 1.25) return grid_step(hs * std::min(fac, 1.0));
-    return grid_step(std::max(std::min(hs * fac / 1.1, 0.95 * h_fail_), grid_step(hs)));
-  }
+  StepSizeMemory steps_;  // the step-size controller (lee_step_tools.hpp)
+
   double F_ref_ = 0.0;  // largest contact force so far: the scale of the force tolerance
 
 };

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <functional>
 
+#include "lee_step_tools.hpp"
 #include "network_run.hpp"
 #include "run_context.hpp"  // StepFailure, IterationFailure, fmt
 
@@ -30,14 +31,6 @@ namespace camdyn {
 namespace detail {
 namespace {
 
-// p(x) on [0, 1] with p, p', p'' (in time) given at both ends: value at x.
-double quintic(double u0, double v0, double a0, double u1, double v1, double a1, double h, double x) {
-  const double p0 = u0, d0 = v0 * h, s0 = a0 * h * h, p1 = u1, d1 = v1 * h, s1 = a1 * h * h;
-  const double c3 = 10 * (p1 - p0) - 6 * d0 - 4 * d1 - 1.5 * s0 + 0.5 * s1;
-  const double c4 = -15 * (p1 - p0) + 8 * d0 + 7 * d1 + 1.5 * s0 - s1;
-  const double c5 = 6 * (p1 - p0) - 3 * d0 - 3 * d1 - 0.5 * s0 + 0.5 * s1;
-  return p0 + x * (d0 + x * (0.5 * s0 + x * (c3 + x * (c4 + x * c5))));
-}
 
 // First x ∈ (0, 1] where f falls below −thr: a sign change between K + 1 samples, or a
 // sampled minimum refined by golden section (grazing). −1 if none; else the root of f = 0
@@ -147,7 +140,6 @@ class NetworkLee final : public NetworkRun {
   static constexpr int kSlots = 12;
   Responses cache_[kSlots];
   int next_slot_ = 0;
-  static double grid_step(double h) { return std::exp2(std::floor(std::log2(h) * 8.0) / 8.0); }
   Responses& responses(double hs, const std::vector<int>& set) {
     Responses* r = nullptr;
     for (Responses& c : cache_)
@@ -242,13 +234,8 @@ class NetworkLee final : public NetworkRun {
     return true;
   }
 
-  double h_fail_ = INFINITY;
-  double propose_step(double hs, double fac) {
-    h_fail_ *= 1.02;
-    fac = std::min(5.0, std::max(0.2, fac));
-    if (fac < 1.25) return grid_step(hs * std::min(fac, 1.0));
-    return grid_step(std::max(std::min(hs * fac / 1.1, 0.95 * h_fail_), grid_step(hs)));
-  }
+  StepSizeMemory steps_;  // the step-size controller (lee_step_tools.hpp)
+
 
   // Solve the shape for the active set over a step of hs; y1 the end state, returns the
   // engine's error norm.
@@ -387,7 +374,7 @@ class NetworkLee final : public NetworkRun {
       const double fac = std::min(5.0, std::max(0.2, std::min(fe, fc)));
       if (std::max(err_e, err_c) > 1.0) {
         ++sum_.rejected_steps;
-        h_fail_ = hs;
+        steps_.failed(hs);
         h = grid_step(hs * std::min(0.9, fac));
         continue;
       }
@@ -432,7 +419,11 @@ class NetworkLee final : public NetworkRun {
         const double g0 = gap(j, y_, cm0), g1 = gap(j, y1, cm1);
         const double gd0 = gap_rate(j, y_, cm0), gd1 = gap_rate(j, y1, cm1);
         const double ga0 = c.t.dot(s.a0) - cam_acc(j, cm0), ga1 = c.t.dot(s.a1) - cam_acc(j, cm1);
-        auto f = [&](double x) { return quintic(g0, gd0, ga0, g1, gd1, ga1, hs, x); };
+        auto f = [&](double x) {
+          double u;
+          quintic(g0, gd0, ga0, g1, gd1, ga1, hs, x, &u, nullptr, nullptr);
+          return u;
+        };
         const double x = first_below(f, g0, g1, gap_thr, hs, t1);
         if (x >= 0.0 && x < x_first) {
           x_first = x;
@@ -498,7 +489,7 @@ class NetworkLee final : public NetworkRun {
       dense_ = land ? nullptr : &sd_;
       after_step(hs, dW, P_prev, closing.empty() ? NAN : P_end);
       dense_ = nullptr;
-      if (!relocating) h = propose_step(hs, fac);
+      if (!relocating) h = steps_.propose(hs, fac);
     }
   }
 };
