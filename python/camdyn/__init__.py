@@ -487,8 +487,9 @@ def run(scene: Any = None, observer: Optional[Callable[[Dict[str, float]], Any]]
             :class:`CubicSpringFollower`). The history then has the extra columns
             ``F_<c>``, ``gap_<c>``, ``in_<c>`` per contact, ``u_q<i>``, ``v_q<i>`` per
             unknown; events have ``contact``. The methods are called from the integrating
-            thread with the GIL taken (about 1.2 µs more per call than C++: a run 5–8× slower than the same follower in
-            C++: README "Bring your own follower"). An exception raised in one ends the
+            thread with the GIL taken: about 1.2 µs more per call than C++, a run 5–8×
+            slower than the same follower in C++ (README "Bring your own follower").
+            An exception raised in one ends the
             run: ``summary["finished"]`` is False, ``summary["termination"]`` "error" and
             ``summary["message"]`` "at t = T: Python follower: force(t, q, v) raised
             ValueError: ..." (KeyboardInterrupt propagates). A mapping here is still the
