@@ -142,7 +142,6 @@ def test_separation_is_the_first_root(model, integrator):
     assert ev[0]["t"] == pytest.approx(t_sep, rel=1e-9)
     # free flight to the impact, independently (scipy), when scipy is there
     integrate = pytest.importorskip("scipy.integrate")
-    X0, V0, _ = lift(f, t_sep)
     gap = lambda t, y: y[0] - lift(f, t)[0]  # noqa: E731
     gap.terminal, gap.direction = True, -1
     sol = integrate.solve_ivp(lambda t, y: [y[1], -CubicSpring.spring(y[0]) / M],
@@ -156,7 +155,6 @@ def test_separation_is_the_first_root(model, integrator):
     assert imp, "no impact"
     print(f"{model}/{integrator}: impact {imp[0]['t'] - t_imp:.3g} s off")
     assert imp[0]["t"] == pytest.approx(t_imp, rel=1e-8)
-    del X0, V0
 
 
 def test_python_follower_equals_the_cpp_one():
