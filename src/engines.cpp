@@ -145,12 +145,7 @@ int Engine::root_callback(double t, const double* y, double* g, void* ud) noexce
 }
 
 double Engine::wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const {
-  double s = 0.0;
-  for (Eigen::Index i = 0; i < err.size(); ++i) {
-    const double w = spec_.rtol * std::abs(y[i]) + spec_.atol;
-    s += (err[i] / w) * (err[i] / w);
-  }
-  return std::sqrt(s / double(err.size()));
+  return detail::wrms_norm(err, y, spec_.rtol, spec_.atol);
 }
 
 namespace {
@@ -160,21 +155,10 @@ using detail::ContextHolder;
 using detail::LS;
 using detail::Mat;
 using detail::NVec;
-struct ArkDel {
-  void operator()(void* m) const { ARKStepFree(&m); }
-};
-struct ErkDel {
-  void operator()(void* m) const { ERKStepFree(&m); }
-};
-struct CvDel {
-  void operator()(void* m) const { CVodeFree(&m); }
-};
-
-NVec make_nvec(long n, SUNContext ctx) {
-  N_Vector v = N_VNew_Serial(n, ctx);
-  if (!v) throw SundialsError("N_VNew_Serial", -1);
-  return NVec(v);
-}
+using detail::ArkDel;
+using detail::CvDel;
+using detail::ErkDel;
+using detail::make_nvec;
 using detail::not_null;
 inline Eigen::Map<Eigen::VectorXd> map(N_Vector v) {
   return Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(v), N_VGetLength(v));

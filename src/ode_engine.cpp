@@ -37,13 +37,7 @@
 namespace camdyn {
 
 double OdeEngine::wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const {
-  if (err.size() == 0) return 0.0;
-  double s = 0.0;
-  for (Eigen::Index i = 0; i < err.size(); ++i) {
-    const double w = spec_.rtol * std::abs(y[i]) + spec_.atol;
-    s += (err[i] / w) * (err[i] / w);
-  }
-  return std::sqrt(s / double(err.size()));
+  return detail::wrms_norm(err, y, spec_.rtol, spec_.atol);
 }
 
 namespace {
@@ -54,22 +48,10 @@ using detail::Mat;
 using detail::not_null;
 using detail::NVec;
 
-struct ArkDel {
-  void operator()(void* m) const { ARKStepFree(&m); }
-};
-struct ErkDel {
-  void operator()(void* m) const { ERKStepFree(&m); }
-};
-struct CvDel {
-  void operator()(void* m) const { CVodeFree(&m); }
-};
-
-NVec make_nvec(long n, SUNContext ctx) {
-  N_Vector v = N_VNew_Serial(n, ctx);
-  if (!v) throw SundialsError("N_VNew_Serial", -1);
-  N_VConst(0.0, v);
-  return NVec(v);
-}
+using detail::ArkDel;
+using detail::CvDel;
+using detail::ErkDel;
+using detail::make_nvec;
 inline Eigen::Map<Eigen::VectorXd> map(N_Vector v) {
   return Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(v), N_VGetLength(v));
 }

@@ -60,6 +60,25 @@ class StepSizeUnderflow : public StepFailure {
       : StepFailure(Termination::StepSizeUnderflow, "step size underflow (h = " + fmt(h) + ")") {}
 };
 
+/// Runs a method's loop `body` and sets how the run ended: Finished, or through
+/// end_run(kind, what) for a StepFailure (its kind), a SundialsError (SolverError) or any
+/// other exception (Error). Shared by RunContext and NetworkRun.
+template <class EndRun, class Body>
+void run_to_end(Summary& sum, EndRun end_run, Body body) {
+  try {
+    body();
+    sum.finished = true;
+    sum.termination = Termination::Finished;
+    sum.message = "finished";
+  } catch (const StepFailure& e) {
+    end_run(e.kind(), e.what());
+  } catch (const SundialsError& e) {
+    end_run(Termination::SolverError, e.what());
+  } catch (const std::exception& e) {
+    end_run(Termination::Error, e.what());
+  }
+}
+
 struct Clock {
   std::clock_t c0 = std::clock();
   std::chrono::steady_clock::time_point w0 = std::chrono::steady_clock::now();
@@ -129,19 +148,10 @@ class RunContext {
       // Keep the last accepted state (not after an observer's Stop: it saw its last row).
       if (last_row_t_ < t_ && !observer_stop_) emit_row();
     };
-    try {
+    run_to_end(sum_, end_run, [&] {
       if (observer_stop_) throw_observer_stop();
       run_method();
-      sum_.finished = true;
-      sum_.termination = Termination::Finished;
-      sum_.message = "finished";
-    } catch (const StepFailure& e) {
-      end_run(e.kind(), e.what());
-    } catch (const SundialsError& e) {
-      end_run(Termination::SolverError, e.what());
-    } catch (const std::exception& e) {
-      end_run(Termination::Error, e.what());
-    }
+    });
     sum_.t_end = t_;
     sum_.rhs_evals += engine_->stats().rhs_evals;
     sum_.lin_setups += engine_->stats().lin_setups;

@@ -1,13 +1,17 @@
 // camdyn (private) — RAII owners of SUNDIALS objects, shared by the ODE engines
-// (engines.cpp) and the IDA DAE (ida_engine.cpp). Every creation is checked: a null
+// (engines.cpp, ode_engine.cpp) and the IDA DAE (ida_engine.cpp). Every creation is checked: a null
 // result becomes a SundialsError naming the call.
 #pragma once
 
+#include <arkode/arkode_arkstep.h>
+#include <arkode/arkode_erkstep.h>
+#include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 
+#include <cmath>
 #include <memory>
 
 #include "engine.hpp"
@@ -34,6 +38,37 @@ struct LSDel {
 using NVec = std::unique_ptr<_generic_N_Vector, NVecDel>;
 using Mat = std::unique_ptr<_generic_SUNMatrix, MatDel>;
 using LS = std::unique_ptr<_generic_SUNLinearSolver, LSDel>;
+
+/// Owners of the integrators' memory blocks (std::unique_ptr<void, …>).
+struct ArkDel {
+  void operator()(void* m) const { ARKStepFree(&m); }
+};
+struct ErkDel {
+  void operator()(void* m) const { ERKStepFree(&m); }
+};
+struct CvDel {
+  void operator()(void* m) const { CVodeFree(&m); }
+};
+
+/// A serial N_Vector of length n, zero. @throws SundialsError if it cannot be made.
+inline NVec make_nvec(long n, SUNContext ctx) {
+  N_Vector v = N_VNew_Serial(n, ctx);
+  if (!v) throw SundialsError("N_VNew_Serial", -1);
+  N_VConst(0.0, v);
+  return NVec(v);
+}
+
+/// WRMS norm of err with weights rtol·|y_i| + atol (0 for an empty err).
+template <class V>
+double wrms_norm(const V& err, const V& y, double rtol, double atol) {
+  if (err.size() == 0) return 0.0;
+  double s = 0.0;
+  for (decltype(err.size()) i = 0; i < err.size(); ++i) {
+    const double w = rtol * std::abs(y[i]) + atol;
+    s += (err[i] / w) * (err[i] / w);
+  }
+  return std::sqrt(s / double(err.size()));
+}
 
 /// @throws SundialsError naming `call` if p is null.
 template <class T>

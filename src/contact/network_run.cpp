@@ -400,19 +400,10 @@ Summary NetworkRun::run() {
     sum_.message = "at t = " + fmt(t_) + ": " + what;
     if (last_row_t_ < t_ && !observer_stop_) emit_row();  // keep the last accepted state
   };
-  try {
+  run_to_end(sum_, end_run, [&] {
     if (observer_stop_) throw StepFailure(Termination::StoppedByObserver, "stopped by observer");
     run_method();
-    sum_.finished = true;
-    sum_.termination = Termination::Finished;
-    sum_.message = "finished";
-  } catch (const StepFailure& e) {
-    end_run(e.kind(), e.what());
-  } catch (const SundialsError& e) {
-    end_run(Termination::SolverError, e.what());
-  } catch (const std::exception& e) {
-    end_run(Termination::Error, e.what());
-  }
+  });
   sum_.t_end = t_;
   for (const auto& e : engines_) {
     sum_.rhs_evals += e->stats().rhs_evals;
