@@ -550,3 +550,48 @@ TEST(NetworkSweep, SpeedSweepOfTheOhcTrain) {
 
 }  // namespace
 }  // namespace camdyn
+
+namespace camdyn {
+namespace {
+
+// The tolerance controls the error at impacts on a network: the bouncing valve's fourth
+// impact time (closed form) against rtol, for Lee and the event-driven method.
+TEST(NetworkTolerance, ImpactTimeErrorFollowsTheTolerance) {
+  const double m = 0.05, k = 3e4, P = 300.0, x0 = 2e-3, e = 0.7;
+  const double w = std::sqrt(k / m), d = P / k;
+  double t = std::acos(d / (x0 + d)) / w, v = (x0 + d) * w * std::sin(w * t);
+  for (int i = 0; i < 3; ++i) {
+    t += 2.0 * std::atan(e * v / (w * d)) / w;
+    v *= e;
+  }
+  const double t4 = t;  // the fourth impact
+  for (const Method& method : kExactMethods) {
+    std::vector<double> err;
+    for (double rtol : {1e-5, 1e-7, 1e-9}) {
+      Scene s = net_scene(0.0);
+      s.contact.model = method.model;
+      s.solver.integrator = method.integrator;
+      s.solver.rtol = rtol;
+      s.solver.atol = 1e-3 * rtol * x0;
+      s.contact.tol_u = rtol * x0;
+      s.network.nodes = {node("valve", m, x0)};
+      s.network.elements = {spring("valve", "ground", k, P)};
+      auto seat = contact("seat", ContactPointKind::Stop, {"valve"});
+      seat.restitution = e;
+      s.network.contacts = {seat};
+      s.run.t_end = 1.05 * t4;
+      const NetRun r = run(s);
+      ASSERT_TRUE(r.sum.finished) << r.sum.message;
+      const auto imp = events_of(r.sum, "impact", "seat");
+      ASSERT_GE(imp.size(), 4u) << method.name << " rtol " << rtol;
+      err.push_back(std::abs(imp[3].t - t4) / t4);
+      std::printf("%s rtol %g: 4th impact time error %.3g (relative), %ld steps, cpu %.3g s\n", method.name, rtol,
+                  err.back(), r.sum.steps, r.sum.cpu_seconds);
+      EXPECT_LT(err.back(), 100 * rtol) << method.name << " rtol " << rtol;
+    }
+    EXPECT_LT(err[2], err[0]) << method.name << ": the error does not fall with the tolerance";
+  }
+}
+
+}  // namespace
+}  // namespace camdyn
