@@ -64,7 +64,6 @@ class NetworkEvent final : public NetworkRun {
     const double gap_thr = gap_thr_;
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       const double tout = next_output_time();
-      const double Pw_prev = cam_power(F_, cam_at(t_));
       const double P_prev = dissipation_power(t_, y_);
       const double t1 = eng_->advance(tout, y1);
       const double h = t1 - t_;
@@ -87,7 +86,6 @@ class NetworkEvent final : public NetworkRun {
           dW += 0.5 * h * wg[g] * cam_power(held_forces(tau, yg_, cg, set_), cg);
         }
       }
-      (void)Pw_prev;
       const double P_end = dissipation_power(t_, y_);
       bool changed = false;
       if (eng_->hit_root() && unilateral_) {
