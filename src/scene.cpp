@@ -144,37 +144,6 @@ SceneError::SceneError(std::string file, int line, std::string key, std::string 
 
 // ---------------------------------------------------------------- equality
 
-bool operator==(const CamSpec& a, const CamSpec& b) {
-  return a.profile == b.profile && a.angles_deg == b.angles_deg && a.radii == b.radii &&
-         a.base_radius == b.base_radius && a.lift_angles_deg == b.lift_angles_deg && a.lift == b.lift &&
-         a.radius == b.radius && a.eccentricity == b.eccentricity && a.speed_rev_s == b.speed_rev_s &&
-         a.speed_table_t == b.speed_table_t && a.speed_table_rev_s == b.speed_table_rev_s &&
-         a.theta0_deg == b.theta0_deg;
-}
-bool operator==(const FollowerSpec& a, const FollowerSpec& b) {
-  return a.kind == b.kind && a.mass == b.mass && a.damping == b.damping && a.youngs_modulus == b.youngs_modulus &&
-         a.area == b.area && a.length == b.length && a.elements == b.elements && a.mass_matrix == b.mass_matrix &&
-         a.rayleigh_alpha == b.rayleigh_alpha && a.rayleigh_beta == b.rayleigh_beta;
-}
-bool operator==(const SpringSpec& a, const SpringSpec& b) {
-  return a.stiffness == b.stiffness && a.precompression == b.precompression;
-}
-bool operator==(const ContactSpec& a, const ContactSpec& b) {
-  return a.model == b.model && a.error_variant == b.error_variant && a.lee_step == b.lee_step && a.tol_u == b.tol_u && a.tol_v == b.tol_v &&
-         a.tol_a == b.tol_a && a.max_iterations == b.max_iterations && a.separation == b.separation &&
-         a.restitution == b.restitution && a.initial_gap == b.initial_gap && a.penalty_law == b.penalty_law &&
-         a.penalty_stiffness == b.penalty_stiffness && a.penalty_damping == b.penalty_damping &&
-         a.penalty_exponent == b.penalty_exponent;
-}
-bool operator==(const SolverSpec& a, const SolverSpec& b) {
-  return a.integrator == b.integrator && a.rtol == b.rtol && a.atol == b.atol &&
-         a.linear_solver == b.linear_solver && a.max_step == b.max_step && a.initial_step == b.initial_step;
-}
-bool operator==(const RunSpec& a, const RunSpec& b) {
-  return a.t_end == b.t_end && a.output_dt == b.output_dt && a.land_on_output == b.land_on_output &&
-         a.max_steps == b.max_steps && a.poincare_angle_deg == b.poincare_angle_deg &&
-         a.settle_revolutions == b.settle_revolutions && a.period_tol == b.period_tol;
-}
 bool operator==(const NodeSpec& a, const NodeSpec& b) {
   return a.name == b.name && a.mass == b.mass && a.initial_displacement == b.initial_displacement &&
          a.initial_velocity == b.initial_velocity;
@@ -194,11 +163,7 @@ bool operator==(const ContactPointSpec& a, const ContactPointSpec& b) {
 bool operator==(const NetworkSpec& a, const NetworkSpec& b) {
   return a.nodes == b.nodes && a.elements == b.elements && a.contacts == b.contacts;
 }
-bool operator==(const Scene& a, const Scene& b) {
-  return a.title == b.title && a.cam == b.cam && a.follower == b.follower && a.spring == b.spring &&
-         a.contact == b.contact && a.solver == b.solver && a.run == b.run && a.network == b.network;
-}
-bool operator!=(const Scene& a, const Scene& b) { return !(a == b); }
+// (the tables' equality, and the Scene's, come from the key table: see after fields())
 
 // ---------------------------------------------------------------- formatting helpers
 
@@ -446,6 +411,46 @@ const std::vector<Field>& fields() {
     return v;
   }();
   return kFields;
+}
+
+// ---------------------------------------------------------------- equality (from kFields)
+
+// Two scenes agree on every key of `table` ("" the top-level keys; nullptr every table):
+// a new key in kFields is compared without another line here. Doubles compare exactly.
+bool same_keys(const Scene& a, const Scene& b, const char* table) {
+  Scene& x = const_cast<Scene&>(a);  // the accessors hand out references: only read here
+  Scene& y = const_cast<Scene&>(b);
+  for (const Field& f : fields()) {
+    if (table && std::strcmp(f.table, table) != 0) continue;
+    switch (f.kind) {
+      case FK::Real:
+        if (!(f.real(x) == f.real(y))) return false;
+        break;
+      case FK::Arr:
+        if (f.arr(x) != f.arr(y)) return false;
+        break;
+      case FK::Bool:
+        if (f.boolean(x) != f.boolean(y)) return false;
+        break;
+      case FK::Str:
+        if (f.str(x) != f.str(y)) return false;
+        break;
+      case FK::Int:
+        if (f.get_int(a) != f.get_int(b)) return false;
+        break;
+      case FK::Enum:
+        if (std::strcmp(f.get_enum(a), f.get_enum(b)) != 0) return false;
+        break;
+    }
+  }
+  return true;
+}
+template <class Spec>
+bool same_table(const Spec& a, const Spec& b, Spec Scene::*member, const char* table) {
+  Scene x, y;
+  x.*member = a;
+  y.*member = b;
+  return same_keys(x, y, table);
 }
 
 #undef F_REAL
@@ -1398,6 +1403,19 @@ std::string trim(std::string_view s) {
 }
 
 }  // namespace
+
+bool operator==(const CamSpec& a, const CamSpec& b) { return same_table(a, b, &Scene::cam, "cam"); }
+bool operator==(const FollowerSpec& a, const FollowerSpec& b) {
+  return same_table(a, b, &Scene::follower, "follower");
+}
+bool operator==(const SpringSpec& a, const SpringSpec& b) { return same_table(a, b, &Scene::spring, "spring"); }
+bool operator==(const ContactSpec& a, const ContactSpec& b) {
+  return same_table(a, b, &Scene::contact, "contact");
+}
+bool operator==(const SolverSpec& a, const SolverSpec& b) { return same_table(a, b, &Scene::solver, "solver"); }
+bool operator==(const RunSpec& a, const RunSpec& b) { return same_table(a, b, &Scene::run, "run"); }
+bool operator==(const Scene& a, const Scene& b) { return same_keys(a, b, nullptr) && a.network == b.network; }
+bool operator!=(const Scene& a, const Scene& b) { return !(a == b); }
 
 // ---------------------------------------------------------------- public functions
 

@@ -652,3 +652,48 @@ TEST(SceneOverride, Errors) {
   EXPECT_THROW(apply_override(q, "follower.mass=-2"), SceneError);
   EXPECT_TRUE(q == s);
 }
+
+// Equality comes from the key table (scene.cpp kFields): every kind of key in every table
+// takes part, and the per-table operators agree with the Scene's.
+TEST(SceneEquality, EveryKindOfKeyInEveryTableTakesPart) {
+  const camdyn::Scene a = camdyn::default_scene();
+  EXPECT_TRUE(a == camdyn::Scene(a));
+  struct Case {
+    const char* what;
+    void (*mutate)(camdyn::Scene&);
+    bool (*table_equal)(const camdyn::Scene&, const camdyn::Scene&);
+  };
+  const Case cases[] = {
+      {"title", [](camdyn::Scene& s) { s.title += "x"; }, nullptr},
+      {"cam.lift (array)", [](camdyn::Scene& s) { s.cam.lift.push_back(1.0); },
+       [](const camdyn::Scene& x, const camdyn::Scene& y) { return x.cam == y.cam; }},
+      {"cam.theta0_deg (real)", [](camdyn::Scene& s) { s.cam.theta0_deg += 1.0; },
+       [](const camdyn::Scene& x, const camdyn::Scene& y) { return x.cam == y.cam; }},
+      {"follower.elements (int)", [](camdyn::Scene& s) { s.follower.elements += 1; },
+       [](const camdyn::Scene& x, const camdyn::Scene& y) { return x.follower == y.follower; }},
+      {"follower.mass_matrix (enum)",
+       [](camdyn::Scene& s) {
+         s.follower.mass_matrix = s.follower.mass_matrix == camdyn::MassMatrixKind::Lumped
+                                      ? camdyn::MassMatrixKind::Consistent
+                                      : camdyn::MassMatrixKind::Lumped;
+       },
+       [](const camdyn::Scene& x, const camdyn::Scene& y) { return x.follower == y.follower; }},
+      {"spring.precompression", [](camdyn::Scene& s) { s.spring.precompression *= 2.0; },
+       [](const camdyn::Scene& x, const camdyn::Scene& y) { return x.spring == y.spring; }},
+      {"contact.separation (bool)", [](camdyn::Scene& s) { s.contact.separation = !s.contact.separation; },
+       [](const camdyn::Scene& x, const camdyn::Scene& y) { return x.contact == y.contact; }},
+      {"solver.rtol", [](camdyn::Scene& s) { s.solver.rtol *= 2.0; },
+       [](const camdyn::Scene& x, const camdyn::Scene& y) { return x.solver == y.solver; }},
+      {"run.max_steps (int)", [](camdyn::Scene& s) { s.run.max_steps += 1; },
+       [](const camdyn::Scene& x, const camdyn::Scene& y) { return x.run == y.run; }},
+      {"network.nodes", [](camdyn::Scene& s) { s.network.nodes.push_back(camdyn::NodeSpec{"n", 1.0, 0.0, 0.0}); },
+       nullptr},
+  };
+  for (const Case& c : cases) {
+    camdyn::Scene b = a;
+    c.mutate(b);
+    EXPECT_FALSE(a == b) << c.what;
+    EXPECT_TRUE(a != b) << c.what;
+    if (c.table_equal) EXPECT_FALSE(c.table_equal(a, b)) << c.what;
+  }
+}
