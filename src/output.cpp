@@ -287,6 +287,18 @@ class JsonObject {
   bool first_ = true;
 };
 
+// One scene key as a JSON member, by its kind (the tables and the network's objects).
+void put_entry(JsonObject& w, const SceneEntry& e) {
+  switch (e.kind) {
+    case SceneEntry::Kind::Real: w.num(e.key, e.real); break;
+    case SceneEntry::Kind::Int: w.integer(e.key, e.integer); break;
+    case SceneEntry::Kind::Bool: w.boolean(e.key, e.boolean); break;
+    case SceneEntry::Kind::Str: w.str(e.key, e.text); break;
+    case SceneEntry::Kind::Array: w.nums(e.key, e.array); break;
+    case SceneEntry::Kind::Names: w.strs(e.key, e.names); break;
+  }
+}
+
 }  // namespace
 
 std::string format_double(double x) {
@@ -546,14 +558,7 @@ std::string scene_json(const Scene& s, int indent) {
       if (!table.empty()) child = std::make_unique<JsonObject>(body, o.child_indent());
     }
     JsonObject& w = child ? *child : o;
-    switch (e.kind) {
-      case SceneEntry::Kind::Real: w.num(e.key, e.real); break;
-      case SceneEntry::Kind::Int: w.integer(e.key, e.integer); break;
-      case SceneEntry::Kind::Bool: w.boolean(e.key, e.boolean); break;
-      case SceneEntry::Kind::Str: w.str(e.key, e.text); break;
-      case SceneEntry::Kind::Array: w.nums(e.key, e.array); break;
-      case SceneEntry::Kind::Names: w.strs(e.key, e.names); break;
-    }
+    put_entry(w, e);
   });
   close_table();
   // The network (follower.kind = "network"): "nodes", "elements", "contacts" as arrays of
@@ -565,14 +570,7 @@ std::string scene_json(const Scene& s, int indent) {
       std::string body;
       JsonObject w(body, o.child_indent() + 2);
       for (const auto& e : keys) {
-        switch (e.kind) {
-          case SceneEntry::Kind::Real: w.num(e.key, e.real); break;
-          case SceneEntry::Kind::Int: w.integer(e.key, e.integer); break;
-          case SceneEntry::Kind::Bool: w.boolean(e.key, e.boolean); break;
-          case SceneEntry::Kind::Str: w.str(e.key, e.text); break;
-          case SceneEntry::Kind::Array: w.nums(e.key, e.array); break;
-          case SceneEntry::Kind::Names: w.strs(e.key, e.names); break;
-        }
+        put_entry(w, e);
       }
       w.close();
       objects[array].push_back(std::move(body));
