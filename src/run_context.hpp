@@ -60,6 +60,35 @@ class StepSizeUnderflow : public StepFailure {
       : StepFailure(Termination::StepSizeUnderflow, "step size underflow (h = " + fmt(h) + ")") {}
 };
 
+/// The step to try from t toward t_next (an output time or t_end): at most h and
+/// solver.max_step, and no slivers — a remainder below 1e-6 of the step is absorbed into
+/// it, a remainder between one and two steps is split into two equal steps. A sliver step
+/// (seen: 1.6e-10 s left before an output time after a 3e-6 s step, B1 at t = 44 s)
+/// cannot correct even round-off in the gap without a force ∝ gap/Δt², which fails the
+/// error test, shrinks Δt, needs a still larger force — and Δt underflows.
+/// Shared by RunContext and NetworkRun. @throws StepSizeUnderflow.
+inline double fit_step_size(const Scene& sc, double t, double h, double t_next) {
+  double hs = std::min(h, t_next - t);
+  if (sc.solver.max_step > 0) hs = std::min(hs, sc.solver.max_step);
+  const double rem = t_next - t;
+  if (rem - hs < 1e-6 * hs)
+    hs = rem;
+  else if (rem < 2.0 * hs)
+    hs = 0.5 * rem;
+  if (hs <= 1e-14 * std::max(1.0, std::abs(t))) throw StepSizeUnderflow(hs);
+  return hs;
+}
+/// The first step: solver.initial_step, or min(1e-4, t_end/100).
+inline double first_step_size(const Scene& sc) {
+  if (sc.solver.initial_step > 0) return sc.solver.initial_step;
+  return std::min(1e-4, sc.run.t_end / 100.0);
+}
+/// The next output time after `next_out` − 1 outputs (t_end without output_dt).
+inline double output_time(const Scene& sc, long next_out) {
+  const double dt = sc.run.output_dt;
+  return dt > 0 ? std::min(sc.run.t_end, double(next_out) * dt) : sc.run.t_end;
+}
+
 /// Runs a method's loop `body` and sets how the run ended: Finished, or through
 /// end_run(kind, what) for a StepFailure (its kind), a SundialsError (SolverError) or any
 /// other exception (Error). Shared by RunContext and NetworkRun.
@@ -175,9 +204,7 @@ class RunContext {
   virtual bool dense_row_at(double /*to*/) { return false; }
 
   double out_dt() const { return sc_.run.output_dt; }
-  double next_output_time() const {
-    return out_dt() > 0 ? std::min(sc_.run.t_end, double(next_out_) * out_dt()) : sc_.run.t_end;
-  }
+  double next_output_time() const { return output_time(sc_, next_out_); }
   CamMotion cam_at(double t) const {
     return cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
   }
@@ -305,24 +332,8 @@ class RunContext {
     if (contact_) designer_.sample_force(t_, th, F_);
   }
 
-  // The step to try from t_ toward t_next (an output time or t_end): at most h and
-  // solver.max_step, and no slivers — a remainder below 1e-6 of the step is absorbed into
-  // it, a remainder between one and two steps is split into two equal steps. A sliver step
-  // (seen: 1.6e-10 s left before an output time after a 3e-6 s step, B1 at t = 44 s)
-  // cannot correct even round-off in the gap without a force ∝ gap/Δt², which fails the
-  // error test, shrinks Δt, needs a still larger force — and Δt underflows.
-  // @throws StepFailure on step-size underflow.
-  double fit_step(double h, double t_next) const {
-    double hs = std::min(h, t_next - t_);
-    if (sc_.solver.max_step > 0) hs = std::min(hs, sc_.solver.max_step);
-    const double rem = t_next - t_;
-    if (rem - hs < 1e-6 * hs)
-      hs = rem;
-    else if (rem < 2.0 * hs)
-      hs = 0.5 * rem;
-    if (hs <= 1e-14 * std::max(1.0, std::abs(t_))) throw StepSizeUnderflow(hs);
-    return hs;
-  }
+  // The step to try from t_ toward t_next (fit_step_size). @throws StepFailure.
+  double fit_step(double h, double t_next) const { return fit_step_size(sc_, t_, h, t_next); }
 
   // Full acceleration a = M⁻¹(f₀ − Kq − Cv + e₀F) at state y under contact force F.
   void full_acceleration(const Eigen::VectorXd& y, double F, Eigen::VectorXd& a) {
@@ -333,11 +344,7 @@ class RunContext {
     m_.solve_mass(rbuf_.data(), a.data());
   }
 
-  double initial_step() const {
-    if (sc_.solver.initial_step > 0) return sc_.solver.initial_step;
-    double h = std::min(1e-4, sc_.run.t_end / 100.0);
-    return h;
-  }
+  double initial_step() const { return first_step_size(sc_); }
 
   template <class G>
   static double adaptive_simpson(G& g, double a, double b, double fa, double fm, double fb,

@@ -21,15 +21,9 @@ class NetworkEvent final : public NetworkRun {
   NetworkEvent(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                const std::atomic<bool>* stop)
       : NetworkRun(sc, std::move(mech), obs, stop) {
-    OdeSystem sys;
-    sys.size = 2 * n_;
-    sys.rhs = [this](double t, const double* y, double* yd) {
-      const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
-      yv_ = Y;
-      const Eigen::VectorXd F = held_forces(t, yv_, cam_at(t), set_);
-      std::copy(y + n_, y + 2 * n_, yd);
-      mk_.acceleration(t, y, y + n_, F, yd + n_);
-    };
+    OdeSystem sys = contact_system([this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& F) {
+      F = held_forces(t, y, cam_at(t), set_);
+    });
     // Jacobian: SUNDIALS' difference quotients (the constraint forces couple every unknown).
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
     eng_ = engines_.back().get();

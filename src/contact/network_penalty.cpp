@@ -19,15 +19,9 @@ class NetworkPenalty final : public NetworkRun {
   NetworkPenalty(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                  const std::atomic<bool>* stop)
       : NetworkRun(sc, std::move(mech), obs, stop) {
-    OdeSystem sys;
-    sys.size = 2 * n_;
-    sys.rhs = [this](double t, const double* y, double* yd) {
-      const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
-      yv_ = Y;
-      forces(t, yv_, fv_);
-      std::copy(y + n_, y + 2 * n_, yd);
-      mk_.acceleration(t, y, y + n_, fv_, yd + n_);
-    };
+    OdeSystem sys = contact_system([this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& F) {
+      forces(t, y, F);
+    });
     Eigen::MatrixXd dq0, dv0;
     const Eigen::VectorXd q0 = mk_.q0(), v0 = mk_.v0();
     if (mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq0, dv0))
@@ -52,12 +46,11 @@ class NetworkPenalty final : public NetworkRun {
       };
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
     eng_ = engines_.back().get();
-    fv_.resize(m_);
   }
 
  private:
   OdeEngine* eng_;
-  Eigen::VectorXd yv_, fv_;
+  Eigen::VectorXd yv_;
 
   // The law of contact j at penetration s and its rate ŝ; el: the elastic part.
   double law(int j, double s, double sd, double* el = nullptr, double* dFds = nullptr,

@@ -69,6 +69,18 @@ std::vector<std::string> NetworkRun::extra_columns(const MechanicalSystem& mech)
   return c;
 }
 
+OdeSystem NetworkRun::contact_system(ForceFn forces) {
+  OdeSystem sys;
+  sys.size = 2 * n_;
+  sys.rhs = [this, forces = std::move(forces)](double t, const double* y, double* yd) {
+    sys_y_ = Eigen::Map<const Eigen::VectorXd>(y, 2 * n_);
+    forces(t, sys_y_, sys_F_);
+    std::copy(y + n_, y + 2 * n_, yd);
+    mk_.acceleration(t, y, y + n_, sys_F_, yd + n_);
+  };
+  return sys;
+}
+
 CamMotion NetworkRun::cam_at(double t) const {
   CamMotion m = cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
   m.X -= x_base_;
@@ -346,26 +358,9 @@ void NetworkRun::after_step(double h, double dW, double P_prev, double P_end) {
   if (obs_ && (sum_.steps & 255) == 0) obs_->on_progress(t_, sc_.run.t_end, sum_.steps);
 }
 
-double NetworkRun::fit_step(double h, double t_next) const {
-  double hs = std::min(h, t_next - t_);
-  if (sc_.solver.max_step > 0) hs = std::min(hs, sc_.solver.max_step);
-  const double rem = t_next - t_;
-  if (rem - hs < 1e-6 * hs)
-    hs = rem;
-  else if (rem < 2.0 * hs)
-    hs = 0.5 * rem;
-  if (hs <= 1e-14 * std::max(1.0, std::abs(t_))) throw StepSizeUnderflow(hs);
-  return hs;
-}
-
-double NetworkRun::initial_step() const {
-  if (sc_.solver.initial_step > 0) return sc_.solver.initial_step;
-  return std::min(1e-4, sc_.run.t_end / 100.0);
-}
-
-double NetworkRun::next_output_time() const {
-  return out_dt() > 0 ? std::min(sc_.run.t_end, double(next_out_) * out_dt()) : sc_.run.t_end;
-}
+double NetworkRun::fit_step(double h, double t_next) const { return fit_step_size(sc_, t_, h, t_next); }
+double NetworkRun::initial_step() const { return first_step_size(sc_); }
+double NetworkRun::next_output_time() const { return output_time(sc_, next_out_); }
 
 Summary NetworkRun::run() {
   Clock clock;

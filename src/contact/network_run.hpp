@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -49,6 +50,11 @@ class NetworkRun {
   /// dissipate at (t, y); 0 for the other methods.
   virtual double contact_potential(double /*t*/, const double* /*q*/) const { return 0.0; }
   virtual double contact_dissipation(double /*t*/, const Eigen::VectorXd& /*y*/) const { return 0.0; }
+
+  /// The first-order system the native methods integrate: y = [q; v], q̇ = v,
+  /// v̇ = M⁻¹(r(t, q, v) + TᵀF) with the method's contact forces forces(t, y, F) (m entries).
+  using ForceFn = std::function<void(double t, const Eigen::VectorXd& y, Eigen::VectorXd& F)>;
+  OdeSystem contact_system(ForceFn forces);
 
   // ---- geometry and forces
   /// The cam's lift above its base circle at t: X = X_C − min_θ X_C, Ẋ_C, Ẍ_C.
@@ -110,6 +116,7 @@ class NetworkRun {
   double t_ = 0, work_ = 0, dissipated_ = 0, E0_ = 0, V0_ = 0, last_row_t_ = -1;
   Eigen::VectorXd y_, F_;
   std::vector<char> active_;
+  Eigen::VectorXd sys_y_, sys_F_;  // contact_system()'s buffers
   double x_base_ = 0.0;     // the base circle's X_C: cam_at() returns the lift X_C − x_base_
   bool unilateral_ = true;
   bool observer_stop_ = false;  // an observer returned ObserverAction::Stop  // false: contact.separation = false or holonomic (never release)
