@@ -44,7 +44,7 @@ LinearSolverKind resolve_linear_solver(const Scene& scene, int nodes);
 
 /// The contact force on node 0 (F = −p ≥ 0 pushes the follower away from the cam).
 struct ContactLaw {
-  enum class Kind { None, Ramp, Penalty, Prescribed };
+  enum class Kind { None, Ramp, Penalty, Prescribed, Held };
   Kind kind = Kind::None;
   // Ramp: F(t) = F0 + (F1 − F0)x + Fc·4x(1 − x), x = (t − t0)/h on the step [t0, t0 + h]
   // (Fc = 0: the classic linear ramp; Fc ≠ 0: the located step's two-parameter shape).
@@ -59,6 +59,11 @@ struct ContactLaw {
   // Prescribed (held bar, node 0 moving with the cam; this model's node 0 is the bar's
   // node 1): F = −K₁₀ X_C(t) − C₁₀ Ẋ_C(t) − M₁₀ Ẍ_C(t), independent of the state.
   double k10 = 0, c10 = 0, m10 = 0;
+  // Held (node 0 on the cam, the full follower; cvode-bdf only): the acceleration level's
+  // force F = (Ẍ_C − ü₀,free(q, v)) / M*, a function of the whole state that the engine's
+  // right-hand side evaluates itself (force() returns 0 for it), so that node 0 moves with
+  // the cam's acceleration; the displacement and velocity levels are the engine's
+  // projection (Engine::set_held_projection).
 
   double force(double t, double q0, double v0) const;
   /// The cam's contact-point motion at t (needs cam and drive).
@@ -122,6 +127,20 @@ class Engine {
   /// would amplify an undamped stiff mode). No-op for the one-step engines.
   virtual void set_max_order(int /*q*/) {}
 
+  /// Native mode, held contact (ContactLaw::Kind::Held): on, every internal step's
+  /// corrected state is projected onto u₀ = X_C(t), u̇₀ = Ẋ_C(t) along M⁻¹e₀ (the
+  /// M-orthogonal projection), and the projection enters the engine's history (CVODE's projection interface: no restart). Only the
+  /// multistep engine supports it. @throws std::logic_error on the other engines.
+  virtual void set_held_projection(bool /*on*/) {
+    throw std::logic_error(std::string("held projection: not supported by ") + name());
+  }
+  /// Native mode: the state at t inside the last internal step (the engine's own
+  /// interpolant); false if the engine has none.
+  virtual bool interpolate(double /*t*/, Eigen::VectorXd& /*y*/) { return false; }
+  /// The held contact's force at state y (ContactLaw::Kind::Held):
+  /// F = (Ẍ_C(t) − e₀ᵀM⁻¹(f₀ − Kq − Cv)) / M*.
+  double held_force(double t, const double* y) const;
+
   /// Rootfinding (native mode): one function g(t, y); direction −1, 0 or +1.
   using RootFn = std::function<double(double t, const double* y)>;
   virtual void set_root(RootFn fn, int direction) = 0;
@@ -148,6 +167,8 @@ class Engine {
   Eigen::VectorXd work_, local_error_;
   RootFn root_fn_;
   bool hit_root_ = false;
+  Eigen::VectorXd mass_col0_;  // M⁻¹e₀ (held contact), computed on first use
+  const Eigen::VectorXd& mass_col0();
   bool homogeneous_ = false;
   static int root_callback(double t, const double* y, double* g, void* ud) noexcept;
 };
@@ -155,5 +176,9 @@ class Engine {
 /// Make the engine a scene asks for. @throws SundialsError on a SUNDIALS failure.
 std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model,
                                     const Scene& scene);
+/// The same, with the use stated: trial = true for Lee's trial steps (tighter CVODE
+/// Newton and error tolerances), false for native stepping.
+std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model,
+                                    const Scene& scene, bool trial);
 
 }  // namespace camdyn

@@ -20,6 +20,7 @@
 #include <arkode/arkode_arkstep.h>
 #include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
+#include <cvode/cvode_proj.h>
 #include <klu.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
@@ -53,6 +54,7 @@ LinearSolverKind resolve_linear_solver(const Scene& scene, int nodes) {
 double ContactLaw::force(double t, double q0, double v0) const {
   switch (kind) {
     case Kind::None:
+    case Kind::Held:  // evaluated by the engine's right-hand side (Engine::rhs)
       return 0.0;
     case Kind::Ramp: {
       const double x = (t - t0) / h;
@@ -133,6 +135,25 @@ void Engine::rhs(double t, const double* y, double* ydot) {
   rhs_unscaled(t, y, ydot);
   std::copy(ydot + n_, ydot + 2 * n_, work_.data());
   model_->solve_mass(work_.data(), ydot + n_);
+  if (law_.kind == ContactLaw::Kind::Held) {
+    // v̇ = a_free + M⁻¹e₀ F with F = (Ẍ_C − a_free,0) / M*: node 0 accelerates with the cam.
+    const double F = (law_.cam_motion(t).Xddot - ydot[n_]) / model_->mstar();
+    Eigen::Map<Eigen::VectorXd>(ydot + n_, n_) += F * mass_col0();
+  }
+}
+
+const Eigen::VectorXd& Engine::mass_col0() {
+  if (mass_col0_.size() != n_) {
+    Eigen::VectorXd e0 = Eigen::VectorXd::Zero(n_);
+    e0[0] = 1.0;
+    mass_col0_.resize(n_);
+    model_->solve_mass(e0.data(), mass_col0_.data());
+  }
+  return mass_col0_;
+}
+
+double Engine::held_force(double t, const double* y) const {
+  return (law_.cam_motion(t).Xddot - model_->contact_acceleration(y, y + n_, 0.0)) / model_->mstar();
 }
 
 int Engine::root_callback(double t, const double* y, double* g, void* ud) noexcept {
@@ -281,6 +302,7 @@ class SchurSolver {
     dFdq_ = dFdq;
     dFdv_ = dFdv;
     factored_ = true;
+    z_valid_ = false;
     ++stats_.lin_setups;
     if (m_.rigid()) {
       s_rigid_ = m_.m_rigid() + g * (m_.c_rigid() - dFdv) + g * g * (m_.k_rigid() - dFdq);
@@ -313,10 +335,38 @@ class SchurSolver {
     }
   }
   // x = (I − γJ)⁻¹ b, in place on b (length 2n).
-  void solve(double* b) {
+  //
+  // Held contact (ContactLaw::Kind::Held): v̇ = P M⁻¹(f₀ − Kq − Cv) + M⁻¹e₀Ẍ_C/M* with
+  // P = I − M⁻¹e₀e₀ᵀ/M*, so J's velocity rows are P M⁻¹[−K, −C] and e₀ᵀP = 0. The
+  // system becomes S x_v = M b_v − γK b_u + e₀λ with x_v,0 = b_v,0 (node 0's velocity
+  // row is the identity): bordered with z = S⁻¹e₀ (one solve per factorisation),
+  // x_v = w + λz, w = S⁻¹(M b_v − γK b_u), λ = (b_v,0 − w₀)/z₀.
+  void solve(double* b, bool held = false) {
     const long n = n_;
     double* bu = b;
     double* bv = b + n;
+    if (held) {
+      if (m_.rigid()) {
+        bu[0] += g_ * bv[0];
+        return;
+      }
+      if (!z_valid_) {
+        z_.setZero(n);
+        z_[0] = 1.0;
+        solve_S(z_.data());
+        z_valid_ = true;
+      }
+      const double bv0 = bv[0];
+      Eigen::Map<Eigen::VectorXd> U(bu, n), V(bv, n);
+      rhs_.noalias() = m_.M() * V;
+      rhs_.noalias() -= g_ * (m_.K() * U);
+      solve_S(rhs_.data());
+      const double lambda = (bv0 - rhs_[0]) / z_[0];
+      V = rhs_ + lambda * z_;
+      V[0] = bv0;
+      U += g_ * V;
+      return;
+    }
     if (m_.rigid()) {
       const double rhs = m_.m_rigid() * bv[0] - g_ * (m_.k_rigid() - dFdq_) * bu[0];
       bv[0] = rhs / s_rigid_;
@@ -327,21 +377,28 @@ class SchurSolver {
     rhs_.noalias() = m_.M() * V;
     rhs_.noalias() -= g_ * (m_.K() * U);
     rhs_[0] += g_ * dFdq_ * U[0];
-    if (dense_) {
-      V = lu_.solve(rhs_);
-    } else {
-      if (!klu_l_solve(symbolic_, numeric_, n, 1, rhs_.data(), &common_)) throw SundialsError("klu_l_solve", -1);
-      V = rhs_;
-    }
+    solve_S(rhs_.data());
+    V = rhs_;
     U += g_ * V;
   }
 
  private:
+  // x = S⁻¹ x in place.
+  void solve_S(double* x) {
+    if (dense_) {
+      Eigen::Map<Eigen::VectorXd> X(x, n_);
+      X = lu_.solve(Eigen::VectorXd(X));
+    } else if (!klu_l_solve(symbolic_, numeric_, n_, 1, x, &common_)) {
+      throw SundialsError("klu_l_solve", -1);
+    }
+  }
+
   const FollowerModel& m_;
   bool dense_;
   long n_;
   EngineStats& stats_;
-  bool factored_ = false;
+  bool factored_ = false, z_valid_ = false;
+  Eigen::VectorXd z_;  // S⁻¹e₀ (held contact)
   double g_ = 0, dFdq_ = 0, dFdv_ = 0, s_rigid_ = 1;
   SparseMatrix S_;
   Eigen::VectorXd rhs_;
@@ -379,6 +436,9 @@ class SchurLinearSolver {
     law.derivatives(t, y[0], y[n_], &dFdq_, &dFdv_);
     gamma_ = gamma;
   }
+  /// The law whose kind (Held or not) each solve reads: the held contact's system has the
+  /// same S, bordered (SchurSolver::solve), so a phase switch needs no new factorisation.
+  void watch(const ContactLaw* law) { law_ = law; }
 
  private:
   static int ls_setup(SUNLinearSolver S, SUNMatrix) {
@@ -394,7 +454,8 @@ class SchurLinearSolver {
     try {
       auto* self = static_cast<SchurLinearSolver*>(S->content);
       N_VScale(1.0, b, x);
-      self->schur_.solve(N_VGetArrayPointer(x));
+      self->schur_.solve(N_VGetArrayPointer(x),
+                         self->law_ && self->law_->kind == ContactLaw::Kind::Held);
       return 0;
     } catch (...) {
       return -1;
@@ -403,6 +464,7 @@ class SchurLinearSolver {
   SchurSolver schur_;
   long n_;
   double gamma_ = 0, dFdq_ = 0, dFdv_ = 0;
+  const ContactLaw* law_ = nullptr;
   Mat placeholder_;
   LS ls_;
 };
@@ -541,6 +603,7 @@ class CvodeEngine final : public Engine {
     // the state, for the penalty Jacobian) to the linear-system function.
     check_flag(CVodeSetLinearSolver(mem, sls_.ls(), sls_.placeholder()), "CVodeSetLinearSolver");
     check_flag(CVodeSetLinSysFn(mem, &CvodeEngine::linsys), "CVodeSetLinSysFn");
+    sls_.watch(&law_);
   }
   ~CvodeEngine() override {
     mem_.reset();  // CVodeFree before the linear solver it references
@@ -594,6 +657,23 @@ class CvodeEngine final : public Engine {
     check_flag(CVodeSetMaxOrd(mem_.get(), q), "CVodeSetMaxOrd");
     check_flag(CVodeSetStabLimDet(mem_.get(), q >= 3 ? SUNTRUE : SUNFALSE), "CVodeSetStabLimDet");
   }
+  void set_held_projection(bool on) override {
+    if (on && !projection_set_) {
+      check_flag(CVodeSetProjFn(mem_.get(), &CvodeEngine::project), "CVodeSetProjFn");
+      // The error test keeps the unprojected estimate (node 0's components included:
+      // conservative). Projecting it (M-orthogonally, or zeroing node 0's components)
+      // took 3.1× and 1.07× the steps on the stiff bar (examples/stiff_bar.toml).
+      check_flag(CVodeSetProjErrEst(mem_.get(), SUNFALSE), "CVodeSetProjErrEst");
+      projection_set_ = true;
+    }
+    if (projection_set_) check_flag(CVodeSetProjFrequency(mem_.get(), on ? 1 : 0), "CVodeSetProjFrequency");
+  }
+  bool interpolate(double t, Eigen::VectorXd& y) override {
+    if (!yi_) yi_ = make_nvec(2 * n_, ctx_.ctx);
+    check_flag(CVodeGetDky(mem_.get(), t, 0, yi_.get()), "CVodeGetDky");
+    y = map(yi_.get());
+    return true;
+  }
   void set_root(RootFn fn, int direction) override {
     root_fn_ = std::move(fn);
     check_flag(CVodeRootInit(mem_.get(), root_fn_ ? 1 : 0, &CvodeEngine::g), "CVodeRootInit");
@@ -612,6 +692,25 @@ class CvodeEngine final : public Engine {
   static int g(double t, N_Vector y, double* gout, void* ud) {
     return root_callback(t, N_VGetArrayPointer(y), gout, ud);
   }
+  // The held contact's displacement and velocity levels: c = M⁻¹e₀ (s, ŝ)/M* with
+  // s = X_C − u₀, ŝ = Ẋ_C − u̇₀ (the least correction in the M-norm that puts node 0 on
+  // the cam with its velocity). CVODE adds c to the step's correction and to its history.
+  static int project(double t, N_Vector ycur, N_Vector corr, double, N_Vector, void* ud) {
+    try {
+      auto* self = static_cast<CvodeEngine*>(ud);
+      const int n = self->n_;
+      const Eigen::VectorXd& r = self->mass_col0();
+      const double Ms = self->model_->mstar();
+      const double* y = N_VGetArrayPointer(ycur);
+      const CamMotion c = self->law_.cam_motion(t);
+      Eigen::Map<Eigen::VectorXd> C(N_VGetArrayPointer(corr), 2 * n);
+      C.head(n) = r * ((c.X - y[0]) / Ms);
+      C.tail(n) = r * ((c.Xdot - y[n]) / Ms);
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
   static int linsys(double t, N_Vector y, N_Vector, SUNMatrix, sunbooleantype, sunbooleantype* jcur,
                     double gamma, void* ud, N_Vector, N_Vector, N_Vector) {
     try {
@@ -629,12 +728,18 @@ class CvodeEngine final : public Engine {
   SchurLinearSolver sls_;
   std::unique_ptr<void, CvDel> mem_;
   double hcur_ = 0, first_h_ = 0;
+  bool projection_set_ = false;
+  NVec yi_;  // interpolate()'s output
 };
 
 }  // namespace
 
 std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, const Scene& scene) {
-  const bool trial = scene.contact.model == ContactModel::Lee;
+  return make_engine(std::move(model), scene, scene.contact.model == ContactModel::Lee);
+}
+
+std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, const Scene& scene,
+                                    bool trial) {
   const LinearSolverKind lsk = resolve_linear_solver(scene, model->n());
   switch (scene.solver.integrator) {
     case Integrator::ArkodeErk:

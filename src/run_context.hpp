@@ -359,6 +359,10 @@ class RunContext {
            adaptive_simpson(g, m, b, fm, frm, fb, Sr, 0.5 * tol, depth - 1);
   }
 
+  // The free phase of the natively stepping methods (src/contact/free_flight.hpp).
+  class FreeFlight;
+  friend class FreeFlight;
+
   std::shared_ptr<const FollowerModel> held_;
   ContactLaw* held_law_ = nullptr;
   double v_impact_ref_ = 0.0;

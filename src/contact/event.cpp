@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "free_flight.hpp"
 #include "run_context.hpp"
 
 namespace camdyn {
@@ -65,7 +66,6 @@ class EventDriven final : public RunContext {
   void run_method() override {
     const bool holonomic = sc_.contact.model == ContactModel::Holonomic;
     const bool rigid = m_.rigid();
-    const double Ms = m_.mstar(), e_rest = sc_.contact.restitution;
     ContactLaw& law = engine_->law();
     law.kind = ContactLaw::Kind::None;
     std::unique_ptr<Engine> held_engine;
@@ -91,40 +91,8 @@ class EventDriven final : public RunContext {
         engine_->set_max_order(5);
       }
     }
-    // Free phase: the gap closing, g = gap + δ. Right after a switch the state sits on
-    // the cam (gap = 0 exactly); the offset δ (a few ulps of X) keeps SUNDIALS from
-    // stopping with "root at and very near t" and from re-detecting the event just
-    // handled, at the price of a penetration of δ when the root is reported.
-    auto gap_root = [this](double t, const double* y) {
-      const double X = cam_at(t).X;
-      return y[0] - X + 64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(X));
-    };
-    // A free phase that starts on the cam (after a separation, a bounce, or at t = 0) has
-    // a gap that opens from 0, slowly (≈ t³ after a separation, where the reaction passes
-    // through 0), while the integrator's error in q₀ after its restart is of the order of
-    // its local tolerance (BDF1's first steps: h²ü₀/2, ≫ δ). Armed at once, the gap root
-    // fired on that error again and again — each time the follower was put back on the
-    // cam and the integrator restarted with tiny steps (cvode-bdf, A7 at rtol 1e-9: 6.0 M
-    // steps in 7 ms after the first separation). So such a phase first watches
-    // |gap| − ε (rising) with ε = 10 (rtol·max(1, |X_C|) + atol), the integration error's
-    // scale: the gap opening past ε arms the closing-gap root (one restart); a penetration
-    // past ε before that is a re-contact (handled as an impact, located to ε).
-    const double rtol = sc_.solver.rtol, atol = sc_.solver.atol;
-    double eps_leave = 0.0;
-    bool leaving = false;
-    auto band_root = [this, &eps_leave](double t, const double* y) {
-      return std::abs(y[0] - cam_at(t).X) - eps_leave;
-    };
-    auto start_free = [&]() {
-      const double X = cam_at(t_).X;
-      eps_leave = 10.0 * (rtol * std::max(1.0, std::abs(X)) + atol);
-      leaving = y_[0] - X < eps_leave;
-      if (leaving)
-        engine_->set_root(band_root, +1);
-      else
-        engine_->set_root(gap_root, -1);
-      engine_->reinit(t_, y_);
-    };
+    FreeFlight free(*this);  // the free phase's roots and the impact (free_flight.hpp)
+    auto start_free = [&]() { free.start(); };
     // Initial phase.
     bool in_contact = holonomic || (contact_ && F_ > 0.0);
     contact_ = in_contact;
@@ -137,7 +105,7 @@ class EventDriven final : public RunContext {
       const double tout = next_output_time();
       const double Ft = F_, Xdot_prev = cam_at(t_).Xdot, P_prev = dissipation_power();
       const double t_prev = t_;
-      bool separation = false, impact = false;
+      bool separation = false;
       double dW_override = NAN, P_end = NAN;
       if (in_contact) {
         if (rigid) {
@@ -183,49 +151,14 @@ class EventDriven final : public RunContext {
         // impulse's work P·Ẋ_C itself), damping power at the pre-impact state.
         dW_override = 0.0;
         P_end = dissipation_power();
-        if (engine_->hit_root() && leaving && y_[0] - cam_at(t_).X > 0.0) {
-          start_free();  // the gap opened past ε: arm the closing-gap root
-        } else if (engine_->hit_root()) {
-          const CamMotion c = cam_at(t_);
-          const double approach = c.Xdot - y_[n_];  // ŝ⁻ > 0: closing
-          const double v0_pre = y_[n_];
-          y_[0] = c.X;                               // the root is located to round-off
-          if (approach > 0.0) {
-            impact = true;
-            const double P = (1.0 + e_rest) * approach / Ms;
-            Eigen::VectorXd e0 = Eigen::VectorXd::Zero(n_), dv(n_);
-            e0[0] = P;
-            m_.solve_mass(e0.data(), dv.data());
-            y_.tail(n_) += dv;
-            work_ += P * c.Xdot;  // the cam's impulse does work P·Ẋ_C
-            dissipated_ += 0.5 * (1.0 - e_rest * e_rest) * approach * approach / Ms;
-            // Chattering guard: a bounce slower than this sticks (plastic).
-            // (bounces of a coefficient e < 1 on a still surface form a Zeno sequence;
-            // below 1e-6 of the first impact speed the follower is taken to rest on it)
-            // The root offset δ itself lets the follower gain √(2|s̈|δ) before each root
-            // is reported; bounces slower than a few times that are round-off, not motion.
-            if (v_impact_ref_ == 0.0) v_impact_ref_ = approach;
-            const double rel_acc = std::abs(c.Xddot - m_.contact_acceleration(y_.data(), y_.data() + n_, 0.0));
-            // (A re-contact found by the leaving phase's band root is located at a
-            // penetration of ε, not δ: the same argument with ε.)
-            const double delta = leaving ? eps_leave
-                                         : 64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(c.X));
-            const double v_stick = std::max(1e-6 * std::max(v_impact_ref_, 1e-3), 8.0 * std::sqrt(2.0 * rel_acc * delta));
-            if (e_rest == 0.0 || (1.0 + e_rest) * approach < v_stick) {
-              y_[n_] = c.Xdot;
-              const double Fr = rigid ? reaction_rigid(t_) : reaction_held(t_, held_from_full().data());
-              if (Fr > 0.0) {
-                in_contact = true;
-                F_ = Fr;
-              }
-            }
-          }
-          if (in_contact && !rigid) held_engine->reinit(t_, held_from_full());
-          if (!in_contact) start_free();
-          if (impact) {
-            ++sum_.impacts;
-            record_event(EventKind::Impact, approach, (y_[n_] - v0_pre) / Ms);
-          }
+        const FreeFlight::Outcome o = free.after_advance([&]() {
+          return rigid ? reaction_rigid(t_) : reaction_held(t_, held_from_full().data());
+        });
+        if (o == FreeFlight::Outcome::Contact) {
+          in_contact = true;
+          if (!rigid) held_engine->reinit(t_, held_from_full());
+        } else if (o == FreeFlight::Outcome::Restart) {
+          start_free();
         }
       }
       if (separation) {

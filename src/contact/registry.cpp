@@ -10,6 +10,8 @@ namespace detail {
 
 std::unique_ptr<RunContext> make_lee_located(const Scene&, std::shared_ptr<const FollowerModel>,
                                              Observer*, const std::atomic<bool>*);
+std::unique_ptr<RunContext> make_lee_multistep(const Scene&, std::shared_ptr<const FollowerModel>,
+                                               Observer*, const std::atomic<bool>*);
 std::unique_ptr<RunContext> make_lee_classic(const Scene&, std::shared_ptr<const FollowerModel>,
                                              Observer*, const std::atomic<bool>*);
 std::unique_ptr<RunContext> make_penalty(const Scene&, std::shared_ptr<const FollowerModel>,
@@ -22,6 +24,12 @@ std::unique_ptr<RunContext> make_ida_holonomic(const Scene&, std::shared_ptr<con
 namespace {
 bool lee_located(const Scene& s) {
   return s.contact.model == ContactModel::Lee && s.contact.lee_step == LeeStepKind::Located;
+}
+// Lee's located step on cvode-bdf for an elastic follower: the three levels inside
+// CVODE's step (lee_multistep.cpp). A rigid follower keeps the located step (its held
+// state is exact and the step map affine: no restarts to save).
+bool lee_multistep(const Scene& s) {
+  return lee_located(s) && s.solver.integrator == Integrator::CvodeBdf && s.follower.kind != FollowerKind::Rigid;
 }
 bool lee_classic(const Scene& s) {
   return s.contact.model == ContactModel::Lee && s.contact.lee_step == LeeStepKind::Classic;
@@ -36,6 +44,7 @@ bool event_or_holonomic(const Scene& s) {
 
 std::vector<ContactMethodEntry>& registry() {
   static std::vector<ContactMethodEntry> kMethods{
+      {"lee (located step, multistep engine)", &lee_multistep, &make_lee_multistep},
       {"lee (located step)", &lee_located, &make_lee_located},
       {"lee (classic step)", &lee_classic, &make_lee_classic},
       {"penalty", &penalty, &make_penalty},
