@@ -666,6 +666,7 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
   o.integer("relocated_steps", s.relocated_steps);
   o.integer("lin_setups", s.lin_setups);
   o.integer("lin_analyses", s.lin_analyses);
+  o.integer("engine_restarts", s.engine_restarts);
   if (s.first_tensile_time >= 0) {
     o.num("first_tensile_time", s.first_tensile_time);
   } else {

@@ -184,6 +184,7 @@ class RunContext {
     sum_.t_end = t_;
     sum_.rhs_evals += engine_->stats().rhs_evals;
     sum_.lin_setups += engine_->stats().lin_setups;
+    sum_.engine_restarts += engine_->stats().reinits;  // counted by CVODE only
     sum_.lin_analyses += engine_->stats().lin_analyses;
     sum_.cpu_seconds = clock.cpu();
     sum_.wall_seconds = clock.wall();

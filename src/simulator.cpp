@@ -138,6 +138,7 @@ std::string Summary::FullReport() const {
     << "  rhs evaluations:    " << rhs_evals << "\n"
     << "  linear solver:      " << lin_setups << " factorisations, " << lin_analyses
     << " symbolic analyses\n"
+    << "  engine restarts:    " << engine_restarts << "\n"
     << "  contact iterations: " << contact_iterations << " (" << iteration_failures
     << " iteration failures)\n";
   lv("displacement level", level_u);

@@ -115,6 +115,10 @@ struct Summary {
   /// Implicit engines: numeric factorisations of the Newton matrix (redone only when the
   /// step size changed) and symbolic analyses of its pattern (once per engine).
   long lin_setups = 0, lin_analyses = 0;
+  /// Multistep engine (cvode-bdf): restarts, each losing CVODE's history and order
+  /// (at the start, and where the state jumps or its equations change: impacts,
+  /// separations; Lee's trial steps on networks and the classic step: every trial).
+  long engine_restarts = 0;
   long contact_iterations = 0;
   LevelStats level_u, level_v, level_a;  ///< Lee's three levels
   long iteration_failures = 0;           ///< steps retried because an iteration failed

@@ -169,7 +169,10 @@ class EventDriven final : public RunContext {
       const double dW = std::isnan(dW_override) ? trapezoid_work(t_ - t_prev, Ft, Xdot_prev) : dW_override;
       after_step(t_ - t_prev, dW, P_prev, P_end);
     }
-    sum_.rhs_evals += held_engine ? held_engine->stats().rhs_evals : 0;
+    if (held_engine) {
+      sum_.rhs_evals += held_engine->stats().rhs_evals;
+      sum_.engine_restarts += held_engine->stats().reinits;
+    }
   }
 
 };

@@ -403,6 +403,7 @@ Summary NetworkRun::run() {
   for (const auto& e : engines_) {
     sum_.rhs_evals += e->stats().rhs_evals;
     sum_.lin_setups += e->stats().lin_setups;
+    sum_.engine_restarts += e->stats().reinits;
   }
   sum_.cpu_seconds = clock.cpu();
   sum_.wall_seconds = clock.wall();
