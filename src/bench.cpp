@@ -546,6 +546,27 @@ class Bench {
       }
     }
 
+    // ---- event-driven on every engine (elastic scenes, full sweep) ----
+    // The comparator of Lee on the same engine and tolerance (issue 14): stiff bars are
+    // where the engines differ.
+    if (!o_.quick && !si.rigid) {
+      for (Integrator eng : engines)
+        for (double rtol : {1e-6, 1e-8}) {
+          BenchRow row;
+          row.scene = label;
+          row.method = "event";
+          row.engine = to_string(eng);
+          row.variant = "-";
+          row.tol = rtol;
+          Scene s = base;
+          s.contact.model = ContactModel::Event;
+          s.solver.integrator = eng;
+          s.solver.rtol = rtol;
+          s.solver.atol = std::min(s.solver.atol, 1e-3 * rtol);
+          measure(si, s, row);
+        }
+    }
+
     // ---- holonomic and event at the scene's default tolerance ----
     {
       BenchRow row;
@@ -588,12 +609,14 @@ class Bench {
   std::vector<RefInfo> ref_info_;
 };
 
-/// Cheapest finished run of `method` in `scene` with err_force ≤ target; null if none.
+/// Cheapest finished run of `method` in `scene` (on `engine`, if not empty) with
+/// err_force ≤ target; null if none.
 const BenchRow* cheapest(const std::vector<BenchRow>& rows, const std::string& scene,
-                         const std::string& method, double target) {
+                         const std::string& method, double target, const std::string& engine = "") {
   const BenchRow* best = nullptr;
   for (const auto& r : rows) {
     if (r.scene != scene || r.method != method || !r.finished) continue;
+    if (!engine.empty() && r.engine != engine) continue;
     if (!(r.err_force <= target)) continue;
     if (!best || r.cpu_seconds < best->cpu_seconds) best = &r;
   }
@@ -612,7 +635,8 @@ std::string describe(const BenchRow& r) {
 }  // namespace
 
 bool is_bench_case(const std::string& name) {
-  return name == "A" || name == "A7" || name == "B1" || name == "B2";
+  return name == "A" || name == "A7" || name == "B1" || name == "B2" || name == "stiff" ||
+         name == "B1_1000";
 }
 
 Scene bench_case(const std::string& name) {
@@ -622,8 +646,27 @@ Scene bench_case(const std::string& name) {
     s.cam.speed_rev_s = 7.0;
     return s;
   }
+  if (name == "stiff") {  // examples/stiff_bar.toml (a test checks they are equal)
+    Scene s = paper_case("B2");
+    s.title = "Stiff bar: E = 5e8, 200 elements, 5 rev/s";
+    s.follower.youngs_modulus = 5e8;
+    s.follower.elements = 200;
+    s.contact.tol_u = 1e-7;
+    s.solver.integrator = Integrator::ArkodeDirk;
+    s.solver.rtol = 1e-6;
+    s.run.t_end = 0.05;
+    s.run.output_dt = 1e-4;
+    return s;
+  }
+  if (name == "B1_1000") {
+    Scene s = paper_case("B1");
+    s.title = "Case B1 on 1000 elements";
+    s.follower.elements = 1000;
+    s.run.t_end = 0.05;
+    return s;
+  }
   if (!is_bench_case(name))
-    throw SceneError("bench", 0, "scene", name, "a scene file or one of A, A7, B1, B2");
+    throw SceneError("bench", 0, "scene", name, "a scene file or one of A, A7, B1, B2, stiff, B1_1000");
   return paper_case(name);
 }
 
@@ -656,7 +699,9 @@ BenchResult run_bench(const BenchOptions& options) {
   if (!(o.output_dt >= 0) || !std::isfinite(o.output_dt))
     throw SceneError("bench", 0, "output_dt", g3(o.output_dt), "must be ≥ 0 (0: per scene)");
   if (o.scenes.empty()) {
-    for (const char* c : {"A", "A7", "B1", "B2"}) {
+    // the stiff scenes only in the full sweep (Lee on arkode-erk alone takes ~20 s there)
+    for (const char* c : {"A", "A7", "B1", "B2", "stiff", "B1_1000"}) {
+      if (o.quick && (std::string(c) == "stiff" || std::string(c) == "B1_1000")) continue;
       o.scenes.push_back(bench_case(c));
       o.labels.push_back(c);
     }
@@ -691,6 +736,18 @@ BenchResult run_bench(const BenchOptions& options) {
     if (o.quick && std::isfinite(ratio))
       text += " [quick sweep: a coarse penalty search (3 k_p, one rtol); the full sweep's best "
               "penalty setting can be cheaper]";
+    // Per engine: the cheapest Lee and event-driven runs at the same target.
+    std::string per;
+    for (Integrator eng : {Integrator::ArkodeErk, Integrator::ArkodeDirk, Integrator::CvodeBdf}) {
+      const std::string en = to_string(eng);
+      const BenchRow* l = cheapest(res.rows, label, "lee", kTarget, en);
+      const BenchRow* e = cheapest(res.rows, label, "event", kTarget, en);
+      if (!l && !e) continue;
+      per += (per.empty() ? "" : "; ") + en + ": lee " + (l ? g3(l->cpu_seconds) + " s" : std::string("—")) +
+             ", event " + (e ? g3(e->cpu_seconds) + " s" : std::string("—"));
+      if (l && e) per += " (lee/event " + g3(l->cpu_seconds / e->cpu_seconds) + ")";
+    }
+    if (!per.empty()) text += ". Cheapest at contact-force error ≤ 1e-3 per engine: " + per;
     res.headline_scene.push_back(label);
     res.headline_text.push_back(text);
     res.headline_ratio.push_back(ratio);

@@ -276,3 +276,19 @@ TEST(Bench, QuickA7LeeErrorIsSetByTheToleranceNotTheStepCap) {
   EXPECT_LT(fine, 1e-8);
   fs::remove_all(dir);
 }
+
+// The bench's named stiff scene is the example file users run (docs: README "What accuracy
+// costs"), and B1_1000 is case B1 with 1000 elements.
+TEST(Bench, StiffCasesAreTheDocumentedScenes) {
+  camdyn::Scene stiff = camdyn::bench_case("stiff");
+  camdyn::Scene file = camdyn::load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/stiff_bar.toml");
+  camdyn::resolve_defaults(stiff);
+  camdyn::resolve_defaults(file);
+  EXPECT_TRUE(stiff == file);
+  camdyn::Scene b = camdyn::bench_case("B1_1000");
+  EXPECT_EQ(b.follower.elements, 1000);
+  b.follower.elements = camdyn::paper_case("B1").follower.elements;
+  b.title = camdyn::paper_case("B1").title;
+  b.run.t_end = camdyn::paper_case("B1").run.t_end;
+  EXPECT_TRUE(b == camdyn::paper_case("B1"));
+}

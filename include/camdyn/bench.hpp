@@ -19,7 +19,7 @@ namespace camdyn {
 
 struct BenchOptions {
   /// Scenes to benchmark, with a short label each (same length). Empty: bench_case() of
-  /// "A", "A7", "B1", "B2".
+  /// "A", "A7", "B1", "B2", and in the full sweep also "stiff" and "B1_1000".
   std::vector<Scene> scenes;
   std::vector<std::string> labels;
   /// Quick mode: Lee on arkode-erk only at two tolerances, penalty at three k_p and one
@@ -87,7 +87,9 @@ struct BenchResult {
 
 /// The bench's named scenes: the paper's cases "A", "B1", "B2" (paper_case()) and "A7",
 /// case A at 7 rev/s — above the rigid follower's separation speed (≈ 6.4 rev/s), so it
-/// separates near the cam's nose and lands again with an impact once per revolution.
+/// separates near the cam's nose and lands again with an impact once per revolution;
+/// "stiff", a stiff elastic follower (B2's cam with E = 5e8 on 200 elements, 0.05 s:
+/// examples/stiff_bar.toml), and "B1_1000", case B1 on 1000 elements (0.05 s).
 /// @throws SceneError for another name.
 Scene bench_case(const std::string& name);
 /// True for a name bench_case() knows.
