@@ -18,6 +18,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "camdyn/cam.hpp"
 #include "camdyn/model.hpp"
@@ -44,7 +45,7 @@ LinearSolverKind resolve_linear_solver(const Scene& scene, int nodes);
 
 /// The contact force on node 0 (F = −p ≥ 0 pushes the follower away from the cam).
 struct ContactLaw {
-  enum class Kind { None, Ramp, Penalty, Prescribed, Held };
+  enum class Kind { None, Ramp, Penalty, Prescribed, Held, Table };
   Kind kind = Kind::None;
   // Ramp: F(t) = F0 + (F1 − F0)x + Fc·4x(1 − x), x = (t − t0)/h on the step [t0, t0 + h]
   // (Fc = 0: the classic linear ramp; Fc ≠ 0: the located step's two-parameter shape).
@@ -59,6 +60,10 @@ struct ContactLaw {
   // Prescribed (held bar, node 0 moving with the cam; this model's node 0 is the bar's
   // node 1): F = −K₁₀ X_C(t) − C₁₀ Ẋ_C(t) − M₁₀ Ẍ_C(t), independent of the state.
   double k10 = 0, c10 = 0, m10 = 0;
+  // Table: F(t) piecewise linear through (table_t[i], table_F[i]) (increasing times; the
+  // end values outside) — a given force history (bench/bench_overhead's replay).
+  const std::vector<double>* table_t = nullptr;
+  const std::vector<double>* table_F = nullptr;
   // Held (node 0 on the cam, the full follower; cvode-bdf only): the acceleration level's
   // force F = (Ẍ_C − ü₀,free(q, v)) / M*, a function of the whole state that the engine's
   // right-hand side evaluates itself (force() returns 0 for it), so that node 0 moves with
@@ -128,8 +133,8 @@ class Engine {
   virtual void set_max_order(int /*q*/) {}
 
   /// Native mode, held contact (ContactLaw::Kind::Held): on, every internal step's
-  /// corrected state is projected onto u₀ = X_C(t), u̇₀ = Ẋ_C(t) along M⁻¹e₀ (the
-  /// M-orthogonal projection), and the projection enters the engine's history (CVODE's projection interface: no restart). Only the
+  /// corrected state is projected onto u₀ = X_C(t), u̇₀ = Ẋ_C(t) by a rigid translation
+  /// of the follower (no strain changes), and the projection enters the engine's history (CVODE's projection interface: no restart). Only the
   /// multistep engine supports it. @throws std::logic_error on the other engines.
   virtual void set_held_projection(bool /*on*/) {
     throw std::logic_error(std::string("held projection: not supported by ") + name());
@@ -137,8 +142,8 @@ class Engine {
   /// Native mode: the state at t inside the last internal step (the engine's own
   /// interpolant); false if the engine has none.
   virtual bool interpolate(double /*t*/, Eigen::VectorXd& /*y*/) { return false; }
-  /// The held contact's force at state y (ContactLaw::Kind::Held):
-  /// F = (Ẍ_C(t) − e₀ᵀM⁻¹(f₀ − Kq − Cv)) / M*.
+  /// The held contact's force at state y with node 0 on the cam (u₀ = X_C, u̇₀ = Ẋ_C):
+  /// F = (Ẍ_C(t) − e₀ᵀM⁻¹(f₀ − Kq − Cv)) / M*. Not thread-safe (a buffer per engine).
   double held_force(double t, const double* y) const;
 
   /// Rootfinding (native mode): one function g(t, y); direction −1, 0 or +1.
@@ -168,6 +173,7 @@ class Engine {
   RootFn root_fn_;
   bool hit_root_ = false;
   Eigen::VectorXd mass_col0_;  // M⁻¹e₀ (held contact), computed on first use
+  mutable Eigen::VectorXd held_y_;  // held_force's state with node 0 on the cam
   const Eigen::VectorXd& mass_col0();
   bool homogeneous_ = false;
   static int root_callback(double t, const double* y, double* g, void* ud) noexcept;

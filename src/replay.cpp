@@ -8,18 +8,26 @@
 
 namespace camdyn {
 
-ReplayResult replay_lee_steps(const Scene& scene, const std::vector<LeeStep>& steps) {
-  const auto model = build_model(scene);
-  const int n = model->n();
-  // The run's initial state (simulator.cpp, Runner::run): q(0) from the model, the
-  // contact face at the cam's velocity if touching.
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n), y1(2 * n);
-  y.head(n) = model->initial_displacement();
+namespace {
+// The run's initial state (run_context.hpp, RunContext::run): q(0) from the model, the
+// contact face at the cam's velocity if touching.
+Eigen::VectorXd initial_state(const Scene& scene, const FollowerModel& model) {
+  const int n = model.n();
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
+  y.head(n) = model.initial_displacement();
   if (scene.contact.initial_gap == 0.0) {
     const Cam cam(scene.cam);
     const CamDrive drive(scene.cam);
     y[n] = cam.motion(drive.theta(0.0), drive.omega(0.0), drive.omega_dot(0.0)).Xdot;
   }
+  return y;
+}
+}  // namespace
+
+ReplayResult replay_lee_steps(const Scene& scene, const std::vector<LeeStep>& steps) {
+  const auto model = build_model(scene);
+  const int n = model->n();
+  Eigen::VectorXd y = initial_state(scene, *model), y1(2 * n);
   ReplayResult r;
   const std::clock_t c0 = std::clock();
   const auto engine = make_engine(model, scene);
@@ -37,6 +45,51 @@ ReplayResult replay_lee_steps(const Scene& scene, const std::vector<LeeStep>& st
     engine->step(s.t0, y, s.h, y1);
     y.swap(y1);
     if (s.impulse != 0.0) y.tail(n) += s.impulse * col0;
+  }
+  r.cpu_seconds = double(std::clock() - c0) / CLOCKS_PER_SEC;
+  r.engine_steps = engine->stats().steps;
+  r.y = std::move(y);
+  return r;
+}
+
+ReplayResult replay_force_history(const Scene& scene, const std::vector<LeeStep>& steps) {
+  const auto model = build_model(scene);
+  const int n = model->n();
+  Eigen::VectorXd y = initial_state(scene, *model), y1(2 * n);
+  std::vector<double> T, F, t_imp, P;
+  for (const LeeStep& s : steps) {
+    if (T.empty()) {
+      T.push_back(s.t0);
+      F.push_back(s.F0);
+    }
+    T.push_back(s.t0 + s.h);
+    F.push_back(s.F1);
+    if (s.impulse != 0.0) {
+      t_imp.push_back(s.t0 + s.h);
+      P.push_back(s.impulse);
+    }
+  }
+  ReplayResult r;
+  if (T.empty()) return r;
+  const std::clock_t c0 = std::clock();
+  const auto engine = make_engine(model, scene, /*trial=*/false);
+  if (scene.solver.rtol <= 1e-8) engine->set_max_order(5);  // the run's policy
+  ContactLaw& law = engine->law();
+  law.kind = ContactLaw::Kind::Table;
+  law.table_t = &T;
+  law.table_F = &F;
+  Eigen::VectorXd col0 = Eigen::VectorXd::Zero(n), e0 = Eigen::VectorXd::Zero(n);
+  e0[0] = 1.0;
+  model->solve_mass(e0.data(), col0.data());
+  double t = T.front();
+  engine->reinit(t, y);
+  for (size_t k = 0; k <= t_imp.size(); ++k) {
+    const double stop = k < t_imp.size() ? t_imp[k] : T.back();
+    while (t < stop) t = engine->advance(stop, y);
+    if (k < t_imp.size()) {
+      y.tail(n) += P[k] * col0;
+      engine->reinit(t, y);
+    }
   }
   r.cpu_seconds = double(std::clock() - c0) / CLOCKS_PER_SEC;
   r.engine_steps = engine->stats().steps;

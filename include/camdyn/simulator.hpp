@@ -191,7 +191,10 @@ struct Observer {
   /// the force shape F(t) = F0 + (F1 − F0)x + Fc·4x(1 − x), x = (t − t0)/h, whose single
   /// integration gave the accepted state (F ≡ 0 in free flight), and the impact impulse
   /// applied on node 0 at t0 + h (0 if none). Integrating the step sequence with these
-  /// shapes and impulses replays the run (bench/bench_overhead).
+  /// shapes and impulses replays the run (bench/bench_overhead). On cvode-bdf (elastic
+  /// follower) the shape is the line through the step's end forces (Fc = 0): the force
+  /// there is sampled at the step ends, and a replay integrates the piecewise-linear
+  /// force history natively.
   virtual void on_lee_shape(double /*t0*/, double /*h*/, double /*F0*/, double /*F1*/,
                             double /*Fc*/, double /*impulse*/) {}
 };

@@ -11,11 +11,12 @@
 //                         (engines.cpp, SchurSolver::solve), so the linear follower's
 //                         corrector converges in one iteration with the force consistent
 //                         with the state it accepts;
-//     displacement and    the corrected state is projected onto u₀ = X_C, u̇₀ = Ẋ_C along
-//     velocity levels     M⁻¹e₀ — the impulse-response direction of eqs. 14, 15, with the
-//                         exact constant — through CVODE's projection interface, which
-//                         carries the correction into its Nordsieck history and projects
-//                         the local error estimate likewise (CvodeEngine::project).
+//     displacement and    the corrected state is put on u₀ = X_C, u̇₀ = Ẋ_C (eqs. 14, 15
+//     velocity levels     solved exactly) by translating the follower rigidly — the
+//                         correction that changes no strain, so it adds no force —
+//                         through CVODE's projection interface, which carries it into
+//                         its Nordsieck history (CvodeEngine::project). The reported
+//                         force is the acceleration level's at the projected state.
 //   Retaking a step with another force, which restarted CVODE at order 1 in every trial
 //   step of the located step, never happens: for a linear follower the step map is
 //   affine in the force and the force is solved together with the state.
@@ -84,13 +85,15 @@ class LeeMultistep final : public RunContext {
       const double Ft = F_, Xdot_prev = cam_at(t_).Xdot, P_prev = dissipation_power();
       const double t_prev = t_;
       bool separation = false;
-      double dW = 0.0, P_end = NAN;
+      double dW = 0.0, P_end = NAN, F_end = 0.0;
+      const long impacts_before = sum_.impacts;
       if (in_contact) {
         t_ = engine_->advance(tout, y1);
         y_ = y1;
         separation = engine_->hit_root();
         F_ = separation ? 0.0 : engine_->held_force(t_, y_.data());
         if (!bilateral_ && F_ < 0.0) F_ = 0.0;
+        F_end = F_;
         // Simpson on F·Ẋ_C with the midpoint from CVODE's interpolant.
         const double tm = 0.5 * (t_prev + t_);
         engine_->interpolate(tm, ym);
@@ -121,6 +124,11 @@ class LeeMultistep final : public RunContext {
         record_event(EventKind::Separation, 0.0);
       }
       contact_ = in_contact;
+      // The step's force as the line through its end forces, and its impact impulse
+      // (replay: bench/bench_overhead).
+      if (obs_)
+        obs_->on_lee_shape(t_prev, t_ - t_prev, Ft, F_end, 0.0,
+                           sum_.impacts > impacts_before ? sum_.events.back().impulse : 0.0);
       after_step(t_ - t_prev, dW, P_prev, P_end);
     }
   }
