@@ -280,6 +280,13 @@ int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line
 
 enum class FK { Real, Int, Bool, Str, Arr, Enum };
 
+// A key's own rule (checked by validate() for every key of the table; rules between keys
+// are written out in the Validator). Every number must be finite; then
+//   Gt: v > lo   Ge: v ≥ lo   In: lo ≤ v ≤ hi   GtLe: lo < v ≤ hi
+//   ZeroOrIn: v = 0 or lo ≤ v ≤ hi (`note` completes the message).
+// Int keys: imin ≤ v ≤ imax (also at parse time).
+enum class Rule { Finite, Gt, Ge, In, GtLe, ZeroOrIn };
+
 struct Field {
   const char* table;  // "" for a top-level key
   const char* key;
@@ -294,6 +301,9 @@ struct Field {
   const char* (*get_enum)(const Scene&) = nullptr;
   bool (*set_enum)(Scene&, std::string_view) = nullptr;
   std::vector<std::string> allowed;
+  Rule rule = Rule::Finite;
+  double lo = 0, hi = 0;
+  const char* note = "";
 
   std::string path() const { return *table ? std::string(table) + "." + key : std::string(key); }
 };
@@ -344,6 +354,14 @@ Field mk(const char* t, const char* k, FK kind) {
 
 const char* const kTables[] = {"cam", "follower", "spring", "contact", "solver", "run"};
 
+Field ruled(Field f, Rule r, double lo, double hi = 0, const char* note = "") {
+  f.rule = r;
+  f.lo = lo;
+  f.hi = hi;
+  f.note = note;
+  return f;
+}
+
 const std::vector<Field>& fields() {
   static const std::vector<Field> kFields = [] {
     std::vector<Field> v;
@@ -355,59 +373,60 @@ const std::vector<Field>& fields() {
     v.push_back(F_ENUM(cam, profile, kProfileNames));
     v.push_back(F_ARR(cam, angles_deg));
     v.push_back(F_ARR(cam, radii));
-    v.push_back(F_REAL(cam, base_radius));
+    v.push_back(ruled(F_REAL(cam, base_radius), Rule::Gt, 0));
     v.push_back(F_ARR(cam, lift_angles_deg));
     v.push_back(F_ARR(cam, lift));
-    v.push_back(F_REAL(cam, radius));
-    v.push_back(F_REAL(cam, eccentricity));
+    v.push_back(ruled(F_REAL(cam, radius), Rule::Gt, 0));
+    v.push_back(ruled(F_REAL(cam, eccentricity), Rule::Ge, 0));
     v.push_back(F_REAL(cam, speed_rev_s));
     v.push_back(F_ARR(cam, speed_table_t));
     v.push_back(F_ARR(cam, speed_table_rev_s));
     v.push_back(F_REAL(cam, theta0_deg));
 
     v.push_back(F_ENUM(follower, kind, kFollowerNames));
-    v.push_back(F_REAL(follower, mass));
-    v.push_back(F_REAL(follower, damping));
-    v.push_back(F_REAL(follower, youngs_modulus));
-    v.push_back(F_REAL(follower, area));
-    v.push_back(F_REAL(follower, length));
+    v.push_back(ruled(F_REAL(follower, mass), Rule::Gt, 0));
+    v.push_back(ruled(F_REAL(follower, damping), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(follower, youngs_modulus), Rule::Gt, 0));
+    v.push_back(ruled(F_REAL(follower, area), Rule::Gt, 0));
+    v.push_back(ruled(F_REAL(follower, length), Rule::Gt, 0));
     v.push_back(F_INT(follower, elements, 1, 10000000));
     v.push_back(F_ENUM(follower, mass_matrix, kMassNames));
-    v.push_back(F_REAL(follower, rayleigh_alpha));
-    v.push_back(F_REAL(follower, rayleigh_beta));
+    v.push_back(ruled(F_REAL(follower, rayleigh_alpha), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(follower, rayleigh_beta), Rule::Ge, 0));
 
-    v.push_back(F_REAL(spring, stiffness));
+    v.push_back(ruled(F_REAL(spring, stiffness), Rule::Ge, 0));
     v.push_back(F_REAL(spring, precompression));
 
     v.push_back(F_ENUM(contact, model, kContactNames));
     v.push_back(F_ENUM(contact, error_variant, kVariantNames));
     v.push_back(F_ENUM(contact, lee_step, kLeeStepNames));
-    v.push_back(F_REAL(contact, tol_u));
-    v.push_back(F_REAL(contact, tol_v));
-    v.push_back(F_REAL(contact, tol_a));
+    v.push_back(ruled(F_REAL(contact, tol_u), Rule::ZeroOrIn, 1e-14, 1.0,
+                       "must be between 1e-14 and 1 (or 0 for the paper default); below 1e-14 the gap is round-off"));
+    v.push_back(ruled(F_REAL(contact, tol_v), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(contact, tol_a), Rule::Ge, 0));
     v.push_back(F_INT(contact, max_iterations, 1, 10000));
     v.push_back(F_BOOL(contact, separation));
-    v.push_back(F_REAL(contact, restitution));
-    v.push_back(F_REAL(contact, initial_gap));
+    v.push_back(ruled(F_REAL(contact, restitution), Rule::In, 0, 1));
+    v.push_back(ruled(F_REAL(contact, initial_gap), Rule::Ge, 0));
     v.push_back(F_ENUM(contact, penalty_law, kPenaltyNames));
-    v.push_back(F_REAL(contact, penalty_stiffness));
-    v.push_back(F_REAL(contact, penalty_damping));
-    v.push_back(F_REAL(contact, penalty_exponent));
+    v.push_back(ruled(F_REAL(contact, penalty_stiffness), Rule::Gt, 0));
+    v.push_back(ruled(F_REAL(contact, penalty_damping), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(contact, penalty_exponent), Rule::In, 1, 3));
 
     v.push_back(F_ENUM(solver, integrator, kIntegratorNames));
-    v.push_back(F_REAL(solver, rtol));
-    v.push_back(F_REAL(solver, atol));
+    v.push_back(ruled(F_REAL(solver, rtol), Rule::In, 1e-14, 0.1));
+    v.push_back(ruled(F_REAL(solver, atol), Rule::GtLe, 0, 1));
     v.push_back(F_ENUM(solver, linear_solver, kLinSolNames));
-    v.push_back(F_REAL(solver, max_step));
-    v.push_back(F_REAL(solver, initial_step));
+    v.push_back(ruled(F_REAL(solver, max_step), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(solver, initial_step), Rule::Ge, 0));
 
-    v.push_back(F_REAL(run, t_end));
-    v.push_back(F_REAL(run, output_dt));
+    v.push_back(ruled(F_REAL(run, t_end), Rule::Gt, 0));
+    v.push_back(ruled(F_REAL(run, output_dt), Rule::Ge, 0));
     v.push_back(F_BOOL(run, land_on_output));
     v.push_back(F_INT(run, max_steps, 1, LLONG_MAX));
     v.push_back(F_REAL(run, poincare_angle_deg));
     v.push_back(F_INT(run, settle_revolutions, 0, 1000000000));
-    v.push_back(F_REAL(run, period_tol));
+    v.push_back(ruled(F_REAL(run, period_tol), Rule::GtLe, 0, 1));
     return v;
   }();
   return kFields;
@@ -1023,20 +1042,52 @@ class Validator {
               ref_key);
   }
 
+  /// Every key's own rule from the key table (fields()).
+  void key_rules() const {
+    Scene& s = const_cast<Scene&>(s_);  // the accessors are non-const; nothing is written
+    for (const Field& f : fields()) {
+      const std::string key = f.path();
+      switch (f.kind) {
+        case FK::Arr:
+          finite(key, f.arr(s));
+          break;
+        case FK::Int:
+          int_in(key, f.get_int(s), f.imin, f.imax);
+          break;
+        case FK::Real: {
+          const double v = f.real(s);
+          finite(key, v);
+          const bool ok = f.rule == Rule::Finite ? true
+                          : f.rule == Rule::Gt   ? v > f.lo
+                          : f.rule == Rule::Ge   ? v >= f.lo
+                          : f.rule == Rule::In   ? (v >= f.lo && v <= f.hi)
+                          : f.rule == Rule::GtLe ? (v > f.lo && v <= f.hi)
+                                                 : (v == 0.0 || (v >= f.lo && v <= f.hi));
+          if (ok) break;
+          const std::string rule =
+              f.rule == Rule::Gt   ? "must be > " + fmt_num(f.lo)
+              : f.rule == Rule::Ge ? "must be >= " + fmt_num(f.lo)
+              : f.rule == Rule::In ? "must be >= " + fmt_num(f.lo) + " and <= " + fmt_num(f.hi)
+              : f.rule == Rule::GtLe ? "must be > " + fmt_num(f.lo) + " and <= " + fmt_num(f.hi)
+                                     : std::string(f.note);
+          fail_at(key, fmt_num(v), rule);
+        }
+        default:
+          break;
+      }
+    }
+  }
+
   void run() const {
     const Scene& s = s_;
-    // ---- cam
+    key_rules();
+    // ---- cam (rules between keys)
     const CamSpec& c = s.cam;
-    finite("cam.angles_deg", c.angles_deg);
-    finite("cam.radii", c.radii);
     if (c.profile == CamProfileKind::Points) {
       angle_table("cam.angles_deg", c.angles_deg, "", "cam.profile");
       same_length("cam.radii", c.radii, "cam.angles_deg", c.angles_deg);
       for (std::size_t i = 0; i < c.radii.size(); ++i) gt(elem("cam.radii", i), c.radii[i], 0.0);
     }
-    gt("cam.base_radius", c.base_radius, 0.0);
-    finite("cam.lift_angles_deg", c.lift_angles_deg);
-    finite("cam.lift", c.lift);
     if (c.profile == CamProfileKind::Lift) {
       angle_table("cam.lift_angles_deg", c.lift_angles_deg, " for cam.profile = \"lift\"", "cam.profile");
       same_length("cam.lift", c.lift, "cam.lift_angles_deg", c.lift_angles_deg);
@@ -1045,50 +1096,17 @@ class Validator {
           fail_at(elem("cam.lift", i), fmt_num(c.lift[i]),
                   "must be > -cam.base_radius = " + fmt_num(-c.base_radius) + " (base_radius + lift > 0)");
     }
-    gt("cam.radius", c.radius, 0.0);
-    ge("cam.eccentricity", c.eccentricity, 0.0);
     if (!(c.eccentricity < c.radius))
       fail_at("cam.eccentricity", fmt_num(c.eccentricity), "must be < cam.radius = " + fmt_num(c.radius));
-    finite("cam.speed_rev_s", c.speed_rev_s);
-    finite("cam.speed_table_t", c.speed_table_t);
-    finite("cam.speed_table_rev_s", c.speed_table_rev_s);
     if (!c.speed_table_t.empty() || !c.speed_table_rev_s.empty()) {
       same_length("cam.speed_table_rev_s", c.speed_table_rev_s, "cam.speed_table_t", c.speed_table_t);
       if (c.speed_table_t.front() != 0.0)
         fail_at("cam.speed_table_t[0]", fmt_num(c.speed_table_t.front()), "must be 0 (the speed table starts at t = 0)");
       increasing("cam.speed_table_t", c.speed_table_t);
     }
-    finite("cam.theta0_deg", c.theta0_deg);
-
-    // ---- follower
-    const FollowerSpec& f = s.follower;
-    gt("follower.mass", f.mass, 0.0);
-    ge("follower.damping", f.damping, 0.0);
-    gt("follower.youngs_modulus", f.youngs_modulus, 0.0);
-    gt("follower.area", f.area, 0.0);
-    gt("follower.length", f.length, 0.0);
-    int_in("follower.elements", f.elements, 1, 10000000);
-    ge("follower.rayleigh_alpha", f.rayleigh_alpha, 0.0);
-    ge("follower.rayleigh_beta", f.rayleigh_beta, 0.0);
-
-    // ---- spring
-    ge("spring.stiffness", s.spring.stiffness, 0.0);
-    finite("spring.precompression", s.spring.precompression);
 
     // ---- contact
     const ContactSpec& k = s.contact;
-    finite("contact.tol_u", k.tol_u);
-    if (!(k.tol_u == 0.0 || (k.tol_u >= 1e-14 && k.tol_u <= 1.0)))
-      fail_at("contact.tol_u", fmt_num(k.tol_u),
-              "must be between 1e-14 and 1 (or 0 for the paper default); below 1e-14 the gap is round-off");
-    ge("contact.tol_v", k.tol_v, 0.0);
-    ge("contact.tol_a", k.tol_a, 0.0);
-    int_in("contact.max_iterations", k.max_iterations, 1, 10000);
-    in("contact.restitution", k.restitution, 0.0, 1.0);
-    ge("contact.initial_gap", k.initial_gap, 0.0);
-    gt("contact.penalty_stiffness", k.penalty_stiffness, 0.0);
-    ge("contact.penalty_damping", k.penalty_damping, 0.0);
-    in("contact.penalty_exponent", k.penalty_exponent, 1.0, 3.0);
     if (!k.separation && k.model != ContactModel::Lee && k.model != ContactModel::Holonomic)
       fail_at("contact.separation", "false",
               std::string("requires contact.model \"lee\" or \"holonomic\" (contact.model is \"") + to_string(k.model) +
@@ -1109,23 +1127,10 @@ class Validator {
               std::string("\"ida\" requires contact.model = \"holonomic\" (contact.model is \"") +
                   to_string(k.model) + "\")",
               "contact.model");
-    in("solver.rtol", v.rtol, 1e-14, 0.1);
-    finite("solver.atol", v.atol);
-    if (!(v.atol > 0.0 && v.atol <= 1.0)) fail_at("solver.atol", fmt_num(v.atol), "must be > 0 and <= 1");
-    ge("solver.max_step", v.max_step, 0.0);
-    ge("solver.initial_step", v.initial_step, 0.0);
 
     // ---- run
-    gt("run.t_end", s.run.t_end, 0.0);
-    ge("run.output_dt", s.run.output_dt, 0.0);
     if (!(s.run.output_dt <= s.run.t_end))
       fail_at("run.output_dt", fmt_num(s.run.output_dt), "must be <= run.t_end = " + fmt_num(s.run.t_end));
-    int_in("run.max_steps", s.run.max_steps, 1, LLONG_MAX);
-    finite("run.poincare_angle_deg", s.run.poincare_angle_deg);
-    int_in("run.settle_revolutions", s.run.settle_revolutions, 0, 1000000000);
-    finite("run.period_tol", s.run.period_tol);
-    if (!(s.run.period_tol > 0.0 && s.run.period_tol <= 1.0))
-      fail_at("run.period_tol", fmt_num(s.run.period_tol), "must be > 0 and <= 1");
 
     network();
   }

@@ -697,3 +697,49 @@ TEST(SceneEquality, EveryKindOfKeyInEveryTableTakesPart) {
     if (c.table_equal) EXPECT_FALSE(c.table_equal(a, b)) << c.what;
   }
 }
+
+// The key table carries each key's own rule (src/scene.cpp, fields()): every real key of
+// every table refuses a non-finite value through the same path, so a new key is checked
+// without another line in the Validator; and a table row's range rule gives its message.
+TEST(SceneKeyRules, EveryRealKeyRefusesNaNAndRangesComeFromTheTable) {
+  const camdyn::Scene base = camdyn::default_scene();
+  int checked = 0;
+  camdyn::for_each_scene_entry(base, [&](const camdyn::SceneEntry& e) {
+    if (e.kind != camdyn::SceneEntry::Kind::Real) return;
+    const std::string key = e.table.empty() ? e.key : e.table + "." + e.key;
+    camdyn::Scene s = base;
+    try {
+      camdyn::apply_override(s, key + "=nan");
+      ADD_FAILURE() << key << " = nan accepted";
+    } catch (const camdyn::SceneError& err) {
+      EXPECT_EQ(err.key(), key);
+      EXPECT_EQ(err.rule(), "must be a finite number") << key;
+    }
+    ++checked;
+  });
+  EXPECT_GE(checked, 30);  // 30 real keys today
+  struct Row {
+    const char* set;
+    const char* key;
+    const char* rule;
+  };
+  const Row rows[] = {
+      {"follower.mass=0", "follower.mass", "must be > 0"},
+      {"follower.rayleigh_beta=-1", "follower.rayleigh_beta", "must be >= 0"},
+      {"contact.restitution=1.5", "contact.restitution", "must be >= 0 and <= 1"},
+      {"solver.atol=2", "solver.atol", "must be > 0 and <= 1"},
+      {"contact.tol_u=1e-20", "contact.tol_u",
+       "must be between 1e-14 and 1 (or 0 for the paper default); below 1e-14 the gap is round-off"},
+      {"run.period_tol=0", "run.period_tol", "must be > 0 and <= 1"},
+  };
+  for (const Row& r : rows) {
+    camdyn::Scene s = base;
+    try {
+      camdyn::apply_override(s, r.set);
+      ADD_FAILURE() << r.set << " accepted";
+    } catch (const camdyn::SceneError& err) {
+      EXPECT_EQ(err.key(), r.key) << r.set;
+      EXPECT_EQ(err.rule(), r.rule) << r.set;
+    }
+  }
+}
