@@ -11,6 +11,7 @@
 //   once, with its replay).
 //
 //   usage: bench_overhead [repeats=3] [t_end_elastic=0.05] [engines=arkode-erk,arkode-dirk,cvode-bdf]
+//                         [steps=located,classic]
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -34,12 +35,14 @@ int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
   const double t_elastic = argc > 2 ? std::atof(argv[2]) : 0.05;
   const std::string engines = argc > 3 ? argv[3] : "arkode-erk,arkode-dirk,cvode-bdf";
+  const std::string kinds = argc > 4 ? argv[4] : "located,classic";
   std::printf("| scene | t_end | engine | step | Lee CPU s | replay CPU s | ratio | Lee steps | "
               "mean it. u / v / a | u_c(end) replay − Lee |\n|---|---|---|---|---:|---:|---:|---:|---|---:|\n");
   for (const char* name : {"A", "B1", "B2"}) {
     for (Integrator integ : {Integrator::ArkodeErk, Integrator::ArkodeDirk, Integrator::CvodeBdf}) {
      for (LeeStepKind kind : {LeeStepKind::Located, LeeStepKind::Classic}) {
       if (engines.find(to_string(integ)) == std::string::npos) continue;
+      if (kinds.find(to_string(kind)) == std::string::npos) continue;
       Scene s = paper_case(name);
       s.contact.lee_step = kind;
       s.solver.integrator = integ;

@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -71,8 +72,12 @@ struct ContactLaw {
   // projection (Engine::set_held_projection).
 
   double force(double t, double q0, double v0) const;
-  /// The cam's contact-point motion at t (needs cam and drive).
+  /// The cam's contact-point motion at t (needs cam and drive). The last value is kept:
+  /// the right-hand side, the projection and the root function of one step ask for the
+  /// same t.
   CamMotion cam_motion(double t) const;
+  mutable double cached_t_ = std::numeric_limits<double>::quiet_NaN();
+  mutable CamMotion cached_motion_{};
   /// Penalty only (else 0): the elastic part of the law, F_el(s) = k_p s (linear) or
   /// k_p sⁿ (Hunt–Crossley) for s > 0, and its stored energy V_p(s) = ∫₀ˢ F_el = ½k_p s²
   /// or k_p sⁿ⁺¹/(n+1). The rest of the force, F − F_el, is the damper's: its power

@@ -90,7 +90,10 @@ double ContactLaw::force(double t, double q0, double v0) const {
 }
 
 CamMotion ContactLaw::cam_motion(double t) const {
-  return cam->motion(drive->theta(t), drive->omega(t), drive->omega_dot(t));
+  if (t == cached_t_) return cached_motion_;
+  cached_motion_ = cam->motion(drive->theta(t), drive->omega(t), drive->omega_dot(t));
+  cached_t_ = t;
+  return cached_motion_;
 }
 
 double ContactLaw::elastic_force(double t, double q0) const {

@@ -206,9 +206,19 @@ class RunContext {
 
   double out_dt() const { return sc_.run.output_dt; }
   double next_output_time() const { return output_time(sc_, next_out_); }
+  // The cam's motion at t; the last two values are kept (a step asks for its ends and its
+  // midpoint several times).
   CamMotion cam_at(double t) const {
-    return cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
+    for (int i = 0; i < 2; ++i)
+      if (cam_cache_t_[i] == t) return cam_cache_[i];
+    cam_cache_slot_ ^= 1;
+    cam_cache_t_[cam_cache_slot_] = t;
+    cam_cache_[cam_cache_slot_] = cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
+    return cam_cache_[cam_cache_slot_];
   }
+  mutable double cam_cache_t_[2] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  mutable CamMotion cam_cache_[2]{};
+  mutable int cam_cache_slot_ = 0;
   double energy_residual() const {
     const double E = m_.kinetic_energy(y_.data() + n_) + potential();
     return work_ - (E - E0_) - dissipated_;
