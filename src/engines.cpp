@@ -365,40 +365,34 @@ class SchurSolver {
     const long n = n_;
     double* bu = b;
     double* bv = b + n;
-    if (held) {
-      if (m_.rigid()) {
+    if (m_.rigid()) {
+      if (held) {  // q̈ = Ẍ_C(t): x_v = b_v
         bu[0] += g_ * bv[0];
         return;
       }
-      if (!z_valid_) {
-        z_.setZero(n);
-        z_[0] = 1.0;
-        solve_S(z_.data());
-        z_valid_ = true;
-      }
-      const double bv0 = bv[0];
-      Eigen::Map<Eigen::VectorXd> U(bu, n), V(bv, n);
-      rhs_.noalias() = m_.M() * V;
-      rhs_.noalias() -= g_ * (m_.K() * U);
-      solve_S(rhs_.data());
-      const double lambda = (bv0 - rhs_[0]) / z_[0];
-      V = rhs_ + lambda * z_;
-      V[0] = bv0;
-      U += g_ * V;
-      return;
-    }
-    if (m_.rigid()) {
       const double rhs = m_.m_rigid() * bv[0] - g_ * (m_.k_rigid() - dFdq_) * bu[0];
       bv[0] = rhs / s_rigid_;
       bu[0] += g_ * bv[0];
       return;
     }
+    const double bv0 = bv[0];
     Eigen::Map<Eigen::VectorXd> U(bu, n), V(bv, n);
     rhs_.noalias() = m_.M() * V;
     rhs_.noalias() -= g_ * (m_.K() * U);
     rhs_[0] += g_ * dFdq_ * U[0];
     solve_S(rhs_.data());
     V = rhs_;
+    if (held) {
+      if (!z_valid_) {
+        z_.setZero(n);
+        z_[0] = 1.0;
+        solve_S(z_.data());
+        z_valid_ = true;
+      }
+      const double lambda = (bv0 - V[0]) / z_[0];
+      V += lambda * z_;
+      V[0] = bv0;
+    }
     U += g_ * V;
   }
 
