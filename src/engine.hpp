@@ -144,9 +144,6 @@ class Engine {
   virtual void set_held_projection(bool /*on*/) {
     throw std::logic_error(std::string("held projection: not supported by ") + name());
   }
-  /// Native mode: the state at t inside the last internal step (the engine's own
-  /// interpolant); false if the engine has none.
-  virtual bool interpolate(double /*t*/, Eigen::VectorXd& /*y*/) { return false; }
   /// The held contact's force at state y with node 0 on the cam (u₀ = X_C, u̇₀ = Ẋ_C):
   /// F = (Ẍ_C(t) − e₀ᵀM⁻¹(f₀ − Kq − Cv)) / M*. Not thread-safe (a buffer per engine).
   double held_force(double t, const double* y) const;

@@ -681,12 +681,6 @@ class CvodeEngine final : public Engine {
     }
     if (projection_set_) check_flag(CVodeSetProjFrequency(mem_.get(), on ? 1 : 0), "CVodeSetProjFrequency");
   }
-  bool interpolate(double t, Eigen::VectorXd& y) override {
-    if (!yi_) yi_ = make_nvec(2 * n_, ctx_.ctx);
-    check_flag(CVodeGetDky(mem_.get(), t, 0, yi_.get()), "CVodeGetDky");
-    y = map(yi_.get());
-    return true;
-  }
   void set_root(RootFn fn, int direction) override {
     root_fn_ = std::move(fn);
     check_flag(CVodeRootInit(mem_.get(), root_fn_ ? 1 : 0, &CvodeEngine::g), "CVodeRootInit");
@@ -744,7 +738,6 @@ class CvodeEngine final : public Engine {
   std::unique_ptr<void, CvDel> mem_;
   double hcur_ = 0, first_h_ = 0;
   bool projection_set_ = false;
-  NVec yi_;  // interpolate()'s output
 };
 
 }  // namespace
