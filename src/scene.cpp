@@ -806,6 +806,15 @@ void read_network_array(const std::string& array, const toml::node& node, Scene&
   if (!a || (!a->empty() && !a->is_array_of_tables()))
     fail(file, line, array, fmt_node(node),
          "must be an array of tables ([[" + array + "]]); " + allowed_in_array(array));
+  // A key an entry of this type does not take: name the type's keys (and say whether the
+  // key belongs to another type).
+  auto check_key = [&](const std::string& k, const toml::node& v, const std::string& key, const std::string& what,
+                       const std::vector<std::string>& allowed, const std::vector<std::string>& all) {
+    if (contains(allowed, k)) return;
+    fail(file, r.line(v), key, fmt_node(v),
+         (contains(all, k) ? "not a key of a" + what + "; " : std::string("unknown key; ")) +
+             "allowed keys of a" + what + ": " + join(allowed, ", "));
+  };
   for (std::size_t i = 0; i < a->size(); ++i) {
     const toml::table& t = *a->get(i)->as_table();
     const std::string prefix = array + "[" + std::to_string(i) + "]";
@@ -831,12 +840,7 @@ void read_network_array(const std::string& array, const toml::node& node, Scene&
       for (const auto& [k, v] : sorted_entries(t)) {
         const std::string key = prefix + "." + k;
         lines[key] = r.line(*v);
-        if (!contains(allowed, k)) {
-          const std::string what = std::string(" ") + to_string(e.kind) + " element";
-          fail(file, r.line(*v), key, fmt_node(*v),
-               (contains(all_element_keys(), k) ? "not a key of a" + what + "; " : std::string("unknown key; ")) +
-                   "allowed keys of a" + what + ": " + join(allowed, ", "));
-        }
+        check_key(k, *v, key, std::string(" ") + to_string(e.kind) + " element", allowed, all_element_keys());
         if (k == "name") e.name = r.str(*v, key);
         else if (k == "nodes") e.nodes = r.names(*v, key);
         else if (k == "stiffness") e.stiffness = r.real(*v, key);
@@ -861,12 +865,7 @@ void read_network_array(const std::string& array, const toml::node& node, Scene&
       for (const auto& [k, v] : sorted_entries(t)) {
         const std::string key = prefix + "." + k;
         lines[key] = r.line(*v);
-        if (!contains(allowed, k)) {
-          const std::string what = std::string(" ") + to_string(c.kind) + " contact";
-          fail(file, r.line(*v), key, fmt_node(*v),
-               (contains(all_contact_keys(), k) ? "not a key of a" + what + "; " : std::string("unknown key; ")) +
-                   "allowed keys of a" + what + ": " + join(allowed, ", "));
-        }
+        check_key(k, *v, key, std::string(" ") + to_string(c.kind) + " contact", allowed, all_contact_keys());
         if (k == "name") c.name = r.str(*v, key);
         else if (k == "nodes") c.nodes = r.names(*v, key);
         else if (k == "clearance") c.clearance = r.real(*v, key);
