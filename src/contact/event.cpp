@@ -144,14 +144,10 @@ class EventDriven final : public RunContext {
           start_free();
         }
       } else {
-        t_ = engine_->advance(tout, y1);
-        y_ = y1;
-        F_ = 0.0;
         // Free flight: no contact work over the step (an impact at its end books its
         // impulse's work P·Ẋ_C itself), damping power at the pre-impact state.
         dW_override = 0.0;
-        P_end = dissipation_power();
-        const FreeFlight::Outcome o = free.after_advance([&]() {
+        const FreeFlight::Outcome o = free.advance(tout, y1, &P_end, [&]() {
           return rigid ? reaction_rigid(t_) : reaction_held(t_, held_from_full().data());
         });
         if (o == FreeFlight::Outcome::Contact) {

@@ -56,6 +56,18 @@ class RunContext::FreeFlight {
     r.engine_->reinit(r.t_, r.y_);
   }
 
+  /// One engine step of the free phase toward tout (F = 0), then its root if any
+  /// (after_advance). *P_end: the damping power at the step's end before an impact.
+  template <class Reaction>
+  Outcome advance(double tout, Eigen::VectorXd& y1, double* P_end, Reaction reaction) {
+    RunContext& r = rc_;
+    r.t_ = r.engine_->advance(tout, y1);
+    r.y_ = y1;
+    r.F_ = 0.0;
+    *P_end = r.dissipation_power();
+    return after_advance(reaction);
+  }
+
   /// After an engine advance of the free phase (state in t_, y_): handles a root. The
   /// caller restarts the phase its outcome names. `reaction()`: the contact force that
   /// would hold node 0 on the cam at (t_, y_) (called with node 0 put on the cam).

@@ -111,12 +111,8 @@ class LeeMultistep final : public RunContext {
           start_free();
         }
       } else {
-        t_ = engine_->advance(tout, y1);
-        y_ = y1;
-        F_ = 0.0;
-        P_end = dissipation_power();
-        const FreeFlight::Outcome o = free.after_advance(
-            [this]() { return engine_->held_force(t_, y_.data()); });
+        const FreeFlight::Outcome o =
+            free.advance(tout, y1, &P_end, [this]() { return engine_->held_force(t_, y_.data()); });
         if (o == FreeFlight::Outcome::Contact) {
           in_contact = true;
           start_held();
