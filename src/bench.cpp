@@ -546,49 +546,37 @@ class Bench {
       }
     }
 
+    // A baseline run (holonomic or event) of scene s: its row named by its model, engine
+    // and rtol.
+    auto baseline = [&](Scene s) {
+      BenchRow row;
+      row.scene = label;
+      row.method = to_string(s.contact.model);
+      row.engine = to_string(s.solver.integrator);
+      row.variant = "-";
+      row.tol = s.solver.rtol;
+      measure(si, s, row);
+    };
     // ---- event-driven on every engine (elastic scenes, full sweep) ----
     // The comparator of Lee on the same engine and tolerance (issue 14): stiff bars are
     // where the engines differ.
     if (!o_.quick && !si.rigid) {
       for (Integrator eng : engines)
         for (double rtol : {1e-6, 1e-8}) {
-          BenchRow row;
-          row.scene = label;
-          row.method = "event";
-          row.engine = to_string(eng);
-          row.variant = "-";
-          row.tol = rtol;
           Scene s = base;
           s.contact.model = ContactModel::Event;
           s.solver.integrator = eng;
           s.solver.rtol = rtol;
           s.solver.atol = std::min(s.solver.atol, 1e-3 * rtol);
-          measure(si, s, row);
+          baseline(s);
         }
     }
 
     // ---- holonomic and event at the scene's default tolerance ----
-    {
-      BenchRow row;
-      row.scene = label;
-      row.method = "holonomic";
-      row.engine = to_string(base.solver.integrator);
-      row.variant = "-";
-      row.tol = base.solver.rtol;
+    for (ContactModel model : {ContactModel::Holonomic, ContactModel::Event}) {
       Scene s = base;
-      s.contact.model = ContactModel::Holonomic;
-      measure(si, s, row);
-    }
-    {
-      BenchRow row;
-      row.scene = label;
-      row.method = "event";
-      row.engine = to_string(base.solver.integrator);
-      row.variant = "-";
-      row.tol = base.solver.rtol;
-      Scene s = base;
-      s.contact.model = ContactModel::Event;
-      measure(si, s, row);
+      s.contact.model = model;
+      baseline(s);
     }
   }
 

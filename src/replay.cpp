@@ -22,6 +22,13 @@ Eigen::VectorXd initial_state(const Scene& scene, const FollowerModel& model) {
   }
   return y;
 }
+// M⁻¹e₀: the velocity change of a unit impulse on node 0.
+Eigen::VectorXd impulse_response(const FollowerModel& model) {
+  Eigen::VectorXd col0 = Eigen::VectorXd::Zero(model.n()), e0 = Eigen::VectorXd::Zero(model.n());
+  e0[0] = 1.0;
+  model.solve_mass(e0.data(), col0.data());
+  return col0;
+}
 }  // namespace
 
 ReplayResult replay_lee_steps(const Scene& scene, const std::vector<LeeStep>& steps) {
@@ -33,9 +40,7 @@ ReplayResult replay_lee_steps(const Scene& scene, const std::vector<LeeStep>& st
   const auto engine = make_engine(model, scene);
   ContactLaw& law = engine->law();
   law.kind = ContactLaw::Kind::Ramp;
-  Eigen::VectorXd col0 = Eigen::VectorXd::Zero(n), e0 = Eigen::VectorXd::Zero(n);
-  e0[0] = 1.0;
-  model->solve_mass(e0.data(), col0.data());  // M⁻¹e₀: an impulse's velocity change
+  const Eigen::VectorXd col0 = impulse_response(*model);
   for (const LeeStep& s : steps) {
     law.t0 = s.t0;
     law.h = s.h;
@@ -78,9 +83,7 @@ ReplayResult replay_force_history(const Scene& scene, const std::vector<LeeStep>
   law.kind = ContactLaw::Kind::Table;
   law.table_t = &T;
   law.table_F = &F;
-  Eigen::VectorXd col0 = Eigen::VectorXd::Zero(n), e0 = Eigen::VectorXd::Zero(n);
-  e0[0] = 1.0;
-  model->solve_mass(e0.data(), col0.data());
+  const Eigen::VectorXd col0 = impulse_response(*model);
   double t = T.front();
   engine->reinit(t, y);
   for (size_t k = 0; k <= t_imp.size(); ++k) {

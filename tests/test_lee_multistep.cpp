@@ -31,6 +31,18 @@ double max_force_diff(const RunResult& a, const RunResult& b) {
   return d;
 }
 
+// The same scene run by Lee (on its engine: the multistep method on cvode-bdf) and by the
+// event-driven method.
+struct LeeAndEvent {
+  RunResult lee, ev;
+};
+LeeAndEvent lee_and_event(Scene s) {
+  s.contact.model = ContactModel::Lee;
+  RunResult lee = simulate(s);
+  s.contact.model = ContactModel::Event;
+  return {std::move(lee), simulate(s)};
+}
+
 struct Variant {
   const char* name;
   MassMatrixKind mass;
@@ -51,10 +63,7 @@ TEST_P(LeeMultistepHeld, B1MatchesHeldBarWithoutRestarts) {
   s.solver.atol = 1e-12;
   s.run.t_end = 0.02;
   s.run.output_dt = 1e-4;
-  s.contact.model = ContactModel::Lee;
-  const RunResult lee = simulate(s);
-  s.contact.model = ContactModel::Event;
-  const RunResult ev = simulate(s);
+  const auto [lee, ev] = lee_and_event(s);
   ASSERT_TRUE(lee.summary.finished) << lee.summary.message;
   ASSERT_TRUE(ev.summary.finished) << ev.summary.message;
   EXPECT_EQ(lee.summary.separations, 0);
@@ -115,10 +124,7 @@ TEST(LeeMultistep, B2EventsAsEventDriven) {
   s.solver.integrator = Integrator::CvodeBdf;
   s.solver.rtol = 1e-10;
   s.run.t_end = 0.08;
-  s.contact.model = ContactModel::Lee;
-  const RunResult lee = simulate(s);
-  s.contact.model = ContactModel::Event;
-  const RunResult ev = simulate(s);
+  const auto [lee, ev] = lee_and_event(s);
   ASSERT_TRUE(lee.summary.finished) << lee.summary.message;
   ASSERT_TRUE(ev.summary.finished) << ev.summary.message;
   ASSERT_GE(ev.summary.impacts, 3);
