@@ -32,8 +32,7 @@ int main(int argc, char** argv) {
         s.solver.atol = 1e-9;
         s.contact.model = integ == Integrator::CvodeBdf ? ContactModel::Event : ContactModel::Lee;
         auto model = build_model(s);
-        auto eng = make_engine(model, s);
-        eng->law().kind = ContactLaw::Kind::None;
+        auto eng = make_engine(model, s.solver, s.contact.model == ContactModel::Lee, s.contact.tol_u);  // no contact force
         const int n = model->n();
         Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n), y1(2 * n);
         y.head(n) = model->initial_displacement();

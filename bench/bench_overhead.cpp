@@ -4,7 +4,7 @@
 //   For each scene (paper cases A, B1, B2, shortened) and engine (arkode-erk,
 //   arkode-dirk, cvode-bdf): run Lee with an Observer recording each accepted step's
 //   velocity-level ramp (Observer::on_lee_step), then replay: a fresh engine of the same
-//   kind takes exactly those steps with those ramps (ContactLaw::Ramp), once each, no
+//   kind takes exactly those steps with those ramps (StepRamp), once each, no
 //   iteration (src/replay.cpp). Both timed with std::clock in this process (Lee: the
 //   whole Simulator::run, engine construction and output rows included; replay: engine
 //   construction and the steps); median of R repeats (a Lee run over 5 s CPU is timed

@@ -2,8 +2,10 @@
 //
 //   First-order form, y = [q; v] (2n unknowns):
 //     q̇ = v,   M v̇ = f₀ − K q − C v + e₀ F(t, q₀, v₀)
-//   F is the contact force law of the running method: a ramp F(t) linear over the step
-//   (Lee), a penalty law F(s, ŝ) (penalty), or zero (free flight).
+//   F is the running method's ContactForce (src/contact_force.hpp: Lee's force shape over
+//   a step, a penalty law, the held contact, …; none set: F = 0, free flight). The engine
+//   knows nothing of contact models or scenes: it gets a follower model, the solver's
+//   settings and, from the method, the force.
 //
 // Two ways to drive an engine:
 //   * trial steps (Lee): step(t, y, h) takes exactly one step of size h from a saved
@@ -24,6 +26,7 @@
 #include "camdyn/cam.hpp"
 #include "camdyn/model.hpp"
 #include "camdyn/scene.hpp"
+#include "contact_force.hpp"
 
 namespace camdyn {
 
@@ -42,51 +45,7 @@ class SundialsError : public std::runtime_error {
 int check_flag(int flag, const char* call);
 
 /// "auto" → dense for a handful of unknowns, KLU beyond.
-LinearSolverKind resolve_linear_solver(const Scene& scene, int nodes);
-
-/// The contact force on node 0 (F = −p ≥ 0 pushes the follower away from the cam).
-struct ContactLaw {
-  enum class Kind { None, Ramp, Penalty, Prescribed, Held, Table };
-  Kind kind = Kind::None;
-  // Ramp: F(t) = F0 + (F1 − F0)x + Fc·4x(1 − x), x = (t − t0)/h on the step [t0, t0 + h]
-  // (Fc = 0: the classic linear ramp; Fc ≠ 0: the located step's two-parameter shape).
-  double t0 = 0, h = 1, F0 = 0, F1 = 0, Fc = 0;
-  // Penalty: s = X_C − q₀ (penetration > 0), ŝ = Ẋ_C − v₀.
-  //   linear:        F = max(0, k_p s + c_p ŝ)               while s > 0
-  //   hunt_crossley: F = max(0, k_p sⁿ (1 + c_p ŝ))          while s > 0
-  const Cam* cam = nullptr;
-  const CamDrive* drive = nullptr;
-  PenaltyLaw law = PenaltyLaw::Linear;
-  double kp = 0, cp = 0, exponent = 1.5;
-  // Prescribed (held bar, node 0 moving with the cam; this model's node 0 is the bar's
-  // node 1): F = −K₁₀ X_C(t) − C₁₀ Ẋ_C(t) − M₁₀ Ẍ_C(t), independent of the state.
-  double k10 = 0, c10 = 0, m10 = 0;
-  // Table: F(t) piecewise linear through (table_t[i], table_F[i]) (increasing times; the
-  // end values outside) — a given force history (bench/bench_overhead's replay).
-  const std::vector<double>* table_t = nullptr;
-  const std::vector<double>* table_F = nullptr;
-  // Held (node 0 on the cam, the full follower; cvode-bdf only): the acceleration level's
-  // force F = (Ẍ_C − ü₀,free(q, v)) / M*, a function of the whole state that the engine's
-  // right-hand side evaluates itself (force() returns 0 for it), so that node 0 moves with
-  // the cam's acceleration; the displacement and velocity levels are the engine's
-  // projection (Engine::set_held_projection).
-
-  double force(double t, double q0, double v0) const;
-  /// The cam's contact-point motion at t (needs cam and drive). The last value is kept:
-  /// the right-hand side, the projection and the root function of one step ask for the
-  /// same t.
-  CamMotion cam_motion(double t) const;
-  mutable double cached_t_ = std::numeric_limits<double>::quiet_NaN();
-  mutable CamMotion cached_motion_{};
-  /// Penalty only (else 0): the elastic part of the law, F_el(s) = k_p s (linear) or
-  /// k_p sⁿ (Hunt–Crossley) for s > 0, and its stored energy V_p(s) = ∫₀ˢ F_el = ½k_p s²
-  /// or k_p sⁿ⁺¹/(n+1). The rest of the force, F − F_el, is the damper's: its power
-  /// (F − F_el)·ŝ ≥ 0 is dissipated (also where the clipping F = 0 releases V_p).
-  double elastic_force(double t, double q0) const;
-  double stored_energy(double t, double q0) const;
-  /// dF/dq₀ and dF/dv₀ (for the Jacobian); zero except for an active penalty.
-  void derivatives(double t, double q0, double v0, double* dFdq, double* dFdv) const;
-};
+LinearSolverKind resolve_linear_solver(const SolverSpec& solver, int nodes);
 
 struct EngineStats {
   long steps = 0;         ///< internal steps taken (accepted by the engine)
@@ -137,16 +96,24 @@ class Engine {
   /// would amplify an undamped stiff mode). No-op for the one-step engines.
   virtual void set_max_order(int /*q*/) {}
 
-  /// Native mode, held contact (ContactLaw::Kind::Held): on, every internal step's
+  /// The force on node 0 from now on (borrowed: it must outlive its use; nullptr: F = 0).
+  /// A HeldContact makes the right-hand side hold node 0 on its path (acceleration level).
+  void set_contact(const ContactForce* force) {
+    contact_ = force;
+    held_ = dynamic_cast<const HeldContact*>(force);
+  }
+  const ContactForce* contact() const { return contact_; }
+
+  /// Native mode, held contact (set_contact with a HeldContact): on, every internal step's
   /// corrected state is projected onto u₀ = X_C(t), u̇₀ = Ẋ_C(t) by a rigid translation
   /// of the follower (no strain changes), and the projection enters the engine's history (CVODE's projection interface: no restart). Only the
   /// multistep engine supports it. @throws std::logic_error on the other engines.
   virtual void set_held_projection(bool /*on*/) {
     throw std::logic_error(std::string("held projection: not supported by ") + name());
   }
-  /// The held contact's force at state y with node 0 on the cam (u₀ = X_C, u̇₀ = Ẋ_C):
-  /// F = (Ẍ_C(t) − e₀ᵀM⁻¹(f₀ − Kq − Cv)) / M*. Not thread-safe (a buffer per engine).
-  double held_force(double t, const double* y) const;
+  /// The held contact's force at state y with node 0 on the cam's c (u₀ = X_C, u̇₀ = Ẋ_C):
+  /// F = (Ẍ_C − e₀ᵀM⁻¹(f₀ − Kq − Cv)) / M*. Not thread-safe (a buffer per engine).
+  double held_force(const CamMotion& c, const double* y) const;
 
   /// Rootfinding (native mode): one function g(t, y); direction −1, 0 or +1.
   using RootFn = std::function<double(double t, const double* y)>;
@@ -155,10 +122,9 @@ class Engine {
   bool hit_root() const { return hit_root_; }
 
   const EngineStats& stats() const { return stats_; }
-  ContactLaw& law() { return law_; }
 
  protected:
-  /// ydot = f(t, y) with the current contact law. Counts evaluations.
+  /// ydot = f(t, y) with the current contact force. Counts evaluations.
   void rhs(double t, const double* y, double* ydot);
   /// The mass-matrix form (DIRK): fi = [v; f₀ − Kq − Cv + e₀F].
   void rhs_unscaled(double t, const double* y, double* out);
@@ -169,7 +135,8 @@ class Engine {
   std::shared_ptr<const FollowerModel> model_;
   SolverSpec spec_;
   int n_;
-  ContactLaw law_;
+  const ContactForce* contact_ = nullptr;
+  const HeldContact* held_ = nullptr;  // contact_ if it is a HeldContact
   EngineStats stats_;
   Eigen::VectorXd work_, local_error_;
   RootFn root_fn_;
@@ -181,12 +148,10 @@ class Engine {
   static int root_callback(double t, const double* y, double* g, void* ud) noexcept;
 };
 
-/// Make the engine a scene asks for. @throws SundialsError on a SUNDIALS failure.
-std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model,
-                                    const Scene& scene);
-/// The same, with the use stated: trial = true for Lee's trial steps (tighter CVODE
-/// Newton and error tolerances), false for native stepping.
-std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model,
-                                    const Scene& scene, bool trial);
+/// Make the engine `solver` asks for. trial = true for Lee's trial steps (tighter CVODE
+/// Newton and error tolerances; tol_u > 0: CVODE's tolerances kept ≤ 10⁻² tol_u), false
+/// for native stepping. @throws SundialsError on a SUNDIALS failure.
+std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, const SolverSpec& solver,
+                                    bool trial, double tol_u = 0.0);
 
 }  // namespace camdyn

@@ -42,93 +42,12 @@ int check_flag(int flag, const char* call) {
   return flag;
 }
 
-LinearSolverKind resolve_linear_solver(const Scene& scene, int nodes) {
-  LinearSolverKind k = scene.solver.linear_solver;
+LinearSolverKind resolve_linear_solver(const SolverSpec& solver, int nodes) {
+  LinearSolverKind k = solver.linear_solver;
   // IDA's DAE carries the contact force λ and the GGL multiplier μ besides q, v.
-  const int unknowns = 2 * nodes + (scene.solver.integrator == Integrator::Ida ? 2 : 0);
+  const int unknowns = 2 * nodes + (solver.integrator == Integrator::Ida ? 2 : 0);
   if (k == LinearSolverKind::Auto) k = (unknowns <= 16) ? LinearSolverKind::Dense : LinearSolverKind::Klu;
   return k;
-}
-
-// ---------------------------------------------------------------- contact law ----
-double ContactLaw::force(double t, double q0, double v0) const {
-  switch (kind) {
-    case Kind::None:
-    case Kind::Held:  // evaluated by the engine's right-hand side (Engine::rhs)
-      return 0.0;
-    case Kind::Ramp: {
-      const double x = (t - t0) / h;
-      return F0 + (F1 - F0) * x + Fc * 4.0 * x * (1.0 - x);
-    }
-    case Kind::Table: {
-      const std::vector<double>& T = *table_t;
-      const std::vector<double>& F = *table_F;
-      if (t <= T.front()) return F.front();
-      if (t >= T.back()) return F.back();
-      const size_t i = size_t(std::upper_bound(T.begin(), T.end(), t) - T.begin());  // T[i-1] ≤ t < T[i]
-      const double x = (t - T[i - 1]) / (T[i] - T[i - 1]);
-      return F[i - 1] + x * (F[i] - F[i - 1]);
-    }
-    case Kind::Prescribed: {
-      const CamMotion m = cam_motion(t);
-      return -k10 * m.X - c10 * m.Xdot - m10 * m.Xddot;
-    }
-    case Kind::Penalty: {
-      const CamMotion m = cam_motion(t);
-      const double s = m.X - q0;  // penetration
-      if (s <= 0.0) return 0.0;
-      const double sd = m.Xdot - v0;
-      double F;
-      if (law == PenaltyLaw::Linear)
-        F = kp * s + cp * sd;
-      else
-        F = kp * std::pow(s, exponent) * (1.0 + cp * sd);
-      return F > 0.0 ? F : 0.0;
-    }
-  }
-  return 0.0;
-}
-
-CamMotion ContactLaw::cam_motion(double t) const {
-  if (t == cached_t_) return cached_motion_;
-  cached_motion_ = cam->motion(drive->theta(t), drive->omega(t), drive->omega_dot(t));
-  cached_t_ = t;
-  return cached_motion_;
-}
-
-double ContactLaw::elastic_force(double t, double q0) const {
-  if (kind != Kind::Penalty) return 0.0;
-  const double s = cam_motion(t).X - q0;
-  if (s <= 0.0) return 0.0;
-  return law == PenaltyLaw::Linear ? kp * s : kp * std::pow(s, exponent);
-}
-
-double ContactLaw::stored_energy(double t, double q0) const {
-  if (kind != Kind::Penalty) return 0.0;
-  const double s = cam_motion(t).X - q0;
-  if (s <= 0.0) return 0.0;
-  return law == PenaltyLaw::Linear ? 0.5 * kp * s * s
-                                   : kp * std::pow(s, exponent + 1.0) / (exponent + 1.0);
-}
-
-void ContactLaw::derivatives(double t, double q0, double v0, double* dFdq, double* dFdv) const {
-  *dFdq = 0.0;
-  *dFdv = 0.0;
-  if (kind != Kind::Penalty) return;
-  const CamMotion m = cam_motion(t);
-  const double s = m.X - q0;
-  if (s <= 0.0) return;
-  const double sd = m.Xdot - v0;
-  if (law == PenaltyLaw::Linear) {
-    if (kp * s + cp * sd <= 0.0) return;
-    *dFdq = -kp;
-    *dFdv = -cp;
-  } else {
-    const double sn = std::pow(s, exponent);
-    if (1.0 + cp * sd <= 0.0) return;
-    *dFdq = -kp * exponent * std::pow(s, exponent - 1.0) * (1.0 + cp * sd);
-    *dFdv = -kp * sn * cp;
-  }
 }
 
 // ---------------------------------------------------------------- engine base ----
@@ -139,7 +58,7 @@ void Engine::rhs_unscaled(double t, const double* y, double* out) {
   model_->internal_force(q, v, out + n_);
   if (homogeneous_)
     for (int i = 0; i < n_; ++i) out[n_ + i] -= model_->f0()[i];
-  out[n_] += law_.force(t, q[0], v[0]);
+  out[n_] += contact_ ? contact_->force(t, q[0], v[0]) : 0.0;
   ++stats_.rhs_evals;
 }
 
@@ -147,9 +66,9 @@ void Engine::rhs(double t, const double* y, double* ydot) {
   rhs_unscaled(t, y, ydot);
   std::copy(ydot + n_, ydot + 2 * n_, work_.data());
   model_->solve_mass(work_.data(), ydot + n_);
-  if (law_.kind == ContactLaw::Kind::Held) {
+  if (held_) {
     // v̇ = a_free + M⁻¹e₀ F with F = (Ẍ_C − a_free,0) / M*: node 0 accelerates with the cam.
-    const double F = (law_.cam_motion(t).Xddot - ydot[n_]) / model_->mstar();
+    const double F = (held_->path(t).Xddot - ydot[n_]) / model_->mstar();
     Eigen::Map<Eigen::VectorXd>(ydot + n_, n_) += F * mass_col0();
   }
 }
@@ -164,11 +83,10 @@ const Eigen::VectorXd& Engine::mass_col0() {
   return mass_col0_;
 }
 
-double Engine::held_force(double t, const double* y) const {
+double Engine::held_force(const CamMotion& c, const double* y) const {
   // node 0 on the cam: the state the projection gives (an interpolated state between step
   // ends is off the cam by the integration error, which the stiff first element would
   // turn into force: k_e·δ)
-  const CamMotion c = law_.cam_motion(t);
   held_y_.resize(2 * n_);
   std::copy(y, y + 2 * n_, held_y_.data());
   held_y_[0] = c.X;
@@ -356,7 +274,7 @@ class SchurSolver {
   }
   // x = (I − γJ)⁻¹ b, in place on b (length 2n).
   //
-  // Held contact (ContactLaw::Kind::Held): v̇ = P M⁻¹(f₀ − Kq − Cv) + M⁻¹e₀Ẍ_C/M* with
+  // Held contact (a HeldContact set): v̇ = P M⁻¹(f₀ − Kq − Cv) + M⁻¹e₀Ẍ_C/M* with
   // P = I − M⁻¹e₀e₀ᵀ/M*, so J's velocity rows are P M⁻¹[−K, −C] and e₀ᵀP = 0. The
   // system becomes S x_v = M b_v − γK b_u + e₀λ with x_v,0 = b_v,0 (node 0's velocity
   // row is the identity): bordered with z = S⁻¹e₀ (one solve per factorisation),
@@ -445,14 +363,18 @@ class SchurLinearSolver {
   }
   SUNLinearSolver ls() { return ls_.get(); }
   SUNMatrix placeholder() { return placeholder_.get(); }
-  // From the linear-system function: the system I − γJ at (t, y) under `law`.
-  void prepare(const ContactLaw& law, double t, const double* y, double gamma) {
-    law.derivatives(t, y[0], y[n_], &dFdq_, &dFdv_);
+  // From the linear-system function: the system I − γJ at (t, y) under the contact force f.
+  void prepare(const ContactForce* f, double t, const double* y, double gamma) {
+    if (f)
+      f->derivatives(t, y[0], y[n_], &dFdq_, &dFdv_);
+    else
+      dFdq_ = dFdv_ = 0.0;
     gamma_ = gamma;
   }
-  /// The law whose kind (Held or not) each solve reads: the held contact's system has the
-  /// same S, bordered (SchurSolver::solve), so a phase switch needs no new factorisation.
-  void watch(const ContactLaw* law) { law_ = law; }
+  /// Where each solve reads whether the contact is held (the engine's held contact, or
+  /// null): the held contact's system has the same S, bordered (SchurSolver::solve), so
+  /// a phase switch needs no new factorisation.
+  void watch(const HeldContact* const* held) { held_ = held; }
 
  private:
   static int ls_setup(SUNLinearSolver S, SUNMatrix) {
@@ -468,8 +390,7 @@ class SchurLinearSolver {
     try {
       auto* self = static_cast<SchurLinearSolver*>(S->content);
       N_VScale(1.0, b, x);
-      self->schur_.solve(N_VGetArrayPointer(x),
-                         self->law_ && self->law_->kind == ContactLaw::Kind::Held);
+      self->schur_.solve(N_VGetArrayPointer(x), self->held_ && *self->held_);
       return 0;
     } catch (...) {
       return -1;
@@ -478,7 +399,7 @@ class SchurLinearSolver {
   SchurSolver schur_;
   long n_;
   double gamma_ = 0, dFdq_ = 0, dFdv_ = 0;
-  const ContactLaw* law_ = nullptr;
+  const HeldContact* const* held_ = nullptr;
   Mat placeholder_;
   LS ls_;
 };
@@ -563,7 +484,7 @@ class DirkEngine final : public Engine {
                     sunbooleantype* jcur, double gamma, void* ud, N_Vector, N_Vector, N_Vector) {
     try {
       auto* self = static_cast<DirkEngine*>(ud);
-      self->sls_.prepare(self->law_, t, N_VGetArrayPointer(y), gamma);
+      self->sls_.prepare(self->contact_, t, N_VGetArrayPointer(y), gamma);
       *jcur = SUNTRUE;
       return 0;
     } catch (...) {
@@ -617,7 +538,7 @@ class CvodeEngine final : public Engine {
     // the state, for the penalty Jacobian) to the linear-system function.
     check_flag(CVodeSetLinearSolver(mem, sls_.ls(), sls_.placeholder()), "CVodeSetLinearSolver");
     check_flag(CVodeSetLinSysFn(mem, &CvodeEngine::linsys), "CVodeSetLinSysFn");
-    sls_.watch(&law_);
+    sls_.watch(&held_);
   }
   ~CvodeEngine() override {
     mem_.reset();  // CVodeFree before the linear solver it references
@@ -711,7 +632,7 @@ class CvodeEngine final : public Engine {
       auto* self = static_cast<CvodeEngine*>(ud);
       const int n = self->n_;
       const double* y = N_VGetArrayPointer(ycur);
-      const CamMotion c = self->law_.cam_motion(t);
+      const CamMotion c = self->held_->path(t);
       Eigen::Map<Eigen::VectorXd> C(N_VGetArrayPointer(corr), 2 * n);
       C.head(n).setConstant(c.X - y[0]);
       C.tail(n).setConstant(c.Xdot - y[n]);
@@ -724,7 +645,7 @@ class CvodeEngine final : public Engine {
                     double gamma, void* ud, N_Vector, N_Vector, N_Vector) {
     try {
       auto* self = static_cast<CvodeEngine*>(ud);
-      self->sls_.prepare(self->law_, t, N_VGetArrayPointer(y), gamma);
+      self->sls_.prepare(self->contact_, t, N_VGetArrayPointer(y), gamma);
       *jcur = SUNTRUE;
       return 0;
     } catch (...) {
@@ -742,25 +663,21 @@ class CvodeEngine final : public Engine {
 
 }  // namespace
 
-std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, const Scene& scene) {
-  return make_engine(std::move(model), scene, scene.contact.model == ContactModel::Lee);
-}
-
-std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, const Scene& scene,
-                                    bool trial) {
-  const LinearSolverKind lsk = resolve_linear_solver(scene, model->n());
-  switch (scene.solver.integrator) {
+std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, const SolverSpec& solver,
+                                    bool trial, double tol_u) {
+  const LinearSolverKind lsk = resolve_linear_solver(solver, model->n());
+  switch (solver.integrator) {
     case Integrator::ArkodeErk:
-      return std::make_unique<ErkEngine>(std::move(model), scene.solver, trial);
+      return std::make_unique<ErkEngine>(std::move(model), solver, trial);
     case Integrator::ArkodeDirk:
-      return std::make_unique<DirkEngine>(std::move(model), scene.solver, trial, lsk);
+      return std::make_unique<DirkEngine>(std::move(model), solver, trial, lsk);
     case Integrator::CvodeBdf:
-      return std::make_unique<CvodeEngine>(std::move(model), scene.solver, lsk, trial, scene.contact.tol_u);
+      return std::make_unique<CvodeEngine>(std::move(model), solver, lsk, trial, tol_u);
     case Integrator::Ida:
       // The DAE engine (ida_engine.cpp) integrates the held contact itself; the runner
-      // still wants an Engine for its bookkeeping (contact law None): an ERK engine in
+      // still wants an Engine for its bookkeeping (no contact force): an ERK engine in
       // native mode that is never stepped.
-      return std::make_unique<ErkEngine>(std::move(model), scene.solver, false);
+      return std::make_unique<ErkEngine>(std::move(model), solver, false);
   }
   throw std::invalid_argument("unknown integrator");
 }

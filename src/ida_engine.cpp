@@ -232,7 +232,7 @@ struct IdaHeldContact::Impl {
 IdaHeldContact::IdaHeldContact(std::shared_ptr<const FollowerModel> model, const Scene& scene, CamFn cam) {
   const int n = model->n();
   N_ = 2 * n + 3;
-  lsk_ = resolve_linear_solver(scene, n);  // "auto": KLU when 2n + 2 > 16 (λ, μ counted)
+  lsk_ = resolve_linear_solver(scene.solver, n);  // "auto": KLU when 2n + 2 > 16 (λ, μ counted)
   impl_ = std::make_unique<Impl>(std::move(model), scene, std::move(cam), lsk_ == LinearSolverKind::Dense);
   qv_.resize(2 * n);
 }

@@ -162,7 +162,7 @@ FollowerModel::FollowerModel(const Scene& scene) {
   desc_.rhs_terms.push_back("contact_force");
   desc_.damping = damped_;
   desc_.unknowns = 2 * n_ + (scene.solver.integrator == Integrator::Ida ? 3 : 0);  // IDA: + λ, μ, W
-  desc_.linear_solver = to_string(resolve_linear_solver(scene, n_));
+  desc_.linear_solver = to_string(resolve_linear_solver(scene.solver, n_));
   if (scene.solver.integrator == Integrator::ArkodeErk) desc_.linear_solver = "none";
 }
 

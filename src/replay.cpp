@@ -37,9 +37,9 @@ ReplayResult replay_lee_steps(const Scene& scene, const std::vector<LeeStep>& st
   Eigen::VectorXd y = initial_state(scene, *model), y1(2 * n);
   ReplayResult r;
   const std::clock_t c0 = std::clock();
-  const auto engine = make_engine(model, scene);
-  ContactLaw& law = engine->law();
-  law.kind = ContactLaw::Kind::Ramp;
+  const auto engine = make_engine(model, scene.solver, scene.contact.model == ContactModel::Lee, scene.contact.tol_u);
+  StepRamp law;
+  engine->set_contact(&law);
   const Eigen::VectorXd col0 = impulse_response(*model);
   for (const LeeStep& s : steps) {
     law.t0 = s.t0;
@@ -77,12 +77,12 @@ ReplayResult replay_force_history(const Scene& scene, const std::vector<LeeStep>
   ReplayResult r;
   if (T.empty()) return r;
   const std::clock_t c0 = std::clock();
-  const auto engine = make_engine(model, scene, /*trial=*/false);
+  const auto engine = make_engine(model, scene.solver, /*trial=*/false);
   if (scene.solver.rtol <= 1e-8) engine->set_max_order(5);  // the run's policy
-  ContactLaw& law = engine->law();
-  law.kind = ContactLaw::Kind::Table;
-  law.table_t = &T;
-  law.table_F = &F;
+  ForceTable law;
+  law.t = &T;
+  law.F = &F;
+  engine->set_contact(&law);
   const Eigen::VectorXd col0 = impulse_response(*model);
   double t = T.front();
   engine->reinit(t, y);

@@ -130,7 +130,7 @@ class RunContext {
              const std::atomic<bool>* stop)
       : sc_(sc), model_(std::move(model)), m_(*model_), cam_(sc.cam), drive_(sc.cam),
         obs_(obs), stop_(stop), n_(m_.n()), designer_(sc, cam_.lift()) {
-    engine_ = make_engine(model_, sc_);
+    engine_ = make_engine(model_, sc_.solver, sc_.contact.model == ContactModel::Lee, sc_.contact.tol_u);
     sum_.scene = sc.title;
     sum_.integrator = to_string(sc.solver.integrator);
     sum_.contact_model = to_string(sc.contact.model);
@@ -229,18 +229,14 @@ class RunContext {
   //   potential  V = ½ qᵀ K q − f₀ᵀ q (strain + return spring) + V_p(s) (penalty spring)
   //   dissipated D = ∫ vᵀ C v dt + ∫ (F − F_el) ŝ dt (penalty damper) + impact losses
   // and W = ΔT + ΔV + D is the balance checked by the stability suite.
-  double potential() const {
-    return m_.potential_energy(y_.data()) + engine_->law().stored_energy(t_, y_[0]);
-  }
-  // Power dissipated at the current state: damping, plus the penalty damper's
-  // (F − F_el)·ŝ (zero for the other methods, whose contact losses are impacts).
-  double dissipation_power() const {
-    double P = m_.damping_power(y_.data() + n_);
-    const ContactLaw& law = engine_->law();
-    if (law.kind == ContactLaw::Kind::Penalty)
-      P += (F_ - law.elastic_force(t_, y_[0])) * (cam_at(t_).Xdot - y_[n_]);
-    return P;
-  }
+  double potential() const { return m_.potential_energy(y_.data()) + contact_potential(); }
+  // Power dissipated at the current state: damping, plus the contact's own (the penalty
+  // damper's; zero for the other methods, whose contact losses are impacts).
+  double dissipation_power() const { return m_.damping_power(y_.data() + n_) + contact_dissipation(); }
+  /// A method whose contact stores energy (penalty: V_p(s)) and dissipates power (its
+  /// damper's (F − F_el)·ŝ) at the current state reports them here.
+  virtual double contact_potential() const { return 0.0; }
+  virtual double contact_dissipation() const { return 0.0; }
 
   void emit_row() { emit_row_at(t_, y_, F_, contact_, potential(), work_, dissipated_); }
   void emit_row_at(double t, const Eigen::VectorXd& y, double F, bool contact, double V,
@@ -374,10 +370,8 @@ class RunContext {
   class FreeFlight;
   friend class FreeFlight;
 
-  std::shared_ptr<const FollowerModel> held_;
-  ContactLaw* held_law_ = nullptr;
   double v_impact_ref_ = 0.0;
-  Eigen::VectorXd rbuf_, abuf_;
+  Eigen::VectorXd rbuf_;  // full_acceleration's right-hand side
   Eigen::VectorXd y_prev_, hq_, hv_, ha_, hb_;  // Lee's contact-work quadrature and interpolation
 
   const Scene& sc_;

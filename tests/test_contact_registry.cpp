@@ -22,8 +22,8 @@ class TinyBilateral final : public detail::RunContext {
 
  private:
   void run_method() override {
-    ContactLaw& law = engine_->law();
-    law.kind = ContactLaw::Kind::Ramp;
+    StepRamp law;  // the method's force on the contact node: a shape over each step
+    engine_->set_contact(&law);
     const double Ms = m_.mstar(), h = 1e-3;
     Eigen::VectorXd y1(2 * n_);
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {

@@ -38,8 +38,7 @@ double harmonic(double q0, double v0, double qeq, double w, double t) {
 double rigid_error_fixed(Integrator integ, int nsteps, double T) {
   Scene s = rigid_scene(integ);
   auto model = build_model(s);
-  auto eng = make_engine(model, s);  // model "lee" → trial-step mode
-  eng->law().kind = ContactLaw::Kind::None;
+  auto eng = make_engine(model, s.solver, s.contact.model == ContactModel::Lee, s.contact.tol_u);  // "lee" → trial steps; no contact force
   Eigen::VectorXd y(2), y1(2);
   const double q0 = model->initial_displacement()[0], v0 = 0.3;
   y << q0, v0;
@@ -94,8 +93,7 @@ TEST(Engines, RigidHarmonicCvodeToleranceProportionality) {
     s.solver.rtol = tol;
     s.solver.atol = tol * 1e-2;
     auto model = build_model(s);
-    auto eng = make_engine(model, s);
-    eng->law().kind = ContactLaw::Kind::None;
+    auto eng = make_engine(model, s.solver, s.contact.model == ContactModel::Lee, s.contact.tol_u);  // no contact force
     Eigen::VectorXd y(2), y1(2);
     const double q0 = model->initial_displacement()[0];
     y << q0, 0.3;
@@ -134,8 +132,7 @@ double simulated_frequency(Integrator integ, MassMatrixKind mk, int mode, double
   *exact = w;
   Eigen::VectorXd phi = es.eigenvectors().col(mode);
   Eigen::VectorXd qeq = Eigen::MatrixXd(model->K()).ldlt().solve(model->f0());
-  auto eng = make_engine(model, s);
-  eng->law().kind = ContactLaw::Kind::None;
+  auto eng = make_engine(model, s.solver, s.contact.model == ContactModel::Lee, s.contact.tol_u);  // no contact force
   Eigen::VectorXd y(2 * n), y1(2 * n);
   y.head(n) = qeq + 1e-3 * phi / phi.cwiseAbs().maxCoeff();
   y.tail(n).setZero();

@@ -50,9 +50,10 @@ TEST(LeeOverhead, HookReportsTheRampOfEachAcceptedVelocity) {  // classic step (
   }
   // From each accepted state, one step with the reported ramp: the accepted velocity.
   auto model = build_model(sim.scene());
-  auto engine = make_engine(model, sim.scene());
-  ContactLaw& law = engine->law();
-  law.kind = ContactLaw::Kind::Ramp;
+  auto engine = make_engine(model, sim.scene().solver, sim.scene().contact.model == ContactModel::Lee,
+                            sim.scene().contact.tol_u);
+  StepRamp law;
+  engine->set_contact(&law);
   Eigen::VectorXd y(2), y1(2);
   double dv = 0, du = 0, vmax = 0;
   for (size_t k = 0; k < rec.steps.size(); ++k) {

@@ -13,11 +13,30 @@ namespace camdyn {
 namespace detail {
 namespace {
 
+// The held bar's load from the cam: node 0 moves with the cam, so the held model's first
+// node (the bar's node 1) feels −K₁₀X_C − C₁₀Ẋ_C − M₁₀Ẍ_C, whatever the state.
+class HeldBarCoupling final : public ContactForce {
+ public:
+  HeldBarCoupling(const Cam& cam, const CamDrive& drive, double k10, double c10, double m10)
+      : cam_(cam, drive), k10_(k10), c10_(c10), m10_(m10) {}
+  double force(double t, double, double) const override {
+    const CamMotion m = cam_.at(t);
+    return -k10_ * m.X - c10_ * m.Xdot - m10_ * m.Xddot;
+  }
+
+ private:
+  CamPath cam_;
+  double k10_, c10_, m10_;
+};
+
 class EventDriven final : public RunContext {
  public:
   using RunContext::RunContext;
 
  private:
+  std::shared_ptr<const FollowerModel> held_;  // the bar with node 0 held
+  std::unique_ptr<HeldBarCoupling> coupling_;   // its load from the cam
+  Eigen::VectorXd hbuf_, abuf_;  // the held model's right-hand side and acceleration
 
   // ------------------------------------------------------------ event-driven -------
   // Contact phase: node 0 moves with the cam (u₀ = X_C, u̇₀ = Ẋ_C, ü₀ = Ẍ_C); the other
@@ -37,13 +56,12 @@ class EventDriven final : public RunContext {
     const FollowerModel& h = *held_;
     const int r = h.n();
     const CamMotion c = cam_at(t);
-    held_law_->kind = ContactLaw::Kind::Prescribed;
     // q̈_r from the held model's equation of motion.
-    rbuf_.resize(r);
-    h.internal_force(yr, yr + r, rbuf_.data());
-    rbuf_[0] += held_law_->force(t, 0, 0);
+    hbuf_.resize(r);
+    h.internal_force(yr, yr + r, hbuf_.data());
+    hbuf_[0] += coupling_->force(t, 0, 0);
     abuf_.resize(r);
-    h.solve_mass(rbuf_.data(), abuf_.data());
+    h.solve_mass(hbuf_.data(), abuf_.data());
     const double r0 = m_.f0()[0] - m_.k00() * c.X - m_.k10() * yr[0] - m_.c00() * c.Xdot - m_.c10() * yr[r];
     return m_.m00() * c.Xddot + m_.m10() * abuf_[0] - r0;
   }
@@ -66,19 +84,12 @@ class EventDriven final : public RunContext {
   void run_method() override {
     const bool holonomic = sc_.contact.model == ContactModel::Holonomic;
     const bool rigid = m_.rigid();
-    ContactLaw& law = engine_->law();
-    law.kind = ContactLaw::Kind::None;
     std::unique_ptr<Engine> held_engine;
     if (!rigid) {
       held_ = m_.held_model();
-      held_engine = make_engine(held_, sc_);
-      held_law_ = &held_engine->law();
-      held_law_->kind = ContactLaw::Kind::Prescribed;
-      held_law_->cam = &cam_;
-      held_law_->drive = &drive_;
-      held_law_->k10 = m_.k10();
-      held_law_->c10 = m_.c10();
-      held_law_->m10 = m_.m10();
+      held_engine = make_engine(held_, sc_.solver, /*trial=*/false);
+      coupling_ = std::make_unique<HeldBarCoupling>(cam_, drive_, m_.k10(), m_.c10(), m_.m10());
+      held_engine->set_contact(coupling_.get());
       if (!holonomic)
         held_engine->set_root([this](double t, const double* yr) { return reaction_held(t, yr); }, -1);
       // The BDF2 cap of elastic followers (engines.cpp) made cvode-bdf resolve the undamped

@@ -41,6 +41,7 @@ class LeeClassic final : public RunContext {
   using RunContext::RunContext;
 
  private:
+  StepRamp ramp_;  // the force on the contact node over the step being taken
 
   // ------------------------------------------------------------ Lee's method ------
   // One level's fixed-point iteration with constant halving. `eval(F)` returns the
@@ -143,8 +144,8 @@ class LeeClassic final : public RunContext {
   }
 
   void run_method() override {
-    ContactLaw& law = engine_->law();
-    law.kind = ContactLaw::Kind::Ramp;
+    StepRamp& law = ramp_;
+    engine_->set_contact(&ramp_);
     const double Ms = m_.mstar();
     const int q = engine_->error_order();
     const bool eq17 = sc_.contact.error_variant == ErrorVariant::Eq17;

@@ -21,6 +21,7 @@ class LeeLocated final : public RunContext {
   using RunContext::RunContext;
 
  private:
+  StepRamp ramp_;  // the force on the contact node over the step being taken
 
   // ------------------------------------------------- Lee's method: the located step ----
   // One step t → t+h from the accepted state (q, v, F), F the acceleration level's force
@@ -246,7 +247,7 @@ class LeeLocated final : public RunContext {
   // Solve the contact step's force shape for a step of hs (from t_, y_, F_): returns the
   // end state in y1 and the engine's local error norm; (F1, Fc) the shape.
   double solve_held_step(double hs, double t1, Eigen::VectorXd& y1, double& F1, double& Fc) {
-    ContactLaw& law = engine_->law();
+    StepRamp& law = ramp_;
     law.t0 = t_;
     law.h = hs;
     law.F0 = F_;
@@ -341,8 +342,8 @@ class LeeLocated final : public RunContext {
   }
 
   void run_method() override {
-    ContactLaw& law = engine_->law();
-    law.kind = ContactLaw::Kind::Ramp;
+    StepRamp& law = ramp_;
+    engine_->set_contact(&ramp_);
     const double Ms = m_.mstar();
     const int q = engine_->error_order();
     const double e_rest = sc_.contact.restitution;

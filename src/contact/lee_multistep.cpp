@@ -46,19 +46,28 @@ namespace camdyn {
 namespace detail {
 namespace {
 
+// Node 0 held on the cam's contact point.
+class CamHeld final : public HeldContact {
+ public:
+  CamHeld(const Cam& cam, const CamDrive& drive) : cam_(cam, drive) {}
+  CamMotion path(double t) const override { return cam_.at(t); }
+
+ private:
+  CamPath cam_;
+};
+
 class LeeMultistep final : public RunContext {
  public:
   LeeMultistep(const Scene& sc, std::shared_ptr<const FollowerModel> model, Observer* obs,
                const std::atomic<bool>* stop)
       : RunContext(sc, std::move(model), obs, stop) {
-    engine_ = make_engine(model_, sc_, /*trial=*/false);  // native stepping
+    engine_ = make_engine(model_, sc_.solver, /*trial=*/false);  // native stepping
   }
 
  private:
+  CamHeld held_{cam_, drive_};
+
   void run_method() override {
-    ContactLaw& law = engine_->law();
-    law.cam = &cam_;
-    law.drive = &drive_;
     // The event-driven method's order policy (event.cpp), so that the two compare on the
     // same engine: BDF ≤ 2 for bars, up to 5 with stability-limit detection at rtol ≤ 1e-8.
     if (sc_.solver.rtol <= 1e-8) engine_->set_max_order(5);
@@ -67,16 +76,16 @@ class LeeMultistep final : public RunContext {
     double ta = NAN, ga = 0.0;
     auto start_held = [&]() {
       ta = NAN;
-      law.kind = ContactLaw::Kind::Held;
+      engine_->set_contact(&held_);
       engine_->set_held_projection(true);
       if (bilateral_)
         engine_->set_root(nullptr, 0);
       else
-        engine_->set_root([this](double t, const double* y) { return engine_->held_force(t, y); }, -1);
+        engine_->set_root([this](double t, const double* y) { return engine_->held_force(held_.path(t), y); }, -1);
       engine_->reinit(t_, y_);
     };
     auto start_free = [&]() {
-      law.kind = ContactLaw::Kind::None;
+      engine_->set_contact(nullptr);
       engine_->set_held_projection(false);
       free.start();
     };
@@ -99,7 +108,7 @@ class LeeMultistep final : public RunContext {
         t_ = engine_->advance(tout, y1);
         y_ = y1;
         separation = engine_->hit_root();
-        F_ = separation ? 0.0 : engine_->held_force(t_, y_.data());
+        F_ = separation ? 0.0 : engine_->held_force(cam_at(t_), y_.data());
         if (!bilateral_ && F_ < 0.0) F_ = 0.0;
         F_end = F_;
         const double gb = Ft * Xdot_prev, gc = F_ * cam_at(t_).Xdot;
@@ -112,7 +121,7 @@ class LeeMultistep final : public RunContext {
         }
       } else {
         const FreeFlight::Outcome o =
-            free.advance(tout, y1, &P_end, [this]() { return engine_->held_force(t_, y_.data()); });
+            free.advance(tout, y1, &P_end, [this]() { return engine_->held_force(cam_at(t_), y_.data()); });
         if (o == FreeFlight::Outcome::Contact) {
           in_contact = true;
           start_held();

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "network_run.hpp"
+#include "penalty_law.hpp"
 #include "run_context.hpp"
 
 namespace camdyn {
@@ -33,7 +34,7 @@ class NetworkPenalty final : public NetworkRun {
         mk_.acceleration_jacobian(t, y, y + n_, dadq, dadv);
         for (int j = 0; j < m_; ++j) {
           double dq = 0, dv = 0;  // dF/ds, dF/dŝ
-          law(j, -gap(j, yv_, cm), -gap_rate(j, yv_, cm), nullptr, &dq, &dv);
+          penalty_derivatives(params(j), -gap(j, yv_, cm), -gap_rate(j, yv_, cm), &dq, &dv);
           // F = f(s, ŝ), s = −T_j q: ∂(M⁻¹T_jᵀF)/∂q = −dq M⁻¹T_jᵀT_j
           const Eigen::RowVectorXd& tj = mk_.contacts()[j].t;
           dadq.noalias() -= dq * mk_.MinvTt().col(j) * tj;
@@ -53,29 +54,12 @@ class NetworkPenalty final : public NetworkRun {
   Eigen::VectorXd yv_;
 
   // The law of contact j at penetration s and its rate ŝ; el: the elastic part.
-  double law(int j, double s, double sd, double* el = nullptr, double* dFds = nullptr,
-             double* dFdsd = nullptr) const {
+  PenaltyParams params(int j) const {
     const MechanismContact& c = mk_.contacts()[j];
-    if (el) *el = 0.0;
-    if (dFds) *dFds = 0.0;
-    if (dFdsd) *dFdsd = 0.0;
-    if (s <= 0.0) return 0.0;
-    const double kp = c.penalty_stiffness, cp = c.penalty_damping;
-    double F, E;
-    if (sc_.contact.penalty_law == PenaltyLaw::Linear) {
-      E = kp * s;
-      F = E + cp * sd;
-      if (F > 0 && dFds) *dFds = kp;
-      if (F > 0 && dFdsd) *dFdsd = cp;
-    } else {
-      const double nn = sc_.contact.penalty_exponent, sn = std::pow(s, nn);
-      E = kp * sn;
-      F = E * (1.0 + cp * sd);
-      if (F > 0 && dFds) *dFds = kp * nn * std::pow(s, nn - 1.0) * (1.0 + cp * sd);
-      if (F > 0 && dFdsd) *dFdsd = kp * sn * cp;
-    }
-    if (el) *el = E;
-    return F > 0.0 ? F : 0.0;
+    return {sc_.contact.penalty_law, c.penalty_stiffness, c.penalty_damping, sc_.contact.penalty_exponent};
+  }
+  double law(int j, double s, double sd, double* el = nullptr) const {
+    return penalty_force(params(j), s, sd, el);
   }
   void forces(double t, const Eigen::VectorXd& y, Eigen::VectorXd& F) const {
     const CamMotion cm = cam_at(t);
@@ -88,11 +72,7 @@ class NetworkPenalty final : public NetworkRun {
     for (int j = 0; j < m_; ++j) {
       const MechanismContact& c = mk_.contacts()[j];
       const double s = -(c.t.dot(Eigen::Map<const Eigen::VectorXd>(q, n_)) + c.g0 - (c.cam ? cm.X : 0.0));
-      if (s <= 0.0) continue;
-      V += sc_.contact.penalty_law == PenaltyLaw::Linear
-               ? 0.5 * c.penalty_stiffness * s * s
-               : c.penalty_stiffness * std::pow(s, sc_.contact.penalty_exponent + 1.0) /
-                     (sc_.contact.penalty_exponent + 1.0);
+      if (s > 0.0) V += penalty_energy(params(j), s);
     }
     return V;
   }

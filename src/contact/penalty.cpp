@@ -6,22 +6,62 @@
 #include <cmath>
 #include <limits>
 
+#include "penalty_law.hpp"
 #include "run_context.hpp"
 
 namespace camdyn {
 namespace detail {
 namespace {
 
-class Penalty final : public RunContext {
+// The law on the contact node: s = X_C − q₀ (penetration), ŝ = Ẋ_C − v₀.
+class PenaltyForce final : public ContactForce {
  public:
-  using RunContext::RunContext;
+  PenaltyForce(const Cam& cam, const CamDrive& drive, const PenaltyParams& p) : cam_(cam, drive), p_(p) {}
+  double force(double t, double q0, double v0) const override {
+    const CamMotion m = cam_.at(t);
+    return penalty_force(p_, m.X - q0, m.Xdot - v0);
+  }
+  void derivatives(double t, double q0, double v0, double* dFdq, double* dFdv) const override {
+    const CamMotion m = cam_.at(t);
+    double dFds, dFdsd;
+    penalty_derivatives(p_, m.X - q0, m.Xdot - v0, &dFds, &dFdsd);
+    *dFdq = -dFds;
+    *dFdv = -dFdsd;
+  }
+  double elastic_force(double t, double q0) const {
+    const CamMotion m = cam_.at(t);
+    double el = 0.0;
+    penalty_force(p_, m.X - q0, 0.0, &el);
+    return el;
+  }
+  double stored_energy(double t, double q0) const { return penalty_energy(p_, cam_.at(t).X - q0); }
 
  private:
+  CamPath cam_;
+  PenaltyParams p_;
+};
+
+class Penalty final : public RunContext {
+ public:
+  Penalty(const Scene& sc, std::shared_ptr<const FollowerModel> model, Observer* obs, const std::atomic<bool>* stop)
+      : RunContext(sc, std::move(model), obs, stop),
+        law_(cam_, drive_,
+             {sc.contact.penalty_law, sc.contact.penalty_stiffness, sc.contact.penalty_damping,
+              sc.contact.penalty_exponent}) {}
+
+ private:
+  PenaltyForce law_;
+
+  // (the law acts once set on the engine, at the start state)
+  double contact_potential() const override { return engine_->contact() ? law_.stored_energy(t_, y_[0]) : 0.0; }
+  double contact_dissipation() const override {
+    return engine_->contact() ? (F_ - law_.elastic_force(t_, y_[0])) * (cam_at(t_).Xdot - y_[n_]) : 0.0;
+  }
   void prepare_start(const CamMotion& cm0, bool touching) override {
     if (touching && F_ > 0.0) y_.head(n_).array() -= penalty_start_penetration(cm0.Xddot);
     // ŝ = 0 at t = 0: the force the penalty law gives there (also in the t = 0 row).
-    setup_penalty_law();
-    F_ = engine_->law().force(0.0, y_[0], y_[n_]);
+    engine_->set_contact(&law_);
+    F_ = law_.force(0.0, y_[0], y_[n_]);
   }
 
   // ------------------------------------------------------------ native stepping ----
@@ -51,19 +91,8 @@ class Penalty final : public RunContext {
     return s0;
   }
 
-  void setup_penalty_law() {
-    ContactLaw& law = engine_->law();
-    law.kind = ContactLaw::Kind::Penalty;
-    law.cam = &cam_;
-    law.drive = &drive_;
-    law.law = sc_.contact.penalty_law;
-    law.kp = sc_.contact.penalty_stiffness;
-    law.cp = sc_.contact.penalty_damping;
-    law.exponent = sc_.contact.penalty_exponent;
-  }
-
   void run_method() override {
-    ContactLaw& law = engine_->law();
+    engine_->set_contact(&law_);
     engine_->reinit(t_, y_);
     Eigen::VectorXd y1(2 * n_);
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
@@ -75,7 +104,7 @@ class Penalty final : public RunContext {
       const double h = t1 - t_;
       t_ = t1;
       y_ = y1;
-      F_ = law.force(t_, y_[0], y_[n_]);
+      F_ = law_.force(t_, y_[0], y_[n_]);
       const bool now_contact = F_ > 0.0;
       if (!contact_ && now_contact) {
         ++sum_.impacts;
