@@ -119,6 +119,8 @@ using detail::CvDel;
 using detail::ErkDel;
 using detail::make_nvec;
 using detail::not_null;
+using detail::kTrialMaxSteps;
+using detail::trial_min_step;
 inline Eigen::Map<Eigen::VectorXd> map(N_Vector v) {
   return Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(v), N_VGetLength(v));
 }
@@ -515,7 +517,8 @@ class CvodeEngine final : public Engine {
     check_flag(CVodeInit(mem, &CvodeEngine::f, 0.0, y_.get()), "CVodeInit");
     check_flag(CVodeSetUserData(mem, this), "CVodeSetUserData");
     check_flag(CVodeSStolerances(mem, spec.rtol, spec.atol), "CVodeSStolerances");
-    check_flag(CVodeSetMaxNumSteps(mem, -1), "CVodeSetMaxNumSteps");
+    check_flag(CVodeSetMaxNumSteps(mem, trial ? kTrialMaxSteps : -1), "CVodeSetMaxNumSteps");
+    if (trial) check_flag(CVodeSetErrHandlerFn(mem, &detail::quiet_cvode_errors, nullptr), "CVodeSetErrHandlerFn");
     // BDF orders 3–5 are not A-stable: an undamped stiff bar has modes on the imaginary
     // axis far beyond the step's resolution, which they amplify (seen as step sizes
     // collapsing to ~0.5/ω_max). Elastic followers therefore run A-stable BDF1–2; the
@@ -560,6 +563,7 @@ class CvodeEngine final : public Engine {
     check_flag(CVodeSetInitStep(mem_.get(), first_h_ > 0 ? std::min(h, first_h_) : h), "CVodeSetInitStep");
     ++stats_.reinits;
     check_flag(CVodeSetStopTime(mem_.get(), t + h), "CVodeSetStopTime");
+    check_flag(CVodeSetMinStep(mem_.get(), trial_min_step(t, h)), "CVodeSetMinStep");
     double tret = t;
     long ns0 = 0, ns1 = 0;
     CVodeGetNumSteps(mem_.get(), &ns0);
@@ -577,6 +581,7 @@ class CvodeEngine final : public Engine {
     map(y_.get()) = y;
     check_flag(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
     check_flag(CVodeSetInitStep(mem_.get(), spec_.initial_step), "CVodeSetInitStep");
+    check_flag(CVodeSetMinStep(mem_.get(), 0.0), "CVodeSetMinStep");  // native: no trial bound
     ++stats_.reinits;
   }
   double advance(double tout, Eigen::VectorXd& y_out) override {

@@ -246,8 +246,8 @@ double FollowerModel::damping_power(const double* v) const {
   return V.dot(C_ * V);
 }
 
-std::shared_ptr<const FollowerModel> FollowerModel::held_model() const {
-  if (rigid_ || n_ < 2) throw std::logic_error("held_model: needs an elastic bar");
+std::shared_ptr<const FollowerModel> FollowerModel::free_part() const {
+  if (rigid_ || n_ < 2) throw std::logic_error("free_part: needs an elastic bar");
   std::shared_ptr<FollowerModel> h(new FollowerModel());
   const int r = n_ - 1;
   h->n_ = r;

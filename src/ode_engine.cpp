@@ -46,6 +46,8 @@ using detail::ContextHolder;
 using detail::LS;
 using detail::Mat;
 using detail::not_null;
+using detail::kTrialMaxSteps;
+using detail::trial_min_step;
 using detail::NVec;
 
 using detail::ArkDel;
@@ -354,7 +356,8 @@ class CvodeOde final : public EngineBase {
     check(CVodeInit(mem, &EngineBase::rhs_cb, 0.0, y_.get()), "CVodeInit");
     check(CVodeSetUserData(mem, this), "CVodeSetUserData");
     check(CVodeSStolerances(mem, spec.rtol, spec.atol), "CVodeSStolerances");
-    check(CVodeSetMaxNumSteps(mem, -1), "CVodeSetMaxNumSteps");
+    check(CVodeSetMaxNumSteps(mem, trial ? kTrialMaxSteps : -1), "CVodeSetMaxNumSteps");
+    if (trial) check(CVodeSetErrHandlerFn(mem, &detail::quiet_cvode_errors, nullptr), "CVodeSetErrHandlerFn");
     if (spec.max_step > 0) check(CVodeSetMaxStep(mem, spec.max_step), "CVodeSetMaxStep");
     check(CVodeSetLinearSolver(mem, ls_.get(), A_.get()), "CVodeSetLinearSolver");
     if (sys_.jacobian) check(CVodeSetJacFn(mem, &EngineBase::jac_cb), "CVodeSetJacFn");
@@ -375,6 +378,7 @@ class CvodeOde final : public EngineBase {
     ++stats_.reinits;
     check(CVodeSetInitStep(mem, first_h_ > 0 ? std::min(h, first_h_) : h), "CVodeSetInitStep");
     check(CVodeSetStopTime(mem, t + h), "CVodeSetStopTime");
+    check(CVodeSetMinStep(mem, trial_min_step(t, h)), "CVodeSetMinStep");
     steps_.base = 0;
     setups_.base = 0;
     double tret = t;
@@ -393,6 +397,7 @@ class CvodeOde final : public EngineBase {
     map(y_.get()) = y;
     check(CVodeReInit(mem, t, y_.get()), "CVodeReInit");  // zeroes CVODE's counters
     check(CVodeSetInitStep(mem, spec_.initial_step), "CVodeSetInitStep");
+    check(CVodeSetMinStep(mem, 0.0), "CVodeSetMinStep");  // native stepping: no trial bound
     ++stats_.reinits;
     steps_.base = 0;
     setups_.base = 0;

@@ -11,6 +11,8 @@
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 
+#include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <memory>
 
@@ -18,6 +20,20 @@
 
 namespace camdyn {
 namespace detail {
+
+// A CVODE trial step (one Lee step, CV_NORMAL to its end) takes at most kTrialMaxSteps
+// internal steps, none shorter than trial_min_step: CVODE would otherwise keep stepping
+// with t + h = t ("the solver will continue anyway") and never return where the
+// integrator cannot follow a trial force (its error test failing at every h). Either
+// limit makes CVode fail; Lee's step then rejects and halves.
+constexpr long kTrialMaxSteps = 100000;
+inline double trial_min_step(double t, double h) {
+  return std::min(0.5 * h, 16.0 * DBL_EPSILON * std::abs(t + h));
+}
+/// CVODE's message handler for trial steps: silent. A trial step CVODE cannot complete is
+/// an expected outcome (Lee's step rejects it and halves; Summary::iteration_failures
+/// counts it), not a message for the user's terminal.
+inline void quiet_cvode_errors(int, const char*, const char*, char*, void*) {}
 
 struct ContextHolder {
   SUNContext ctx = nullptr;

@@ -595,3 +595,45 @@ TEST(NetworkTolerance, ImpactTimeErrorFollowsTheTolerance) {
 
 }  // namespace
 }  // namespace camdyn
+
+namespace camdyn {
+namespace {
+
+// ---- Lee on cvode-bdf on a network: the OHC train's cam impact and seat separation -----
+// A trial step whose force CVODE could not follow once made CVODE step with t + h = t
+// forever (t_end 0.01 and 0.02 hung; 0.015 ran): now a trial step's work is bounded, the
+// iteration's matrix comes from DIRK responses, a gap at zero that is not closing at a
+// step's start is no switch, and a separation that keeps relocating is released. The
+// run must reach every t_end with the event-driven method's events (a second
+// formulation, on ERK): times to 1e-8 s, impulses to 1e-4.
+class NetworkLeeOnCvode : public ::testing::TestWithParam<double> {};
+
+TEST_P(NetworkLeeOnCvode, OhcTrainReachesTEndWithTheEventMethodsEvents) {
+  Scene lee = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_bucket_tappet.toml");
+  lee.run.t_end = GetParam();
+  lee.run.output_dt = 1e-4;
+  lee.solver.integrator = Integrator::CvodeBdf;
+  Scene ev = lee;
+  ev.contact.model = ContactModel::Event;
+  ev.solver.integrator = Integrator::ArkodeErk;
+  const NetRun a = run(lee), b = run(ev);
+  ASSERT_TRUE(a.sum.finished) << a.sum.message;
+  ASSERT_TRUE(b.sum.finished) << b.sum.message;
+  ASSERT_EQ(a.sum.events.size(), b.sum.events.size());
+  ASSERT_GE(a.sum.events.size(), 2u);  // the cam's impact and the seat's separation
+  for (size_t i = 0; i < a.sum.events.size(); ++i) {
+    const ContactEvent &x = a.sum.events[i], &y = b.sum.events[i];
+    EXPECT_EQ(x.kind, y.kind) << i;
+    EXPECT_EQ(x.contact, y.contact) << i;
+    EXPECT_NEAR(x.t, y.t, 1e-8) << i << ' ' << x.kind << ' ' << x.contact;
+    EXPECT_NEAR(x.impulse, y.impulse, 1e-4 * std::abs(y.impulse)) << i;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(TEnd, NetworkLeeOnCvode, ::testing::Values(0.01, 0.02),
+                         [](const ::testing::TestParamInfo<double>& i) {
+                           return i.param == 0.01 ? std::string("t_end_10ms") : std::string("t_end_20ms");
+                         });
+
+}  // namespace
+}  // namespace camdyn

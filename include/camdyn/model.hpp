@@ -24,6 +24,9 @@
 namespace camdyn {
 
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, long>;
+namespace detail {
+class HeldPhase;
+}
 
 /// A linear follower model. Immutable once built; share it between engines.
 class FollowerModel {
@@ -41,7 +44,7 @@ class FollowerModel {
   const SparseMatrix& K() const { return K_; }
   const SparseMatrix& C() const { return C_; }     ///< empty if undamped
   const Eigen::VectorXd& f0() const { return f0_; }
-  double m_rigid() const { return m_; }
+  double m_rigid() const { return m_; }  ///< rigid: m, k, c
   double k_rigid() const { return k_; }
   double c_rigid() const { return c_; }
   double spring_k() const { return spring_k_; }
@@ -69,21 +72,13 @@ class FollowerModel {
 
   const ModelDescription& description() const { return desc_; }
 
-  /// elastic_bar: the bar with node 0 held (moving with the cam), n − 1 nodes; its node 0
-  /// is the bar's node 1. Used by the holonomic and event-driven methods' contact phase.
-  /// @pre !rigid()
-  std::shared_ptr<const FollowerModel> held_model() const;
-  /// Coupling of node 1 to node 0: K₁₀, C₁₀, M₁₀ (zero for a rigid follower).
-  double k10() const { return rigid_ ? 0.0 : K_.coeff(1, 0); }
-  double c10() const { return (rigid_ || !damped_) ? 0.0 : C_.coeff(1, 0); }
-  double m10() const { return rigid_ ? 0.0 : M_.coeff(1, 0); }
-  /// Row 0 of M, K, C at columns 0 and 1 (the contact node's coupling).
-  double m00() const { return rigid_ ? m_ : M_.coeff(0, 0); }
-  double k00() const { return rigid_ ? k_ : K_.coeff(0, 0); }
-  double c00() const { return rigid_ ? c_ : (damped_ ? C_.coeff(0, 0) : 0.0); }
 
  private:
+  friend class detail::HeldPhase;  // the held phase (src/held_phase.hpp) builds the free part
   FollowerModel() = default;
+  /// elastic_bar: the model over nodes 1 … n − 1 (node 0 removed; its node 0 is this
+  /// model's node 1). @pre !rigid()
+  std::shared_ptr<const FollowerModel> free_part() const;
   int n_ = 1;
   bool rigid_ = true, lumped_ = true, damped_ = false;
   double m_ = 1, k_ = 0, c_ = 0, spring_k_ = 0, preload_ = 0, q_far0_ = 0;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../held_phase.hpp"
 #include "free_flight.hpp"
 #include "run_context.hpp"
 
@@ -13,20 +14,15 @@ namespace camdyn {
 namespace detail {
 namespace {
 
-// The held bar's load from the cam: node 0 moves with the cam, so the held model's first
-// node (the bar's node 1) feels −K₁₀X_C − C₁₀Ẋ_C − M₁₀Ẍ_C, whatever the state.
-class HeldBarCoupling final : public ContactForce {
+// The held phase's load from the cam on the free part (held_phase.hpp), whatever the state.
+class HeldCoupling final : public ContactForce {
  public:
-  HeldBarCoupling(const Cam& cam, const CamDrive& drive, double k10, double c10, double m10)
-      : cam_(cam, drive), k10_(k10), c10_(c10), m10_(m10) {}
-  double force(double t, double, double) const override {
-    const CamMotion m = cam_.at(t);
-    return -k10_ * m.X - c10_ * m.Xdot - m10_ * m.Xddot;
-  }
+  HeldCoupling(const Cam& cam, const CamDrive& drive, const HeldPhase& held) : cam_(cam, drive), held_(held) {}
+  double force(double t, double, double) const override { return held_.coupling_load(cam_.at(t)); }
 
  private:
   CamPath cam_;
-  double k10_, c10_, m10_;
+  const HeldPhase& held_;
 };
 
 class EventDriven final : public RunContext {
@@ -34,26 +30,23 @@ class EventDriven final : public RunContext {
   using RunContext::RunContext;
 
  private:
-  std::shared_ptr<const FollowerModel> held_;  // the bar with node 0 held
-  std::unique_ptr<HeldBarCoupling> coupling_;   // its load from the cam
-  Eigen::VectorXd hbuf_, abuf_;  // the held model's right-hand side and acceleration
+  HeldPhase phase_{m_};                       // the contact row held (coordinate partitioning)
+  std::unique_ptr<HeldCoupling> coupling_;    // the cam's load on its free part
+  Eigen::VectorXd hbuf_, abuf_;  // the free part's right-hand side and acceleration
 
   // ------------------------------------------------------------ event-driven -------
   // Contact phase: node 0 moves with the cam (u₀ = X_C, u̇₀ = Ẋ_C, ü₀ = Ẍ_C); the other
-  // nodes obey the held bar M_rr q̈_r = f_r − K_rr q_r − C_rr v_r − (K₁₀X_C + C₁₀Ẋ_C + M₁₀Ẍ_C)e₁,
-  // and the reaction is F = M₀₀Ẍ_C + M₀₁q̈₁ − (f₀ − K q − C v)₀. Free phase: F = 0.
+  // nodes obey M_rr q̈_r = f_r − K_rr q_r − C_rr v_r − (K_r0X_C + C_r0Ẋ_C + M_r0Ẍ_C), and the
+  // reaction is F = M₀₀Ẍ_C + M_0r q̈_r − (f₀ − K q − C v)₀ (src/held_phase.hpp). Free phase: F = 0.
   // Switches: the reaction reaching zero (decreasing) → separation; the gap closing
   // (decreasing) → impact, a Newton impulse P = (1 + e) ŝ⁻ / M* on node 0, Δv = M⁻¹e₀ P,
   // then contact if the reaction is compressive (plastic), else free flight (bounce).
   // Roots are located by SUNDIALS rootfinding (rigid contact phase: bisection on the
   // closed-form reaction) to round-off in time.
   // "holonomic" is the contact phase alone, reporting where the reaction turns tensile.
-  double reaction_rigid(double t) const {
-    const CamMotion c = cam_at(t);
-    return m_.m_rigid() * c.Xddot - (m_.f0()[0] - m_.k_rigid() * c.X - m_.c_rigid() * c.Xdot);
-  }
+  double reaction_rigid(double t) const { return phase_.reaction(cam_at(t), nullptr, nullptr, nullptr); }
   double reaction_held(double t, const double* yr) {
-    const FollowerModel& h = *held_;
+    const FollowerModel& h = *phase_.free_part();
     const int r = h.n();
     const CamMotion c = cam_at(t);
     // q̈_r from the held model's equation of motion.
@@ -62,8 +55,7 @@ class EventDriven final : public RunContext {
     hbuf_[0] += coupling_->force(t, 0, 0);
     abuf_.resize(r);
     h.solve_mass(hbuf_.data(), abuf_.data());
-    const double r0 = m_.f0()[0] - m_.k00() * c.X - m_.k10() * yr[0] - m_.c00() * c.Xdot - m_.c10() * yr[r];
-    return m_.m00() * c.Xddot + m_.m10() * abuf_[0] - r0;
+    return phase_.reaction(c, yr, yr + r, abuf_.data());
   }
   void full_from_held(double t, const Eigen::VectorXd& yr) {
     const CamMotion c = cam_at(t);
@@ -86,9 +78,8 @@ class EventDriven final : public RunContext {
     const bool rigid = m_.rigid();
     std::unique_ptr<Engine> held_engine;
     if (!rigid) {
-      held_ = m_.held_model();
-      held_engine = make_engine(held_, sc_.solver, /*trial=*/false);
-      coupling_ = std::make_unique<HeldBarCoupling>(cam_, drive_, m_.k10(), m_.c10(), m_.m10());
+      held_engine = make_engine(phase_.free_part(), sc_.solver, /*trial=*/false);
+      coupling_ = std::make_unique<HeldCoupling>(cam_, drive_, phase_);
       held_engine->set_contact(coupling_.get());
       if (!holonomic)
         held_engine->set_root([this](double t, const double* yr) { return reaction_held(t, yr); }, -1);

@@ -106,6 +106,14 @@ class NetworkLee final : public NetworkRun {
     sys.max_order = 2;  // cvode-bdf: A-stable BDF on the undamped stiff chain (as elastic bars)
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, true));
     eng_ = engines_.back().get();
+    resp_eng_ = eng_;
+    if (!eng_->estimates_error() && sys.linear) {
+      // CVODE: the responses (the iteration's matrix) from the one-step implicit engine,
+      // whose step map is affine (CVODE from rest under a unit shape of 1/(W h²) failed
+      // its error test at the first step)
+      engines_.push_back(OdeEngine::make(Integrator::ArkodeDirk, sc.solver, sys, true));
+      resp_eng_ = engines_.back().get();
+    }
     F0_ = F1_ = Fc_ = Eigen::VectorXd::Zero(m_);
     slope_ = Eigen::VectorXd::Zero(m_);
     fs_.resize(m_);
@@ -113,6 +121,7 @@ class NetworkLee final : public NetworkRun {
 
  private:
   OdeEngine* eng_;
+  OdeEngine* resp_eng_;  // the engine of the unit-shape responses (eng_, or DIRK for CVODE)
   // the force shape of the step being integrated
   double s_t0_ = 0, s_h_ = 1;
   bool homogeneous_ = false;
@@ -125,9 +134,12 @@ class NetworkLee final : public NetworkRun {
     mk_.acceleration(t, y, y + n_, fs_, yd + n_, homogeneous_);
   }
   double integrate(double t, const Eigen::VectorXd& from, double h, Eigen::VectorXd& out) {
+    return integrate_on(*eng_, t, from, h, out);
+  }
+  double integrate_on(OdeEngine& e, double t, const Eigen::VectorXd& from, double h, Eigen::VectorXd& out) {
     s_t0_ = t;
     s_h_ = h;
-    return eng_->step(t, from, h, out);
+    return e.step(t, from, h, out);
   }
 
   // Responses to a unit F₁ and F_c on each contact, per step size (a few sizes cached on
@@ -164,14 +176,14 @@ class NetworkLee final : public NetworkRun {
       F1_.setZero();
       Fc_.setZero();
       F1_[j] = amp;
-      integrate(0.0, zero, hs, r->D1[j]);
+      integrate_on(*resp_eng_, 0.0, zero, hs, r->D1[j]);
       r->D1[j] /= amp;
-      r->E1[j] = eng_->local_error() / amp;
+      r->E1[j] = resp_eng_->local_error() / amp;
       F1_[j] = 0.0;
       Fc_[j] = amp;
-      integrate(0.0, zero, hs, r->Dc[j]);
+      integrate_on(*resp_eng_, 0.0, zero, hs, r->Dc[j]);
       r->Dc[j] /= amp;
-      r->Ec[j] = eng_->local_error() / amp;
+      r->Ec[j] = resp_eng_->local_error() / amp;
       homogeneous_ = false;
       r->have[j] = 1;
       sum_.contact_iterations += 2;
@@ -235,6 +247,9 @@ class NetworkLee final : public NetworkRun {
   }
 
   StepSizeMemory steps_;  // the step-size controller (lee_step_tools.hpp)
+  static constexpr int kMaxRelocations = 4;
+  double reloc_t_ = -1.0;  // the step start of the last relocation, and their count there
+  int reloc_count_ = 0;
 
 
   // Solve the shape for the active set over a step of hs; y1 the end state, returns the
@@ -251,16 +266,20 @@ class NetworkLee final : public NetworkRun {
     double err = integrate(t_, y_, hs, y1);
     const int k = int(set.size());
     if (k == 0) return err;
-    // affine step map: a one-step engine on a linear system (else Lee's constants, iterated)
+    // affine step map: a one-step engine on a linear system. CVODE's map is affine only to
+    // its Newton tolerance: iterated, with the same responses as the iteration's matrix (a
+    // user's nonlinear follower: Lee's constants, which see only the contacts' inverse
+    // mass W — on the OHC train, whose cam and seat contacts the stiff valve joins, the
+    // iteration with them diverged and the step failed at any size).
     const bool affine = eng_->estimates_error() && mk_.linear();
     Eigen::VectorXd le = eng_->local_error();
     Eigen::MatrixXd J(2 * k, 2 * k);
-    Responses* R = affine ? &responses(hs, set) : nullptr;
+    Responses* R = mk_.linear() ? &responses(hs, set) : nullptr;
     for (int i = 0; i < k; ++i) {
       const Eigen::RowVectorXd& ti = mk_.contacts()[set[i]].t;
       for (int l = 0; l < k; ++l) {
         const int j = set[l];
-        if (affine) {
+        if (R) {
           J(2 * i, 2 * l) = ti.dot(R->D1[j].head(n_));
           J(2 * i, 2 * l + 1) = ti.dot(R->Dc[j].head(n_));
           J(2 * i + 1, 2 * l) = ti.dot(R->D1[j].tail(n_));
@@ -413,6 +432,8 @@ class NetworkLee final : public NetworkRun {
           }
         }
       const CamMotion cm0 = cam_at(t_);
+      const double h_now = std::max(1e-9 * hs, 1e-14 * std::max(1.0, std::abs(t_)));
+      bool impact_now = false;
       for (int j = 0; j < m_; ++j) {
         if (in_set[j]) continue;
         const MechanismContact& c = mk_.contacts()[j];
@@ -425,15 +446,37 @@ class NetworkLee final : public NetworkRun {
           return u;
         };
         const double x = first_below(f, g0, g1, gap_thr, hs, t1);
+        if (x >= 0.0 && x * hs <= h_now) {
+          // closed at the step's start: approaching, it is an impact now; not approaching
+          // (a contact that has just let go, a round-off below zero gap: the engine's error)
+          // it is no switch — relocating to it would shrink the step to nothing
+          if (gd0 < 0.0) {
+            resolve_impact({j}, cm0);
+            impact_now = true;
+            break;
+          }
+          continue;
+        }
         if (x >= 0.0 && x < x_first) {
           x_first = x;
           who = j;
         }
       }
+      if (impact_now) {
+        slope_.setZero();
+        continue;
+      }
       if (who >= 0 && x_first < 1.0 - 1e-9) {
         const double hx = x_first * hs;
-        if (in_set[who] && (F_[who] <= F_sep || hx <= 1e-9 * hs || hx <= 1e-14 * std::max(1.0, std::abs(t_)))) {
-          // the held force is zero at the step's start: release now
+        // relocations from this t_ toward a separation: the engine's force error (CVODE:
+        // the landed step's end force 2e-5 of the peak above zero on the OHC train) can put
+        // the pointwise root a little past every step end, the steps shrinking to nothing
+        reloc_count_ = reloc_t_ == t_ ? reloc_count_ + 1 : 1;
+        reloc_t_ = t_;
+        if (in_set[who] && (F_[who] <= F_sep || hx <= 1e-9 * hs || hx <= 1e-14 * std::max(1.0, std::abs(t_)) ||
+                            reloc_count_ > kMaxRelocations)) {
+          // the held force is zero at the step's start (or within the located root's
+          // resolution after kMaxRelocations relocations): release now
           active_[who] = 0;
           ++sum_.separations;
           record_event(EventKind::Separation, who, 0.0);
