@@ -30,8 +30,8 @@ class EventDriven final : public RunContext {
   using RunContext::RunContext;
 
  private:
-  HeldPhase phase_{m_};                       // the contact row held (coordinate partitioning)
-  std::unique_ptr<HeldCoupling> coupling_;    // the cam's load on its free part
+  HeldPhase phase_{m_};                          // the contact row held (coordinate partitioning)
+  HeldCoupling coupling_{cam_, drive_, phase_};  // the cam's load on its free part
   Eigen::VectorXd hbuf_, abuf_;  // the free part's right-hand side and acceleration
 
   // ------------------------------------------------------------ event-driven -------
@@ -52,7 +52,7 @@ class EventDriven final : public RunContext {
     // q̈_r from the held model's equation of motion.
     hbuf_.resize(r);
     h.internal_force(yr, yr + r, hbuf_.data());
-    hbuf_[0] += coupling_->force(t, 0, 0);
+    hbuf_[0] += phase_.coupling_load(c);
     abuf_.resize(r);
     h.solve_mass(hbuf_.data(), abuf_.data());
     return phase_.reaction(c, yr, yr + r, abuf_.data());
@@ -79,8 +79,7 @@ class EventDriven final : public RunContext {
     std::unique_ptr<Engine> held_engine;
     if (!rigid) {
       held_engine = make_engine(phase_.free_part(), sc_.solver, /*trial=*/false);
-      coupling_ = std::make_unique<HeldCoupling>(cam_, drive_, phase_);
-      held_engine->set_contact(coupling_.get());
+      held_engine->set_contact(&coupling_);
       if (!holonomic)
         held_engine->set_root([this](double t, const double* yr) { return reaction_held(t, yr); }, -1);
       // The BDF2 cap of elastic followers (engines.cpp) made cvode-bdf resolve the undamped
