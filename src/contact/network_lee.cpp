@@ -79,6 +79,47 @@ double first_below(const std::function<double(double)>& f, double f0, double f1,
   return hi;
 }
 
+// For a gap that starts a round-off below zero while opening: the first x where it falls
+// below zero after rising to its highest (16 samples, the highest refined by golden
+// section: a bounce shorter than a sample), bisected to round-off in time; −1 if it never
+// reaches zero or does not fall back.
+double reclosing(const std::function<double(double)>& f, double h, double t1) {
+  constexpr int K = 16;
+  int kmax = 0;
+  double fmax = f(0.0);
+  for (int k = 1; k <= K; ++k) {
+    const double v = f(double(k) / K);
+    if (v > fmax) {
+      fmax = v;
+      kmax = k;
+    }
+  }
+  double a = std::max(0.0, double(kmax - 1) / K), b = std::min(1.0, double(kmax + 1) / K);
+  const double gr = 0.6180339887498949;
+  double c = b - gr * (b - a), d = a + gr * (b - a), fc = f(c), fd = f(d);
+  for (int i = 0; i < 60; ++i) {
+    if (fc > fd) {
+      b = d; d = c; fd = fc; c = b - gr * (b - a); fc = f(c);
+    } else {
+      a = c; c = d; fc = fd; d = a + gr * (b - a); fd = f(d);
+    }
+  }
+  const double xm = fc > fd ? c : d;
+  if (std::max(fc, fd) < 0.0) return -1.0;
+  // the first sample after the highest point where the gap is below zero
+  const int k0 = int(std::floor(xm * K)) + 1;
+  for (int k = k0; k <= K; ++k) {
+    if (f(double(k) / K) >= 0.0) continue;
+    double lo = std::max(xm, double(k - 1) / K), hi = double(k) / K;
+    for (int i = 0; i < 100 && (hi - lo) * h > 4e-16 * std::max(1.0, std::abs(t1)); ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (f(mid) >= 0.0 ? lo : hi) = mid;
+    }
+    return hi;
+  }
+  return -1.0;
+}
+
 class NetworkLee final : public NetworkRun {
  public:
   NetworkLee(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
@@ -458,17 +499,20 @@ class NetworkLee final : public NetworkRun {
           quintic(g0, gd0, ga0, g1, gd1, ga1, hs, x, &u, nullptr, nullptr);
           return u;
         };
-        const double x = first_below(f, g0, g1, gap_thr, hs, t1);
+        double x = first_below(f, g0, g1, gap_thr, hs, t1);
         if (x >= 0.0 && x * hs <= h_now) {
           // closed at the step's start: approaching, it is an impact now; not approaching
           // (a contact that has just let go, a round-off below zero gap: the engine's error)
-          // it is no switch — relocating to it would shrink the step to nothing
+          // the start is no switch — relocating to it would shrink the step to nothing —
+          // but the gap may still open and close again inside the step: its first fall
+          // below zero after its highest sample
           if (gd0 < 0.0) {
             resolve_impact({j}, cm0);
             impact_now = true;
             break;
           }
-          continue;
+          x = reclosing(f, hs, t1);
+          if (x < 0.0) continue;
         }
         if (x >= 0.0 && x < x_first) {
           x_first = x;
