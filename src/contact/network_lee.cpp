@@ -32,6 +32,35 @@ namespace detail {
 namespace {
 
 
+// Golden-section search for the smallest f on [a, b] (n iterations): the better inner
+// point and its value.
+struct Sample {
+  double x, f;
+};
+Sample golden_min(const std::function<double(double)>& f, double a, double b, int n) {
+  const double gr = 0.6180339887498949;
+  double c = b - gr * (b - a), d = a + gr * (b - a);
+  double fc = f(c), fd = f(d);
+  for (int i = 0; i < n; ++i) {
+    if (fc < fd) {
+      b = d; d = c; fd = fc; c = b - gr * (b - a); fc = f(c);
+    } else {
+      a = c; c = d; fc = fd; d = a + gr * (b - a); fd = f(d);
+    }
+  }
+  return fc < fd ? Sample{c, fc} : Sample{d, fd};
+}
+
+// f(lo) ≥ 0 > f(hi): the fall through zero, bisected to round-off in time (step h ending
+// at t1); returns the first point found below zero.
+double bisect_fall(const std::function<double(double)>& f, double lo, double hi, double h, double t1) {
+  for (int i = 0; i < 100 && (hi - lo) * h > 4e-16 * std::max(1.0, std::abs(t1)); ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) >= 0.0 ? lo : hi) = mid;
+  }
+  return hi;
+}
+
 // First x ∈ (0, 1] where f falls below −thr: a sign change between K + 1 samples, or a
 // sampled minimum refined by golden section (grazing). −1 if none; else the root of f = 0
 // after the last point where f ≥ 0 (bisection to round-off in time h).
@@ -51,32 +80,17 @@ double first_below(const std::function<double(double)>& f, double f0, double f1,
     }
     if (k < K && s[k] <= s[k - 1] && s[k] <= s[k + 1] &&
         s[k] < thr + std::abs(s[k - 1] - s[k]) + std::abs(s[k + 1] - s[k])) {
-      double a = double(k - 1) / K, b = double(k + 1) / K;
-      const double gr = 0.6180339887498949;
-      double c = b - gr * (b - a), d = a + gr * (b - a);
-      double fc = f(c), fd = f(d);
-      for (int i = 0; i < 40; ++i) {
-        if (fc < fd) {
-          b = d; d = c; fd = fc; c = b - gr * (b - a); fc = f(c);
-        } else {
-          a = c; c = d; fc = fd; d = a + gr * (b - a); fd = f(d);
-        }
-      }
-      const double xm = fc < fd ? c : d, fm = std::min(fc, fd);
-      if (fm < -thr) {
+      const Sample m = golden_min(f, double(k - 1) / K, double(k + 1) / K, 40);
+      if (m.f < -thr) {
         lo = double(k - 1) / K;
-        hi = xm;
+        hi = m.x;
         break;
       }
     }
   }
   if (lo < 0) return -1.0;
   if (f(lo) < 0) return lo;
-  for (int i = 0; i < 100 && (hi - lo) * h > 4e-16 * std::max(1.0, std::abs(t1)); ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (f(mid) >= 0.0 ? lo : hi) = mid;
-  }
-  return hi;
+  return bisect_fall(f, lo, hi, h, t1);
 }
 
 // For a gap that starts a round-off below zero while opening: the first x where it falls
@@ -94,29 +108,12 @@ double reclosing(const std::function<double(double)>& f, double h, double t1) {
       kmax = k;
     }
   }
-  double a = std::max(0.0, double(kmax - 1) / K), b = std::min(1.0, double(kmax + 1) / K);
-  const double gr = 0.6180339887498949;
-  double c = b - gr * (b - a), d = a + gr * (b - a), fc = f(c), fd = f(d);
-  for (int i = 0; i < 60; ++i) {
-    if (fc > fd) {
-      b = d; d = c; fd = fc; c = b - gr * (b - a); fc = f(c);
-    } else {
-      a = c; c = d; fc = fd; d = a + gr * (b - a); fd = f(d);
-    }
-  }
-  const double xm = fc > fd ? c : d;
-  if (std::max(fc, fd) < 0.0) return -1.0;
+  const Sample m = golden_min([&f](double x) { return -f(x); }, std::max(0.0, double(kmax - 1) / K),
+                              std::min(1.0, double(kmax + 1) / K), 60);
+  if (-m.f < 0.0) return -1.0;
   // the first sample after the highest point where the gap is below zero
-  const int k0 = int(std::floor(xm * K)) + 1;
-  for (int k = k0; k <= K; ++k) {
-    if (f(double(k) / K) >= 0.0) continue;
-    double lo = std::max(xm, double(k - 1) / K), hi = double(k) / K;
-    for (int i = 0; i < 100 && (hi - lo) * h > 4e-16 * std::max(1.0, std::abs(t1)); ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (f(mid) >= 0.0 ? lo : hi) = mid;
-    }
-    return hi;
-  }
+  for (int k = int(std::floor(m.x * K)) + 1; k <= K; ++k)
+    if (f(double(k) / K) < 0.0) return bisect_fall(f, std::max(m.x, double(k - 1) / K), double(k) / K, h, t1);
   return -1.0;
 }
 
