@@ -141,9 +141,7 @@ class Engine {
   Eigen::VectorXd work_, local_error_;
   RootFn root_fn_;
   bool hit_root_ = false;
-  Eigen::VectorXd mass_col0_;  // M⁻¹e₀ (held contact), computed on first use
   mutable Eigen::VectorXd held_y_;  // held_force's state with node 0 on the cam
-  const Eigen::VectorXd& mass_col0();
   bool homogeneous_ = false;
   static int root_callback(double t, const double* y, double* g, void* ud) noexcept;
 };

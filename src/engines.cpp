@@ -69,18 +69,8 @@ void Engine::rhs(double t, const double* y, double* ydot) {
   if (held_) {
     // v̇ = a_free + M⁻¹e₀ F with F = (Ẍ_C − a_free,0) / M*: node 0 accelerates with the cam.
     const double F = (held_->path(t).Xddot - ydot[n_]) / model_->mstar();
-    Eigen::Map<Eigen::VectorXd>(ydot + n_, n_) += F * mass_col0();
+    Eigen::Map<Eigen::VectorXd>(ydot + n_, n_) += F * model_->contact_column();
   }
-}
-
-const Eigen::VectorXd& Engine::mass_col0() {
-  if (mass_col0_.size() != n_) {
-    Eigen::VectorXd e0 = Eigen::VectorXd::Zero(n_);
-    e0[0] = 1.0;
-    mass_col0_.resize(n_);
-    model_->solve_mass(e0.data(), mass_col0_.data());
-  }
-  return mass_col0_;
 }
 
 double Engine::held_force(const CamMotion& c, const double* y) const {

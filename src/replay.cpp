@@ -22,13 +22,6 @@ Eigen::VectorXd initial_state(const Scene& scene, const FollowerModel& model) {
   }
   return y;
 }
-// M⁻¹e₀: the velocity change of a unit impulse on node 0.
-Eigen::VectorXd impulse_response(const FollowerModel& model) {
-  Eigen::VectorXd col0 = Eigen::VectorXd::Zero(model.n()), e0 = Eigen::VectorXd::Zero(model.n());
-  e0[0] = 1.0;
-  model.solve_mass(e0.data(), col0.data());
-  return col0;
-}
 }  // namespace
 
 ReplayResult replay_lee_steps(const Scene& scene, const std::vector<LeeStep>& steps) {
@@ -40,7 +33,7 @@ ReplayResult replay_lee_steps(const Scene& scene, const std::vector<LeeStep>& st
   const auto engine = make_engine(model, scene.solver, scene.contact.model == ContactModel::Lee, scene.contact.tol_u);
   StepRamp law;
   engine->set_contact(&law);
-  const Eigen::VectorXd col0 = impulse_response(*model);
+  const Eigen::VectorXd& col0 = model->contact_column();  // Δv of a unit impulse
   for (const LeeStep& s : steps) {
     law.t0 = s.t0;
     law.h = s.h;
@@ -83,7 +76,7 @@ ReplayResult replay_force_history(const Scene& scene, const std::vector<LeeStep>
   law.t = &T;
   law.F = &F;
   engine->set_contact(&law);
-  const Eigen::VectorXd col0 = impulse_response(*model);
+  const Eigen::VectorXd& col0 = model->contact_column();  // Δv of a unit impulse
   double t = T.front();
   engine->reinit(t, y);
   for (size_t k = 0; k <= t_imp.size(); ++k) {

@@ -40,6 +40,8 @@ class FollowerModel {
   bool lumped() const { return lumped_; }          ///< diagonal M (rigid counts as lumped)
   bool damped() const { return damped_; }
   double mstar() const { return mstar_; }          ///< M* = e₀ᵀ M⁻¹ e₀
+  /// M⁻¹e₀: the velocity change of a unit impulse on node 0 (its entry 0 is M*).
+  const Eigen::VectorXd& contact_column() const { return mass_col0_; }
   const SparseMatrix& M() const { return M_; }     ///< empty for rigid
   const SparseMatrix& K() const { return K_; }
   const SparseMatrix& C() const { return C_; }     ///< empty if undamped

@@ -352,12 +352,7 @@ class LeeLocated final : public RunContext {
     // Switching thresholds: a gap below −gap_thr is a penetration (far below tol_u, far
     // above round-off in X_C); a separation is declared where the force ≤ F_thr.
     const double gap_thr = 1e-3 * tol_u_;
-    col0_.resize(n_);
-    {
-      Eigen::VectorXd e0 = Eigen::VectorXd::Zero(n_);
-      e0[0] = 1.0;
-      m_.solve_mass(e0.data(), col0_.data());  // M⁻¹e₀ (node 0 entry = M*)
-    }
+    col0_ = m_.contact_column();  // M⁻¹e₀ (node 0 entry = M*)
     if (!bilateral_ && contact_ && !(F_ > 0.0)) {
       // Touching but the cam would have to pull: the follower leaves at t = 0.
       contact_ = false;
