@@ -141,7 +141,7 @@ class RunContext {
   }
 
   virtual ~RunContext() = default;
-  /// The message of a run ended by the caller's stop flag ("interrupted (SIGINT)" by default).
+  /// The message of a run ended by the caller's stop flag ("stopped by caller" by default).
   void set_stop_reason(std::string reason) { stop_reason_ = std::move(reason); }
   RunContext(const RunContext&) = delete;
   RunContext& operator=(const RunContext&) = delete;
@@ -381,7 +381,7 @@ class RunContext {
   CamDrive drive_;
   Observer* obs_;
   const std::atomic<bool>* stop_;
-  std::string stop_reason_ = "interrupted (SIGINT)";
+  std::string stop_reason_ = "stopped by caller";
   int n_;
   std::unique_ptr<Engine> engine_;
   detail::DesignerStats designer_;

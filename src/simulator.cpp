@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "contact/network_run.hpp"
+#include "initial_check.hpp"
 #include "mechanism.hpp"
 #include "run_context.hpp"
 
@@ -59,8 +60,10 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
                        "holonomic scenes only)");
     mech_ = std::make_shared<const Mechanism>(scene_);
     extra_columns_ = detail::NetworkRun::extra_columns(*mech_);
+    detail::check_start(scene_, *mech_, false);
   } else {
     model_ = build_model(scene_);
+    detail::check_start(scene_, *model_);
   }
 }
 
@@ -73,6 +76,7 @@ Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower
                      "single-follower holonomic scenes only)");
   mech_ = make_user_system(scene_, std::move(follower));
   extra_columns_ = detail::NetworkRun::extra_columns(*mech_);
+  detail::check_start(scene_, *mech_, true);
 }
 
 const ModelDescription& Simulator::description() const {

@@ -229,7 +229,7 @@ std::string run_sweep_point(const SweepPlan& plan, long index, bool timing, doub
   }
   if (stop && stop->load() && !s.finished && !watch.timed_out) return std::string();  // not done
   if (watch.timed_out) {
-    const std::string sig = "interrupted (SIGINT)";
+    const std::string sig = "stopped by caller";  // Simulator::run's default stop reason
     const auto at = s.message.find(sig);
     const std::string why = "timeout: the point took more than " + num(timeout) + " CPU seconds";
     if (at != std::string::npos) s.message.replace(at, sig.size(), why);

@@ -41,9 +41,9 @@ struct Proc {
 };
 
 /// fork/exec the CLI with argv (no shell), cwd = dir, stdout to /dev/null, stderr
-/// captured; killed after `timeout_s`.
+/// captured; sent `signo` after `sigint_after_s` (if ≥ 0); killed after `timeout_s`.
 Proc run_cli(const fs::path& dir, const std::vector<std::string>& args, double timeout_s = 60,
-             double sigint_after_s = -1) {
+             double sigint_after_s = -1, int signo = SIGINT) {
   Proc r;
   const fs::path errf = dir / "stderr.txt";
   const pid_t pid = ::fork();
@@ -69,7 +69,7 @@ Proc run_cli(const fs::path& dir, const std::vector<std::string>& args, double t
     if (w == pid) break;
     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (sigint_after_s >= 0 && !sent_int && el >= sigint_after_s) {
-      ::kill(pid, SIGINT);
+      ::kill(pid, signo);
       sent_int = true;
     }
     if (el > timeout_s) {
@@ -327,22 +327,33 @@ TEST_F(BadInput, FailureMidRunKeepsHistoryAndSummary) {
   }
 }
 
+// SIGINT (Ctrl-C) and SIGTERM (kill) each stop the run, keep what was computed, and are
+// named as themselves on stderr and in summary.json (issue 27: SIGTERM read "SIGINT").
 TEST_F(BadInput, SigintKeepsHistoryAndSummary) {
-  // The default scene (B2 for 1 s) takes far longer than 1 s: interrupt it.
-  const Proc r = run_cli(dir_, {"run", "--out", "D", "--quiet"}, 60, 1.0);
-  ASSERT_TRUE(r.exited) << "killed by signal " << r.code << ": " << r.err;
-  EXPECT_EQ(r.code, 1) << r.err;
-  EXPECT_NE(r.err.find("interrupt"), std::string::npos) << r.err;
-  size_t n = 0;
-  const double last_t = check_history(slurp(dir_ / "D" / "history.csv"), &n);
-  EXPECT_GE(n, 10u);
-  EXPECT_GT(last_t, 0.0);
-  EXPECT_LT(last_t, 1.0);
-  const std::string sum = slurp(dir_ / "D" / "summary.json");
-  EXPECT_NE(sum.find("\"finished\": false"), std::string::npos) << sum;
-  EXPECT_NE(sum.find("interrupt"), std::string::npos) << sum;
-  for (const auto& e : fs::directory_iterator(dir_ / "D")) {
-    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
+  for (const int sig : {SIGINT, SIGTERM}) {
+    const std::string name = sig == SIGINT ? "SIGINT" : "SIGTERM";
+    SCOPED_TRACE(name);
+    fs::remove_all(dir_ / "D");
+    // The default scene (B2 for 1 s) takes far longer than 1 s: interrupt it.
+    const Proc r = run_cli(dir_, {"run", "--out", "D", "--quiet"}, 60, 1.0, sig);
+    ASSERT_TRUE(r.exited) << "killed by signal " << r.code << ": " << r.err;
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find("camdyn: simulation interrupted at t = "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(": interrupted (" + name + ")\n"), std::string::npos) << r.err;
+    size_t n = 0;
+    const double last_t = check_history(slurp(dir_ / "D" / "history.csv"), &n);
+    EXPECT_GE(n, 10u);
+    EXPECT_GT(last_t, 0.0);
+    EXPECT_LT(last_t, 1.0);
+    const std::string sum = slurp(dir_ / "D" / "summary.json");
+    EXPECT_NE(sum.find("\"finished\": false"), std::string::npos) << sum;
+    EXPECT_NE(sum.find(": interrupted (" + name + ")\""), std::string::npos) << sum;
+    EXPECT_NE(sum.find("\"termination\": \"stopped_by_caller\""), std::string::npos) << sum;
+    const std::string other = sig == SIGINT ? "SIGTERM" : "SIGINT";
+    EXPECT_EQ(sum.find(other), std::string::npos) << sum;
+    for (const auto& e : fs::directory_iterator(dir_ / "D")) {
+      EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
+    }
   }
 }
 

@@ -31,7 +31,10 @@ struct CamPoint {
   double rho = 0;          ///< radius of curvature of the profile at C [length], > 0
 };
 
-/// Position, velocity and acceleration of C along X.
+/// Position, velocity and acceleration of C along X. X is absolute (the face's distance
+/// from O: a rigid or elastic_bar follower's gap is u_c − X); a network's or user
+/// follower's cam contact subtracts the lift X − X_base instead (cam_lift_base,
+/// camdyn/initial_state.hpp).
 struct CamMotion {
   double X = 0, Xdot = 0, Xddot = 0;
 };

@@ -2,7 +2,9 @@
 //
 //   M q̈ = r(t, q, q̇) + Tᵀ F,   F ≥ 0 (one entry per contact),
 //   gap of contact j:  g_j = T_j q + clearance_j − X_C(t)·[cam]   (X_C: the cam's lift above
-//   its base circle, as for network scenes)
+//   its base circle, as for network scenes — cam_lift_motion(), not the absolute
+//   Cam::motion(); camdyn/initial_state.hpp). A start with g_j < −contact.tol_u is refused
+//   (SceneError); initial_state_on_cam() gives a state on the cam.
 //
 // r may be nonlinear (a progressive valve spring, a hydraulic element, …); M is constant
 // (its action M⁻¹ is what the methods need). The scene gives the cam, the contact method,
@@ -59,7 +61,8 @@ class FollowerSystem {
   /// map is then affine and the located step solves its force shape exactly (default false:
   /// Lee iterates with its constants).
   virtual bool linear() const { return false; }
-  /// Initial state (default: at rest at q = 0).
+  /// Initial state (default: at rest at q = 0). Every gap must be ≥ −contact.tol_u at t = 0
+  /// (Simulator throws SceneError otherwise); initial_state_on_cam() closes the cam contacts.
   virtual void initial_state(double* q, double* v) const {
     for (int i = 0; i < size(); ++i) q[i] = v[i] = 0.0;
   }

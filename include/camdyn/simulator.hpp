@@ -201,22 +201,24 @@ struct Observer {
 
 class Simulator {
  public:
-  /// @throws SceneError on an invalid scene.
+  /// @throws SceneError on an invalid scene, or an initial state that penetrates a contact
+  /// by more than contact.tol_u (camdyn/initial_state.hpp, docs/initial_state.md).
   explicit Simulator(Scene scene);
   /// Bring your own follower (camdyn/follower_system.hpp): the scene gives the cam, the
   /// contact method, the engine and the run; `follower` replaces the scene's follower
   /// (follower.*, [spring], the network tables are not used). Runs with Lee's method,
   /// penalty, event-driven or holonomic on arkode-erk, arkode-dirk, cvode-bdf.
-  /// @throws SceneError on an invalid scene or follower (file "<follower>").
+  /// @throws SceneError on an invalid scene or follower (file "<follower>"), or an initial
+  /// state that penetrates a contact (camdyn/initial_state.hpp).
   Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower);
   ~Simulator();
   /// Run to t_end. Never throws for a simulation failure: the summary says
   /// finished = false, how (termination) and why (message). `stop` (may be null) is polled each step (Ctrl-C); once it
   /// is set the run ends with finished = false, termination = StoppedByCaller and message
-  /// "at t = T: <stop_reason>"
-  /// (the CLI's Ctrl-C keeps the default; a library caller passes e.g. "stopped by caller").
+  /// "at t = T: <stop_reason>" (default "stopped by caller"; the CLI reports the signal
+  /// that set its flag: "interrupted (SIGINT)" for Ctrl-C, "interrupted (SIGTERM)" for kill).
   Summary run(Observer* observer = nullptr, const std::atomic<bool>* stop = nullptr,
-              const std::string& stop_reason = "interrupted (SIGINT)");
+              const std::string& stop_reason = "stopped by caller");
   const Scene& scene() const { return scene_; }
   /// @pre the scene is not a network (follower.kind ≠ "network").
   const FollowerModel& model() const { return *model_; }

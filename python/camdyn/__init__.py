@@ -52,6 +52,7 @@ __all__ = [
     "resolved_scene",
     "jump_speed",
     "cam_motion",
+    "initial_state_on_cam",
     "run_batch",
     "sweep",
     "history_columns",
@@ -323,8 +324,12 @@ def network_scene(nodes: Iterable[Any], elements: Iterable[Any] = (),
 class FollowerContact:
     """One contact of a user-defined follower (C++ ``camdyn::FollowerContact``).
 
-    The gap is ``row · q + clearance − X_C(t)`` for a cam contact (X_C: the cam's lift above
-    its base circle) and ``row · q + clearance`` for a stop (``cam=False``); the contact
+    The gap is ``row · q + clearance − X_L(t)`` for a cam contact and ``row · q + clearance``
+    for a stop (``cam=False``). X_L is the cam's lift above its base circle,
+    ``cam_motion(scene, t, lift=True)[0]``: X_C − cam.base_radius for a "lift" profile,
+    X_C − min over θ of X_C for "points" and "circle" (not the absolute X_C that
+    ``cam_motion(scene, t)`` gives). A start below the cam (gap < −contact.tol_u at t = 0)
+    raises :class:`SceneError`; :func:`initial_state_on_cam` gives the state on the cam. The contact
     force F ≥ 0 acts on the follower as ``rowᵀ F``. History columns: ``F_<name>``,
     ``gap_<name>``, ``in_<name>``. None: the scene's ``[contact]`` value."""
     name: str
@@ -535,18 +540,40 @@ def jump_speed(scene: Any = None, options: Optional[Mapping[str, Any]] = None,
     return _camdyn.jump_speed(*_scene_spec(scene, overrides), dict(options or {}))
 
 
-def cam_motion(scene: Any, t: Any, **overrides: Any) -> Tuple[Any, Any, Any]:
+def cam_motion(scene: Any, t: Any, lift: bool = False, **overrides: Any) -> Tuple[Any, Any, Any]:
     """Cam contact-point motion along X at time(s) ``t``: ``(X_C, Ẋ_C, Ẍ_C)``.
 
-    The follower's face position, velocity and acceleration while it rides the cam
-    (cam.hpp: Cam::motion with the drive θ(t), ω(t), ω̇(t)). ``t`` a float gives floats,
-    an array gives arrays of its shape.
+    ``lift=False``: X_C is absolute, the flat face's distance from the cam's centre O
+    (cam.hpp: Cam::motion with the drive θ(t), ω(t), ω̇(t)); a rigid or elastic_bar
+    follower's gap is ``u_c − X_C``.
+    ``lift=True``: X_C − X_base, the lift above the base circle that a network's or a user
+    follower's cam contact subtracts in its gap ``row · q + clearance − lift``; X_base is
+    ``cam.base_radius`` for a "lift" profile and the smallest X_C over a revolution for
+    "points" (e.g. 1.9807 for the paper's cam, whose knots sit at 2.0) and "circle"
+    (R − e). Ẋ_C and Ẍ_C are the same either way. ``t`` a float gives floats, an array
+    gives arrays of its shape.
     """
     ta = np.asarray(t, dtype=np.float64)
-    X, Xd, Xdd = _camdyn.cam_motion(*_scene_spec(scene, overrides), ta.ravel())
+    X, Xd, Xdd = _camdyn.cam_motion(*_scene_spec(scene, overrides), ta.ravel(), bool(lift))
     if ta.ndim == 0:
         return float(X[0]), float(Xd[0]), float(Xdd[0])
     return X.reshape(ta.shape), Xd.reshape(ta.shape), Xdd.reshape(ta.shape)
+
+
+def initial_state_on_cam(scene: Any, follower: Any, **overrides: Any) -> Tuple[Any, Any]:
+    """``(q0, v0)`` that put a user follower on the cam at t = 0.
+
+    The follower's own ``initial_state()`` (default rest at 0) moved by the smallest
+    M-weighted correction that closes every cam contact (gap 0 and gap rate 0 against
+    ``cam_motion(scene, 0, lift=True)``) and keeps the gaps and rates of the other
+    contacts. Return it from the follower's ``initial_state()`` to start held on the cam
+    (C++: ``camdyn::initial_state_on_cam``, include/camdyn/initial_state.hpp).
+
+    Raises:
+        SceneError: a bad follower or cam, or a follower without a cam contact.
+    """
+    q, v = _camdyn.initial_state_on_cam(*_scene_spec(scene, overrides), _follower_spec(follower))
+    return np.asarray(q), np.asarray(v)
 
 
 def run_batch(scenes: Iterable[Any], threads: int = 0) -> List[Dict[str, Any]]:

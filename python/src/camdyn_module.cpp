@@ -41,6 +41,7 @@
 #include "camdyn/cam.hpp"
 #include "camdyn/designer.hpp"
 #include "camdyn/follower_system.hpp"
+#include "camdyn/initial_state.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/simulator.hpp"
@@ -591,21 +592,37 @@ py::dict jump(const std::string& kind, const std::string& text, const std::strin
 
 py::tuple cam_motion(const std::string& kind, const std::string& text, const std::string& source,
                      const std::vector<std::string>& overrides,
-                     const py::array_t<double, py::array::c_style | py::array::forcecast>& t) {
+                     const py::array_t<double, py::array::c_style | py::array::forcecast>& t, bool lift) {
   const Scene sc = build_scene(kind, text, source, overrides);
   const Cam cam(sc.cam);
   const CamDrive drive(sc.cam);
+  const double base = lift ? cam_lift_base(cam, sc.cam) : 0.0;  // lift: X_C − X_base
   const auto n = t.size();
   py::array_t<double> X(n), Xd(n), Xdd(n);
   const double* tp = t.data();
   double *x = X.mutable_data(), *xd = Xd.mutable_data(), *xdd = Xdd.mutable_data();
   for (py::ssize_t i = 0; i < n; ++i) {
     const CamMotion m = cam.motion(drive.theta(tp[i]), drive.omega(tp[i]), drive.omega_dot(tp[i]));
-    x[i] = m.X;
+    x[i] = m.X - base;
     xd[i] = m.Xdot;
     xdd[i] = m.Xddot;
   }
   return py::make_tuple(X, Xd, Xdd);
+}
+
+/// initial_state_on_cam(): a user follower (spec dict or C++ FollowerSystem) put on the cam
+/// at t = 0 (include/camdyn/initial_state.hpp); returns (q0, v0) as arrays.
+py::tuple on_cam(const std::string& kind, const std::string& text, const std::string& source,
+                 const std::vector<std::string>& overrides, const py::object& follower) {
+  const Scene sc = build_scene(kind, text, source, overrides);
+  std::shared_ptr<const FollowerSystem> fs;
+  if (py::isinstance<FollowerSystem>(follower))
+    fs = follower.cast<std::shared_ptr<FollowerSystem>>();
+  else
+    fs = std::make_shared<PyFollower>(follower.cast<py::dict>());
+  const FollowerStart s = initial_state_on_cam(sc, *fs);
+  return py::make_tuple(py::array_t<double>(py::ssize_t(s.q.size()), s.q.data()),
+                        py::array_t<double>(py::ssize_t(s.v.size()), s.v.data()));
 }
 
 /// run_batch(): scenes given as (kind, text, source, overrides) tuples, all built (and
@@ -693,5 +710,7 @@ PYBIND11_MODULE(_camdyn, m) {
         py::arg("overrides"), py::arg("options"));
   m.def("run_batch", &batch, py::arg("specs"), py::arg("threads"));
   m.def("cam_motion", &cam_motion, py::arg("kind"), py::arg("text"), py::arg("source"),
-        py::arg("overrides"), py::arg("t"));
+        py::arg("overrides"), py::arg("t"), py::arg("lift") = false);
+  m.def("initial_state_on_cam", &on_cam, py::arg("kind"), py::arg("text"), py::arg("source"),
+        py::arg("overrides"), py::arg("follower"));
 }

@@ -58,14 +58,34 @@ constexpr int kExitBadInput = 2;
 // ---- Ctrl-C -------------------------------------------------------------------------------
 
 std::atomic<bool> g_stop{false};
+std::atomic<int> g_signal{0};  // the signal that set g_stop (SIGINT or SIGTERM)
 static_assert(std::atomic<bool>::is_always_lock_free, "signal handler needs a lock-free flag");
+static_assert(std::atomic<int>::is_always_lock_free, "signal handler needs a lock-free int");
 
-extern "C" void on_sigint(int) { g_stop.store(true); }
+extern "C" void on_sigint(int sig) {
+  g_signal.store(sig);
+  g_stop.store(true);
+}
+
+/// What stopped the run, as the CLI reports it: "interrupted (SIGINT)" (Ctrl-C),
+/// "interrupted (SIGTERM)" (kill), "interrupted" (no signal seen).
+std::string signal_name() {
+  switch (g_signal.load()) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    default: return "";
+  }
+}
+std::string stop_reason() {
+  const std::string s = signal_name();
+  return s.empty() ? "interrupted" : "interrupted (" + s + ")";
+}
 
 class SigintGuard {
  public:
   SigintGuard() {
     g_stop.store(false);
+    g_signal.store(0);
     struct sigaction sa {};
     sa.sa_handler = on_sigint;
     sigemptyset(&sa.sa_mask);
@@ -485,9 +505,10 @@ int cmd_sweep(const SweepOpts& o) {
   progress.finish();
   if (!master) return kExitOk;
   if (!o.quiet) {
+    const std::string by = signal_name().empty() ? "" : " by " + signal_name();
+    const std::string tail = res.interrupted ? " — INTERRUPTED" + by + " (run again with --resume)" : "";
     std::printf("sweep: %ld points (%ld computed, %ld from the journal), %ld failed%s\n", res.total,
-                res.computed, res.skipped, res.failed,
-                res.interrupted ? " — INTERRUPTED (run again with --resume)" : "");
+                res.computed, res.skipped, res.failed, tail.c_str());
     std::printf("output: %s, %s\n", res.csv_path.c_str(), res.poincare_path.c_str());
     std::fflush(stdout);
   }
@@ -504,6 +525,8 @@ int cmd_sweep(const SweepOpts& o) {
   }
   return res.interrupted ? kExitFailed : kExitOk;
 }
+
+constexpr const char* kStopPlaceholder = "interrupted (signal)";
 
 int cmd_run(const RunOpts& o) {
   // Input stage: every error here is bad input (exit 2, raised to main()).
@@ -532,7 +555,9 @@ int cmd_run(const RunOpts& o) {
   {
     SigintGuard guard;
     try {
-      summary = sim->run(&obs, &g_stop);
+      // The signal is known only once it came: the run's message ends with this
+      // placeholder, replaced below by stop_reason().
+      summary = sim->run(&obs, &g_stop, kStopPlaceholder);
     } catch (const std::exception& e) {
       summary = Summary{};
       summary.scene = sc.title;
@@ -553,7 +578,13 @@ int cmd_run(const RunOpts& o) {
   obs.finish();
   if (summary.scene.empty()) summary.scene = sc.title;
   if (!summary.finished && summary.message.empty())
-    summary.message = interrupted ? "interrupted" : "did not finish";
+    summary.message = interrupted ? stop_reason() : "did not finish";
+  {
+    std::string& m = summary.message;
+    const std::string ph = kStopPlaceholder;
+    if (m.size() >= ph.size() && m.compare(m.size() - ph.size(), ph.size(), ph) == 0)
+      m.replace(m.size() - ph.size(), ph.size(), stop_reason());
+  }
 
   // Output stage: always write what was computed.
   int rc = summary.finished ? kExitOk : kExitFailed;

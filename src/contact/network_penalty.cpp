@@ -90,17 +90,21 @@ class NetworkPenalty final : public NetworkRun {
 
   void run_method() override {
     // The penalty's own equilibrium at t = 0: each contact carrying force F_j starts
-    // penetrated by the s_j its law needs (ŝ = 0), by the M-weighted smallest shift.
+    // penetrated by the s_j its law needs (ŝ = 0), by the M-weighted smallest shift, from
+    // wherever it starts on the contact (gap 0, or inside by at most s_j + tol_u: the
+    // start check, src/initial_check.hpp).
     std::vector<int> set = active_list();
     if (!set.empty()) {
       const int k = int(set.size());
       Eigen::VectorXd s(k);
       Eigen::MatrixXd Wss(k, k), MTs(n_, k);
+      const CamMotion cm0 = cam_at(0.0);
       for (int i = 0; i < k; ++i) {
         const int j = set[i];
         const double kp = mk_.contacts()[j].penalty_stiffness;
         s[i] = sc_.contact.penalty_law == PenaltyLaw::Linear ? F_[j] / kp
                                                               : std::pow(F_[j] / kp, 1.0 / sc_.contact.penalty_exponent);
+        s[i] += gap(j, y_, cm0);  // shift to the gap −s_j
         MTs.col(i) = mk_.MinvTt().col(j);
         for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, set[l]);
       }

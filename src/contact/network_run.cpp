@@ -8,6 +8,7 @@
 #include <ctime>
 #include <stdexcept>
 
+#include "camdyn/initial_state.hpp"
 #include "run_context.hpp"  // StepFailure, Clock, fmt
 
 namespace camdyn {
@@ -27,32 +28,10 @@ NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
   sum_.model = mk_.description();
   sum_.min_gap = INFINITY;
   unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
-  // The base circle, so that a cam contact's gap sees the lift X_C − X_base: a lift table
-  // gives it (cam.base_radius: the table's L = 0, also where its spline rings a little
-  // below zero between knots); otherwise min over θ of X_C (a scan of 3600 angles, refined
-  // by golden section around the smallest sample).
-  if (sc.cam.profile == CamProfileKind::Lift) {
-    x_base_ = sc.cam.base_radius;
-  } else if (mk_.cam_contacts() > 0) {
-    const double d = 2.0 * M_PI / 3600.0;
-    double best = INFINITY, th_best = 0.0;
-    for (int i = 0; i < 3600; ++i) {
-      const double X = cam_.evaluate(i * d).X_C;
-      if (X < best) {
-        best = X;
-        th_best = i * d;
-      }
-    }
-    double a = th_best - d, b = th_best + d;
-    const double gr = 0.6180339887498949;
-    double c = b - gr * (b - a), e = a + gr * (b - a);
-    double fc = cam_.evaluate(c).X_C, fe = cam_.evaluate(e).X_C;
-    for (int i = 0; i < 60; ++i) {
-      if (fc < fe) { b = e; e = c; fe = fc; c = b - gr * (b - a); fc = cam_.evaluate(c).X_C; }
-      else { a = c; c = e; fc = fe; e = a + gr * (b - a); fe = cam_.evaluate(e).X_C; }
-    }
-    x_base_ = std::min({best, fc, fe});
-  }
+  // The base circle, so that a cam contact's gap sees the lift X_C − X_base
+  // (cam_lift_base, include/camdyn/initial_state.hpp: cam.base_radius for a lift table,
+  // min over θ of X_C otherwise).
+  if (sc.cam.profile == CamProfileKind::Lift || mk_.cam_contacts() > 0) x_base_ = cam_lift_base(cam_, sc.cam);
 }
 
 std::vector<std::string> NetworkRun::extra_columns(const MechanicalSystem& mech) {

@@ -109,7 +109,7 @@ class NetworkRun {
   CamDrive drive_;
   Observer* obs_;
   const std::atomic<bool>* stop_;
-  std::string stop_reason_ = "interrupted (SIGINT)";
+  std::string stop_reason_ = "stopped by caller";
   int n_, m_;
   DesignerStats designer_;
   Summary sum_;
