@@ -40,6 +40,17 @@ Scene ohc() { return load_scene_file(kSrc + "/examples/ohc_bucket_tappet.toml");
 // preload (EA/L = 2e7 N/m; the spring's preload 200.2 N gives 200 N at q_top = −1e-5). The
 // whole follower starts shifted by `shift` (< 0: into the cam).
 constexpr double kP = 200.0, kBarDelta = 1e-5;
+ElementSpec spring_to_ground(const std::string& name, const std::string& node, double k, double preload) {
+  ElementSpec e;
+  e.name = name;
+  e.kind = ElementKind::Spring;
+  e.nodes = {node, "ground"};
+  e.stiffness = k;
+  e.preload = preload;
+  return e;
+}
+// ContactPointSpec{name, kind, nodes, clearance}
+using CP = ContactPointSpec;
 Scene bar_on_cam(double shift) {
   Scene s = ohc();
   s.title = "bar on the cam";
@@ -57,46 +68,23 @@ Scene bar_on_cam(double shift) {
   bar.area = 1e-5;
   bar.length = 0.1;
   bar.elements = 4;
-  ElementSpec spring;
-  spring.name = "spring";
-  spring.kind = ElementKind::Spring;
-  spring.nodes = {"top", "ground"};
-  spring.stiffness = 2e4;
-  spring.preload = kP + 2e4 * kBarDelta;
-  s.network.elements = {bar, spring};
-  ContactPointSpec cam;
-  cam.name = "cam";
-  cam.kind = ContactPointKind::Cam;
-  cam.nodes = {"tip"};
-  s.network.contacts = {cam};
+  s.network.elements = {bar, spring_to_ground("spring", "top", 2e4, kP + 2e4 * kBarDelta)};
+  s.network.contacts = {CP{"cam", ContactPointKind::Cam, {"tip"}}};
   return s;
 }
 
-// Tappet on the cam, a lash (0.2 mm) to the valve, the valve on its seat.
+// Tappet on the cam (held there by its own light spring), a lash (0.2 mm) to the valve,
+// the valve on its seat.
 Scene lash_scene(double tappet_q0) {
   Scene s = ohc();
   s.title = "lash";
   s.network = NetworkSpec{};
   s.network.nodes = {{"tappet", 0.05, tappet_q0, 0.0}, {"valve", 0.05, 0.0, 0.0}};
-  ElementSpec spring;
-  spring.name = "valve_spring";
-  spring.kind = ElementKind::Spring;
-  spring.nodes = {"valve", "ground"};
-  spring.stiffness = 35000.0;
-  spring.preload = 250.0;
-  s.network.elements = {spring};
-  ContactPointSpec cam, lash, seat;
-  cam.name = "cam";
-  cam.kind = ContactPointKind::Cam;
-  cam.nodes = {"tappet"};
-  lash.name = "lash";
-  lash.kind = ContactPointKind::Lash;
-  lash.nodes = {"tappet", "valve"};
-  lash.clearance = 0.2e-3;
-  seat.name = "seat";
-  seat.kind = ContactPointKind::Stop;
-  seat.nodes = {"valve"};
-  s.network.contacts = {cam, lash, seat};
+  s.network.elements = {spring_to_ground("valve_spring", "valve", 35000.0, 250.0),
+                        spring_to_ground("tappet_spring", "tappet", 1000.0, 10.0)};
+  s.network.contacts = {CP{"cam", ContactPointKind::Cam, {"tappet"}},
+                        CP{"lash", ContactPointKind::Lash, {"tappet", "valve"}, 0.2e-3},
+                        CP{"seat", ContactPointKind::Stop, {"valve"}}};
   return s;
 }
 
@@ -105,15 +93,18 @@ Scene lash_scene(double tappet_q0) {
 struct OneMass : FollowerSystem {
   std::vector<double> q0{0.0}, v0{0.0};
   int size() const override { return 1; }
-  std::vector<FollowerContact> contacts() const override {
-    FollowerContact c;
-    c.name = "cam";
-    c.row = {1.0};
-    return {c};
-  }
+  std::vector<FollowerContact> contacts() const override { return {FollowerContact{"cam", {1.0}}}; }
   void force(double, const double* q, const double*, double* r) const override { r[0] = -500.0 * q[0] - 3500.0; }
   void solve_mass(const double* b, double* x) const override { x[0] = b[0]; }
   bool linear() const override { return true; }
+  // Given: Lee's method on cvode-bdf with a linear() follower that gives no Jacobian
+  // underflows its first step whatever the start (its responses then come from CVODE,
+  // not from the affine one-step engine) — a separate defect, not this test's.
+  bool force_jacobian(double, const double*, const double*, double* drdq, double* drdv) const override {
+    drdq[0] = -500.0;
+    drdv[0] = 0.0;
+    return true;
+  }
   void initial_state(double* q, double* v) const override {
     q[0] = q0[0];
     v[0] = v0[0];

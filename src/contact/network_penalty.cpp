@@ -88,7 +88,7 @@ class NetworkPenalty final : public NetworkRun {
     return P;
   }
 
-  void run_method() override {
+  void prepare_start() override {
     // The penalty's own equilibrium at t = 0: each contact carrying force F_j starts
     // penetrated by the s_j its law needs (ŝ = 0), by the M-weighted smallest shift, from
     // wherever it starts on the contact (gap 0, or inside by at most s_j + tol_u: the
@@ -109,10 +109,12 @@ class NetworkPenalty final : public NetworkRun {
         for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, set[l]);
       }
       y_.head(n_) -= MTs * Wss.completeOrthogonalDecomposition().solve(s);
-      V0_ = potential(0.0, y_);  // the ledger starts from the shifted state
     }
     forces(0.0, y_, F_);
     for (int j = 0; j < m_; ++j) active_[j] = F_[j] > 0.0;
+  }
+
+  void run_method() override {
     // every gap is a root: the law's kink
     eng_->set_roots(m_, [this](double t, const double* y, double* g) {
       const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);

@@ -355,9 +355,10 @@ Summary NetworkRun::run() {
   const double gtol = 1e-12 * std::max(1.0, y_.head(n_).cwiseAbs().maxCoeff());
   for (int j = 0; j < m_; ++j)
     if (gap(j, y_, cm0) <= gtol && gap_rate(j, y_, cm0) <= gtol) active_[j] = 1;
+  settle_active(cm0);
+  prepare_start();
   V0_ = potential(0.0, y_);
   E0_ = mk_.kinetic_energy(y_.data() + n_) + V0_;
-  settle_active(cm0);
   emit_row();
   {
     const int p = mk_.primary();

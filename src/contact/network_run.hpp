@@ -44,6 +44,9 @@ class NetworkRun {
  protected:
   /// The method's loop over accepted steps from (t_, y_, F_, active_) to t_end.
   virtual void run_method() = 0;
+  /// Method-specific start after the common initial state and its held forces, before
+  /// the t = 0 row and the energy ledger's origin (penalty: its own equilibrium).
+  virtual void prepare_start() {}
   /// Dense output inside the step just accepted (see RunContext); false: step-end row.
   virtual bool dense_row_at(double /*to*/) { return false; }
   /// Penalty: energy stored in the contact springs at (t, q), and the power its dampers
