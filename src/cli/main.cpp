@@ -67,8 +67,7 @@ extern "C" void on_sigint(int sig) {
   g_stop.store(true);
 }
 
-/// What stopped the run, as the CLI reports it: "interrupted (SIGINT)" (Ctrl-C),
-/// "interrupted (SIGTERM)" (kill), "interrupted" (no signal seen).
+/// The signal that set g_stop: "SIGINT", "SIGTERM", or "" (none seen).
 std::string signal_name() {
   switch (g_signal.load()) {
     case SIGINT: return "SIGINT";
@@ -76,6 +75,8 @@ std::string signal_name() {
     default: return "";
   }
 }
+/// What stopped the run, as the CLI reports it: "interrupted (SIGINT)" (Ctrl-C),
+/// "interrupted (SIGTERM)" (kill), "interrupted" (no signal seen).
 std::string stop_reason() {
   const std::string s = signal_name();
   return s.empty() ? "interrupted" : "interrupted (" + s + ")";
