@@ -25,7 +25,8 @@ myst_enable_extensions = ["colon_fence", "dollarmath"]
 myst_heading_anchors = 3
 
 # Data directories with Markdown that are outputs of tools, not pages.
-exclude_patterns = ["_build", "bench/*.md", "**/README.md"]
+# Generated fragments (scripts/docs.sh) are included by their pages, not pages themselves.
+exclude_patterns = ["_build", "bench/*.md", "**/README.md", "_generated", "reference/generated"]
 
 breathe_projects = {"camdyn": os.environ.get("CAMDYN_DOXYGEN_XML", os.path.join(BUILD, "docs", "doxygen", "xml"))}
 breathe_default_project = "camdyn"

@@ -65,4 +65,15 @@ sed -e "s|@INPUT@|$ROOT/include/camdyn|" -e "s|@OUTPUT@|$OUT/doxygen|" \
 rm -rf "$OUT/html" "$OUT/doctrees"
 CAMDYN_BUILD_DIR="$BUILD" CAMDYN_DOXYGEN_XML="$OUT/doxygen/xml" \
   "$PYTHON" -m sphinx -W --keep-going -q -b html -d "$OUT/doctrees" "$ROOT/docs" "$OUT/html"
+# 5. every key of the key table is on the built scene-key page
+"$CAMDYN" scene --keys --json | "$PYTHON" -c '
+import html, json, sys
+page = open(sys.argv[1], encoding="utf-8").read()
+keys = [k["key"] for k in json.load(sys.stdin)]
+# a key is on the page as an inline-code cell: <span class="pre">cam.lift</span></code>
+missing = [k for k in keys if "<span class=\"pre\">" + html.escape(k) + "</span></code>" not in page]
+if missing:
+    sys.exit("docs: keys missing from the built scene-key page: " + ", ".join(missing))
+print(f"docs: all {len(keys)} scene keys are on reference/scene_keys.html")
+' "$OUT/html/reference/scene_keys.html"
 echo "docs: $OUT/html/index.html"
