@@ -1532,6 +1532,8 @@ void apply_override(Scene& scene, const std::string& assignment) {
 
 namespace detail {
 
+std::string format_number(double v) { return fmt_num(v); }
+
 std::vector<KeyTableRow> key_table() {
   std::vector<KeyTableRow> rows;
   for (const Field& f : fields()) {

@@ -21,4 +21,8 @@ struct KeyTableRow {
 /// then the keys of [[nodes]], [[elements]] and [[contacts]].
 std::vector<KeyTableRow> key_table();
 
+/// The loader's number format: the shortest decimal that reads back to the same double
+/// (integral values without exponent: 90, not 9e+01).
+std::string format_number(double v);
+
 }  // namespace camdyn::detail

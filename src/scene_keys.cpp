@@ -4,9 +4,6 @@
 // documentation fails `camdyn scene --keys`, the docs build and the test suite.
 #include "camdyn/scene_keys.hpp"
 
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <map>
 #include <set>
 #include <sstream>
@@ -150,28 +147,15 @@ const KeyDoc kDocs[] = {
      "contact.penalty_damping"},
 };
 
-std::string fmt_real(double v) {
-  char buf[40];
-  if (v == std::floor(v) && std::fabs(v) < 1e15) {  // integral: 90, not 9e+01
-    std::snprintf(buf, sizeof buf, "%.0f", v);
-    return buf;
-  }
-  for (int p = 1; p <= 17; ++p) {
-    std::snprintf(buf, sizeof buf, "%.*g", p, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
-}
-
 std::string value_text(const SceneEntry& e) {
   switch (e.kind) {
-    case SceneEntry::Kind::Real: return fmt_real(e.real);
+    case SceneEntry::Kind::Real: return detail::format_number(e.real);
     case SceneEntry::Kind::Int: return std::to_string(e.integer);
     case SceneEntry::Kind::Bool: return e.boolean ? "true" : "false";
     case SceneEntry::Kind::Str: return "\"" + e.text + "\"";
     case SceneEntry::Kind::Array: {
       std::string s = "[";
-      for (std::size_t i = 0; i < e.array.size(); ++i) s += (i ? ", " : "") + fmt_real(e.array[i]);
+      for (std::size_t i = 0; i < e.array.size(); ++i) s += (i ? ", " : "") + detail::format_number(e.array[i]);
       return s + "]";
     }
     case SceneEntry::Kind::Names: {
