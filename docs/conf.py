@@ -42,3 +42,23 @@ html_static_path = []
 html_theme_options = {"description": "cam–follower dynamics with impact, separation and elastic deformation",
                       "page_width": "1100px", "sidebar_width": "260px"}
 pygments_style = "sphinx"
+
+
+def _link_to_repository_file(app, env, node, contnode):
+    """Pages are Markdown that also reads on GitHub, so they may link to files of the
+    repository outside the site (`[scene](../examples/ohc_bucket_tappet.toml)`,
+    `[README](../README.md)`). Such a link renders as its text when the file exists; a link
+    to a file or page that does not exist still fails the build (warnings are errors)."""
+    target = node.get("reftarget", "")
+    if node.get("reftype") != "any" or "://" in target or target.startswith("#"):
+        return None
+    source = env.doc2path(node.get("refdoc", env.docname))
+    path = os.path.normpath(os.path.join(os.path.dirname(source), target.split("#")[0]))
+    inside_site = path.startswith(os.path.abspath(app.srcdir) + os.sep)
+    if os.path.isfile(path) and not (inside_site and path.endswith(".md")):
+        return contnode
+    return None
+
+
+def setup(app):
+    app.connect("missing-reference", _link_to_repository_file)
