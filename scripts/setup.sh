@@ -6,6 +6,7 @@
 #   scripts/setup.sh              everything above
 #   scripts/setup.sh --deps-only  only install the missing Debian packages
 #   scripts/setup.sh --build-only install missing packages and build, no run
+# The documentation site: scripts/docs.sh after a build (Sphinx, MyST, Breathe, Doxygen).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -15,7 +16,8 @@ PACKAGES=(build-essential cmake ninja-build libsundials-dev libeigen3-dev libsui
           libtomlplusplus-dev libcli11-dev libgtest-dev googletest libbenchmark-dev
           python3 python3-numpy python3-matplotlib clang libclang-rt-14-dev
           pybind11-dev python3-dev python3-pytest pkg-config
-          libopenmpi-dev openmpi-bin)
+          libopenmpi-dev openmpi-bin
+          python3-sphinx python3-myst-parser python3-breathe doxygen)
 
 # Install the packages of PACKAGES that are not installed yet (no apt at all otherwise).
 install_missing_packages() {

@@ -5,6 +5,7 @@
 // through exactly the same parse and validation path as files), writing to_toml, and the
 // "allowed keys" lists of error messages.
 #include "camdyn/scene.hpp"
+#include "scene_key_table.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -1526,6 +1527,55 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
 void apply_override(Scene& scene, const std::string& assignment) {
   apply_overrides(scene, {assignment});
 }
+
+// ---------------------------------------------------------------- the key table as data
+
+namespace detail {
+
+std::string format_number(double v) { return fmt_num(v); }
+
+std::vector<KeyTableRow> key_table() {
+  std::vector<KeyTableRow> rows;
+  for (const Field& f : fields()) {
+    KeyTableRow r;
+    r.key = f.path();
+    switch (f.kind) {
+      case FK::Real:
+        r.type = "real";
+        r.rule = f.rule == Rule::Finite ? "must be finite"
+                 : f.rule == Rule::Gt   ? "must be > " + fmt_num(f.lo)
+                 : f.rule == Rule::Ge   ? "must be >= " + fmt_num(f.lo)
+                 : f.rule == Rule::In   ? "must be >= " + fmt_num(f.lo) + " and <= " + fmt_num(f.hi)
+                 : f.rule == Rule::GtLe ? "must be > " + fmt_num(f.lo) + " and <= " + fmt_num(f.hi)
+                                        : std::string(f.note);
+        break;
+      case FK::Int: r.type = "integer"; r.rule = range_rule(f.imin, f.imax); break;
+      case FK::Bool: r.type = "bool"; r.rule = "must be true or false"; break;
+      case FK::Str: r.type = "string"; r.rule = "must be a string"; break;
+      case FK::Arr: r.type = "array of reals"; r.rule = "must be an array of finite numbers"; break;
+      case FK::Enum: r.type = "enum"; r.rule = one_of(f.allowed); r.allowed = f.allowed; break;
+    }
+    rows.push_back(std::move(r));
+  }
+  for (const auto& k : node_keys()) rows.push_back({"nodes." + k, k == "name" ? "string" : "real", "", {}, {}});
+  auto typed = [&](const char* array, const std::vector<std::string>& all, const std::vector<std::string>& types,
+                   const std::function<std::vector<std::string>(std::size_t)>& keys_of) {
+    for (const auto& k : all) {
+      KeyTableRow r;
+      r.key = std::string(array) + "." + k;
+      for (std::size_t i = 0; i < types.size(); ++i)
+        if (contains(keys_of(i), k)) r.applies_to.push_back(types[i]);
+      rows.push_back(std::move(r));
+    }
+  };
+  typed("elements", all_element_keys(), enum_names(kElementNames),
+        [](std::size_t i) { return element_keys(kElementNames[i].value); });
+  typed("contacts", all_contact_keys(), enum_names(kContactPointNames),
+        [](std::size_t i) { return contact_keys(kContactPointNames[i].value); });
+  return rows;
+}
+
+}  // namespace detail
 
 void for_each_scene_entry(const Scene& scene, const std::function<void(const SceneEntry&)>& visit) {
   Scene& s = const_cast<Scene&>(scene);  // the field accessors return references; only read

@@ -45,7 +45,7 @@ std::vector<Summary> run_batch(const std::vector<Scene>& scenes, int threads = 0
 /// As run_batch, keeping every run's history rows too (RunResult, as simulate()): the
 /// rows of scene i are bitwise identical to simulate(scenes[i]).rows for any `threads`.
 /// Memory: all rows of all runs are held (one HistoryRow is 96 bytes).
-/// @pre, @throws and the meaning of threads, on_done and stop: as run_batch. A scene that
+/// Preconditions, exceptions and the meaning of threads, on_done and stop: as run_batch. A scene that
 ///       failed before running has no rows.
 std::vector<RunResult> simulate_batch(
     const std::vector<Scene>& scenes, int threads = 0,

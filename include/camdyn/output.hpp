@@ -33,7 +33,7 @@ class AtomicFile {
   void write(std::string_view text);
   /// The underlying stream (for fprintf-style writers); valid until commit().
   std::FILE* stream() { return f_; }
-  /// Flush, close and rename onto the final path. @throws std::runtime_error.
+  /// Flush, close and rename onto the final path. @throws std::runtime_error on an error.
   void commit();
 
   const std::string& path() const { return path_; }
@@ -45,11 +45,11 @@ class AtomicFile {
   bool committed_ = false;
 };
 
-/// Write `content` to `path` atomically. @throws std::runtime_error.
+/// Write `content` to `path` atomically. @throws std::runtime_error on an error.
 void write_file_atomic(const std::string& path, std::string_view content);
 
 /// Create `dir` (like mkdir -p) and check that files can be created in it.
-/// @throws SceneError("--out", 0, "out", dir, "output directory is not writable: <reason>").
+/// @throws SceneError with file "--out", key "out", value `dir` and the rule "output directory is not writable: REASON".
 void ensure_output_dir(const std::string& dir);
 
 /// `dir`/`name` (no separator doubling; "" or "." for dir gives `name`).
@@ -90,7 +90,7 @@ class HistoryWriter : public Observer {
   /// also adds the `contact` column to events.csv.
   void set_extra_columns(std::vector<std::string> names) { extra_ = std::move(names); }
 
-  /// Write DIR/history.csv and DIR/events.csv atomically. @throws std::runtime_error.
+  /// Write DIR/history.csv and DIR/events.csv atomically. @throws std::runtime_error on an error.
   void write(const std::string& dir) const;
 
  private:
@@ -119,8 +119,8 @@ class HistoryWriter : public Observer {
 ///    throws std::runtime_error (inside Simulator::run: the run ends with Termination::Error).
 ///  - finish() writes the rest, fsyncs, closes and renames both temporary files onto
 ///    DIR/history.csv and DIR/events.csv (replacing them); afterwards rows and events are
-///    ignored. Calling it again does nothing. @throws std::runtime_error; on an error the
-///    temporary files are left as they are (nothing is deleted).
+///    ignored. Calling it again does nothing. Throws std::runtime_error on an error, and then
+///    leaves the temporary files as they are (nothing is deleted).
 ///  - The destructor without finish() does the same as finish() (every row and event
 ///    delivered so far ends up under the final names: a failed or stopped run keeps its
 ///    rows) but never throws: an error there is swallowed and leaves the temporary files.
@@ -138,9 +138,9 @@ class StreamingHistoryWriter : public Observer {
   void on_row(const HistoryRow& row) override;
   void on_event(const ContactEvent& event) override;
 
-  /// Write the buffered text to the temporary files now (fflush). @throws std::runtime_error.
+  /// Write the buffered text to the temporary files now (fflush). @throws std::runtime_error on an error.
   void flush();
-  /// Complete both files (see above). @throws std::runtime_error.
+  /// Complete both files (see above). @throws std::runtime_error on an error.
   void finish();
 
   bool finished() const { return done_; }
@@ -171,7 +171,7 @@ class StreamingHistoryWriter : public Observer {
 std::string scene_json(const Scene& scene, int indent = 0);
 /// summary.json: the run's statistics and "options" (the resolved scene).
 std::string summary_json(const Summary& summary, const Scene& resolved);
-/// Write DIR/summary.json atomically. @throws std::runtime_error.
+/// Write DIR/summary.json atomically. @throws std::runtime_error on an error.
 void write_summary(const std::string& dir, const Summary& summary, const Scene& resolved);
 
 // ---- cam.csv --------------------------------------------------------------------------

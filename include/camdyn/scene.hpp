@@ -251,7 +251,7 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments);
 /// Nothing else is changed (tol_v/tol_a = 0 keep meaning "per step"). Idempotent.
 void resolve_defaults(Scene& scene);
 /// Check every rule (errors name scene.source, no line). contact.tol_u = 0 is accepted as
-/// "not yet resolved". Cam convexity is left to Cam. @throws SceneError.
+/// "not yet resolved". Cam convexity is left to Cam. @throws SceneError naming key, value and rule.
 void validate(const Scene& scene);
 /// The scene as TOML with every key written (the resolved scene; floats in shortest
 /// round-trip form). parse_scene(to_toml(s), ...) == s after resolve_defaults(s).

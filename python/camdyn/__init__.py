@@ -12,7 +12,7 @@ Overrides are dotted scene keys given as keyword arguments, exactly as the CLI's
 are applied first and the scene is validated once, so their order never matters.
 
 Bad input raises :class:`SceneError` (a :class:`ValueError`) whose message is the one the
-CLI prints after ``camdyn: ``.
+CLI prints after ``camdyn:``.
 
 Follower networks (valve trains, ``follower.kind = "network"``) run the same way; their
 history also has ``F_<contact>``, ``gap_<contact>``, ``in_<contact>``, ``u_<node>``,

@@ -2,7 +2,7 @@
 //
 //   camdyn run   [SCENE.toml] [--out DIR] [--set KEY=VALUE]... [--quiet] [--plot]
 //   camdyn cam   [SCENE.toml] [--out DIR] [--points N] [--set KEY=VALUE]...
-//   camdyn scene [SCENE.toml] [--resolved] [--set KEY=VALUE]...
+//   camdyn scene [SCENE.toml] [--resolved] [--set KEY=VALUE]...   camdyn scene --keys [--json]
 //   camdyn plot  DIR [--zoom T0 T1]
 //   camdyn bench [SCENE ...] [--out DIR] [--quick] [--repeats N]
 //   camdyn jump  SCENE [--set KEY=VALUE]... [--out DIR] [--simulate] [--rel-tol R]
@@ -36,6 +36,7 @@
 #include "camdyn/designer.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
+#include "camdyn/scene_keys.hpp"
 #include "camdyn/simulator.hpp"
 #include "sweep_mpi.hpp"
 
@@ -318,6 +319,8 @@ struct CamOpts {
 struct SceneOpts {
   CommonOpts c;
   bool resolved = false;
+  bool keys = false;  // print the key reference instead of a scene
+  bool json = false;  // ... as JSON
 };
 
 struct PlotOpts {
@@ -691,6 +694,11 @@ int cmd_cam(const CamOpts& o) {
 }
 
 int cmd_scene(const SceneOpts& o) {
+  if (o.keys) {
+    std::fputs((o.json ? scene_keys_json() : scene_keys_markdown()).c_str(), stdout);
+    return kExitOk;
+  }
+  if (o.json) throw SceneError("scene", 0, "--json", "", "needs --keys (the scene itself is printed as TOML)");
   Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
   Scene resolved = sc;
   resolve_defaults(resolved);
@@ -888,6 +896,10 @@ int real_main(int argc, char** argv) {
   scene->add_flag("-r,--resolved", so.resolved,
                   "Print the resolved scene (automatic values such as contact.tol_u filled "
                   "in)");
+  scene->add_flag("--keys", so.keys,
+                  "Print the reference of every scene key (key, type, unit, default, rule, "
+                  "description) as Markdown, generated from the scene's key table");
+  scene->add_flag("--json", so.json, "With --keys: print the reference as JSON");
 
   PlotOpts po;
   auto* plot = app.add_subcommand(
