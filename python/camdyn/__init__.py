@@ -583,7 +583,7 @@ SWEEP_COLUMNS = ("finished", "separations", "impacts", "max_contact_force", "min
 def sweep(scene: Any, key: str, values: Iterable[float], threads: int = 0,
           **overrides: Any) -> Dict[str, Any]:
     """Run ``scene`` once per value of the dotted ``key`` (like ``camdyn sweep``), in C++
-    threads.
+    threads. A network entry's key by name works too: ``"elements.valve_spring.preload"``.
 
     Returns:
         dict: ``key`` → the values (float64 array), each name of :data:`SWEEP_COLUMNS` →
