@@ -6,6 +6,9 @@
                            DIR/contact_force.png      contact force over the run
                            DIR/contact_force_zoom.png 0.02 s around the largest force
                                                       (or the window T0..T1)
+                           networks (F_<contact>, u_<node> columns) also:
+                           DIR/network_motion.png     cam lift and every node vs cam angle
+                           DIR/network_forces.png     every contact's force, impacts marked
     camdyn_plot.py cam DIR [--speed REV_S]
         DIR/cam.csv     -> DIR/cam_profile.png        the profile in the cam frame
                            DIR/cam_kinematics.png     lift, velocity, acceleration vs cam angle
@@ -157,6 +160,60 @@ def plot_run(d, zoom=None):
     ax.set_title(("Contact force, t = %.6g … %.6g\n" % (t0, t1) + title).strip())
     ax.grid(True, alpha=0.3)
     save(fig, os.path.join(d, "contact_force_zoom.png"))
+    if network_names(c)[0]:
+        plot_network(d, c, title)
+
+
+# ---- networks (valve trains) ----------------------------------------------------------
+
+
+def network_names(c):
+    """(contacts, nodes) of a network history: the c of every F_<c>, the n of every u_<n>."""
+    contacts = [k[2:] for k in c if k.startswith("F_")]
+    nodes = [k[2:] for k in c if k.startswith("u_") and k != "u_c"]
+    return contacts, nodes
+
+
+def plot_network(d, c, title=""):
+    """DIR/network_motion.png: the cam lift (u_c − gap) and every node's displacement against
+    cam angle; DIR/network_forces.png: the force of every contact against cam angle, its
+    impacts (DIR/events.csv) marked."""
+    contacts, nodes = network_names(c)
+    deg = np.degrees(c["theta"])
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    ax.plot(deg, 1e3 * (c["u_c"] - c["gap"]), "k--", lw=1.0, label="cam lift")
+    for n in nodes:
+        ax.plot(deg, 1e3 * c["u_" + n], "-", lw=1.1, label=n)
+    ax.set_xlabel("cam angle [deg]")
+    ax.set_ylabel("displacement [mm]")
+    ax.set_title(("Lift and node displacements\n" + title).strip())
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize="small")
+    save(fig, os.path.join(d, "network_motion.png"))
+
+    impacts = {}
+    ev = os.path.join(d, "events.csv")
+    if os.path.isfile(ev):
+        import csv
+        with open(ev, newline="", encoding="utf-8") as f:
+            for e in csv.DictReader(f):
+                if e.get("kind") == "impact" and e.get("contact"):
+                    impacts.setdefault(e["contact"], []).append(float(e["t"]))
+    fig, axs = plt.subplots(len(contacts), 1, figsize=(8, 2.2 + 1.8 * len(contacts)), sharex=True,
+                            squeeze=False)
+    for ax, name in zip(axs[:, 0], contacts):
+        f = c["F_" + name]
+        ax.plot(deg, f, "-", lw=0.9)
+        ts = impacts.get(name, [])
+        if ts:
+            ax.plot(np.degrees(np.interp(ts, c["t"], c["theta"])), np.interp(ts, c["t"], f), "rv", ms=6,
+                    label="impact")
+            ax.legend(loc="best", fontsize="small")
+        ax.set_ylabel("F_%s [N]" % name)
+        ax.grid(True, alpha=0.3)
+    axs[-1, 0].set_xlabel("cam angle [deg]")
+    axs[0, 0].set_title(("Contact forces\n" + title).strip())
+    save(fig, os.path.join(d, "network_forces.png"))
 
 
 # ---- cam -----------------------------------------------------------------------------

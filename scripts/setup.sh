@@ -16,7 +16,7 @@ PACKAGES=(build-essential cmake ninja-build libsundials-dev libeigen3-dev libsui
           libtomlplusplus-dev libcli11-dev libgtest-dev googletest libbenchmark-dev
           python3 python3-numpy python3-matplotlib clang libclang-rt-14-dev
           pybind11-dev python3-dev python3-pytest pkg-config
-          libopenmpi-dev openmpi-bin
+          libopenmpi-dev openmpi-bin chromium
           python3-sphinx python3-myst-parser python3-breathe doxygen)
 
 # Install the packages of PACKAGES that are not installed yet (no apt at all otherwise).

@@ -23,73 +23,13 @@
 
 #include <toml++/toml.h>
 
+#include "scene_detail.hpp"
+
 namespace camdyn {
 
 // ---------------------------------------------------------------- enum <-> string
+using namespace scene_detail;  // enum names, formatting helpers, network arrays (scene_detail.hpp)
 
-namespace {
-
-template <class E>
-struct EnumName {
-  E value;
-  const char* name;
-};
-
-constexpr EnumName<CamProfileKind> kProfileNames[] = {
-    {CamProfileKind::Points, "points"}, {CamProfileKind::Lift, "lift"}, {CamProfileKind::Circle, "circle"}};
-constexpr EnumName<FollowerKind> kFollowerNames[] = {{FollowerKind::Rigid, "rigid"},
-                                                     {FollowerKind::ElasticBar, "elastic_bar"},
-                                                     {FollowerKind::Network, "network"}};
-constexpr EnumName<MassMatrixKind> kMassNames[] = {{MassMatrixKind::Consistent, "consistent"},
-                                                   {MassMatrixKind::Lumped, "lumped"}};
-constexpr EnumName<ContactModel> kContactNames[] = {{ContactModel::Lee, "lee"},
-                                                    {ContactModel::Penalty, "penalty"},
-                                                    {ContactModel::Holonomic, "holonomic"},
-                                                    {ContactModel::Event, "event"}};
-constexpr EnumName<ErrorVariant> kVariantNames[] = {{ErrorVariant::Eq12, "eq12"}, {ErrorVariant::Eq17, "eq17"}};
-constexpr EnumName<LeeStepKind> kLeeStepNames[] = {{LeeStepKind::Located, "located"}, {LeeStepKind::Classic, "classic"}};
-constexpr EnumName<PenaltyLaw> kPenaltyNames[] = {{PenaltyLaw::Linear, "linear"},
-                                                  {PenaltyLaw::HuntCrossley, "hunt_crossley"}};
-constexpr EnumName<Integrator> kIntegratorNames[] = {{Integrator::ArkodeErk, "arkode-erk"},
-                                                     {Integrator::ArkodeDirk, "arkode-dirk"},
-                                                     {Integrator::CvodeBdf, "cvode-bdf"},
-                                                     {Integrator::Ida, "ida"}};
-constexpr EnumName<LinearSolverKind> kLinSolNames[] = {
-    {LinearSolverKind::Auto, "auto"}, {LinearSolverKind::Dense, "dense"}, {LinearSolverKind::Klu, "klu"}};
-constexpr EnumName<ElementKind> kElementNames[] = {{ElementKind::Spring, "spring"},
-                                                   {ElementKind::Dashpot, "dashpot"},
-                                                   {ElementKind::Bar, "bar"},
-                                                   {ElementKind::Lever, "lever"}};
-constexpr EnumName<ContactPointKind> kContactPointNames[] = {
-    {ContactPointKind::Cam, "cam"}, {ContactPointKind::Lash, "lash"}, {ContactPointKind::Stop, "stop"}};
-constexpr EnumName<StopSide> kStopSideNames[] = {{StopSide::Below, "below"}, {StopSide::Above, "above"}};
-constexpr EnumName<BarMass> kBarMassNames[] = {{BarMass::Lumped, "lumped"}, {BarMass::Consistent, "consistent"}};
-
-template <class E, std::size_t N>
-const char* enum_to_string(const EnumName<E> (&names)[N], E v) {
-  for (const auto& n : names)
-    if (n.value == v) return n.name;
-  return "?";
-}
-
-template <class E, std::size_t N>
-bool enum_parse(const EnumName<E> (&names)[N], std::string_view s, E* out) {
-  for (const auto& n : names)
-    if (s == n.name) {
-      if (out) *out = n.value;
-      return true;
-    }
-  return false;
-}
-
-template <class E, std::size_t N>
-std::vector<std::string> enum_names(const EnumName<E> (&names)[N]) {
-  std::vector<std::string> r;
-  for (const auto& n : names) r.emplace_back(n.name);
-  return r;
-}
-
-}  // namespace
 
 const char* to_string(CamProfileKind v) { return enum_to_string(kProfileNames, v); }
 const char* to_string(FollowerKind v) { return enum_to_string(kFollowerNames, v); }
@@ -168,7 +108,7 @@ bool operator==(const NetworkSpec& a, const NetworkSpec& b) {
 
 // ---------------------------------------------------------------- formatting helpers
 
-namespace {
+namespace scene_detail {
 
 /// Shortest decimal form that reads back to the same double ("nan", "inf", "-inf" too).
 std::string fmt_num(double v) {
@@ -276,6 +216,34 @@ std::string range_rule(long long lo, long long hi) {
 }
 
 int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
+
+void fail(const std::string& file, int line, const std::string& key, const std::string& value,
+                       const std::string& rule) {
+  throw SceneError(file, line, key, value, rule);
+}
+
+long long toml_integer(const toml::node& n, const std::string& file, int line, const std::string& key) {
+  if (auto i = n.as_integer()) return i->get();
+  if (auto d = n.as_floating_point()) {
+    const double x = d->get();
+    if (std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 9.0e18) return static_cast<long long>(x);
+  }
+  fail(file, line, key, fmt_node(n), "must be an integer");
+}
+
+std::vector<std::pair<std::string, const toml::node*>> sorted_entries(const toml::table& t) {
+  std::vector<std::pair<std::string, const toml::node*>> e;
+  for (auto&& [k, v] : t) e.emplace_back(std::string(k.str()), &v);
+  std::stable_sort(e.begin(), e.end(), [](const auto& a, const auto& b) {
+    return line_of(*a.second) < line_of(*b.second);
+  });
+  return e;
+}
+
+}  // namespace scene_detail
+
+namespace {
+
 
 // ---------------------------------------------------------------- field descriptors
 
@@ -505,24 +473,6 @@ std::string allowed_in(std::string_view table) {
   return "allowed keys in [" + std::string(table) + "]: " + join(k, ", ");
 }
 
-// ---------------------------------------------------------------- TOML table -> Scene
-
-/// Lines of the keys read from a file (dotted path, and path[i] for array elements).
-using LineMap = std::map<std::string, int>;
-
-[[noreturn]] void fail(const std::string& file, int line, const std::string& key, const std::string& value,
-                       const std::string& rule) {
-  throw SceneError(file, line, key, value, rule);
-}
-
-std::vector<std::pair<std::string, const toml::node*>> sorted_entries(const toml::table& t) {
-  std::vector<std::pair<std::string, const toml::node*>> e;
-  for (auto&& [k, v] : t) e.emplace_back(std::string(k.str()), &v);
-  std::stable_sort(e.begin(), e.end(), [](const auto& a, const auto& b) {
-    return line_of(*a.second) < line_of(*b.second);
-  });
-  return e;
-}
 
 void read_field(const Field& f, const toml::node& n, Scene& s, const std::string& file, bool use_lines,
                 LineMap& lines) {
@@ -539,17 +489,7 @@ void read_field(const Field& f, const toml::node& n, Scene& s, const std::string
         fail(file, line, key, fmt_node(n), "must be a number");
       return;
     case FK::Int: {
-      long long v = 0;
-      if (auto i = n.as_integer()) {
-        v = i->get();
-      } else if (auto d = n.as_floating_point()) {
-        const double x = d->get();
-        if (!(std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 9.0e18))
-          fail(file, line, key, fmt_node(n), "must be an integer");
-        v = static_cast<long long>(x);
-      } else {
-        fail(file, line, key, fmt_node(n), "must be an integer");
-      }
+      const long long v = toml_integer(n, file, line, key);
       if (v < f.imin || v > f.imax) fail(file, line, key, fmt_node(n), range_rule(f.imin, f.imax));
       f.set_int(s, v);
       return;
@@ -594,291 +534,6 @@ void read_field(const Field& f, const toml::node& n, Scene& s, const std::string
   }
 }
 
-// ---------------------------------------------------------------- network arrays
-
-// [[nodes]], [[elements]], [[contacts]] (follower.kind = "network"): arrays of tables whose
-// allowed keys depend on the entry's type. Keys of entry i are named "ARRAY[i].KEY" (0-based).
-
-const char* const kNetworkArrays[] = {"nodes", "elements", "contacts"};
-
-bool is_network_array(std::string_view s) {
-  for (const char* a : kNetworkArrays)
-    if (s == a) return true;
-  return false;
-}
-
-const std::vector<std::string>& node_keys() {
-  static const std::vector<std::string> k{"name", "mass", "initial_displacement", "initial_velocity"};
-  return k;
-}
-
-/// Every key an element may have (of some type), in file order.
-const std::vector<std::string>& all_element_keys() {
-  static const std::vector<std::string> k{"name",   "type",          "nodes",          "stiffness",     "preload",
-                                          "damping", "mass",         "masses",         "youngs_modulus", "area",
-                                          "length",  "elements",     "mass_matrix",    "rayleigh_alpha", "rayleigh_beta",
-                                          "ratio"};
-  return k;
-}
-
-std::vector<std::string> element_keys(ElementKind kind) {
-  std::vector<std::string> k{"name", "type", "nodes"};
-  switch (kind) {
-    case ElementKind::Spring: k.insert(k.end(), {"stiffness", "preload", "damping", "mass", "masses"}); break;
-    case ElementKind::Dashpot: k.insert(k.end(), {"damping"}); break;
-    case ElementKind::Bar:
-      k.insert(k.end(), {"mass", "youngs_modulus", "area", "length", "elements", "mass_matrix", "rayleigh_alpha",
-                         "rayleigh_beta"});
-      break;
-    case ElementKind::Lever: k.insert(k.end(), {"ratio"}); break;
-  }
-  return k;
-}
-
-const std::vector<std::string>& all_contact_keys() {
-  static const std::vector<std::string> k{"name",        "type",        "nodes",           "clearance",
-                                          "side",        "restitution", "penalty_stiffness", "penalty_damping"};
-  return k;
-}
-
-std::vector<std::string> contact_keys(ContactPointKind kind) {
-  std::vector<std::string> k{"name", "type", "nodes", "clearance"};
-  if (kind == ContactPointKind::Stop) k.emplace_back("side");
-  k.insert(k.end(), {"restitution", "penalty_stiffness", "penalty_damping"});
-  return k;
-}
-
-bool contains(const std::vector<std::string>& v, std::string_view s) {
-  return std::find(v.begin(), v.end(), s) != v.end();
-}
-
-std::string allowed_in_array(std::string_view array) {
-  if (array == "nodes") return "allowed keys in [[nodes]]: " + join(node_keys(), ", ");
-  if (array == "elements") return "allowed keys in [[elements]]: " + join(all_element_keys(), ", ") + " (by type)";
-  return "allowed keys in [[contacts]]: " + join(all_contact_keys(), ", ") + " (by type)";
-}
-
-/// Builds SceneEntry lists for the writers (for_each_network_entry).
-struct EntryList {
-  std::string table;
-  std::vector<SceneEntry> v;
-  SceneEntry& add(const char* key, SceneEntry::Kind kind) {
-    SceneEntry e;
-    e.table = table;
-    e.key = key;
-    e.kind = kind;
-    v.push_back(std::move(e));
-    return v.back();
-  }
-  void real(const char* key, double x) { add(key, SceneEntry::Kind::Real).real = x; }
-  void integer(const char* key, long long x) { add(key, SceneEntry::Kind::Int).integer = x; }
-  void str(const char* key, const std::string& x) { add(key, SceneEntry::Kind::Str).text = x; }
-  void names(const char* key, const std::vector<std::string>& x) { add(key, SceneEntry::Kind::Names).names = x; }
-};
-
-std::vector<SceneEntry> node_entries(const NodeSpec& n) {
-  EntryList l{"nodes", {}};
-  l.str("name", n.name);
-  l.real("mass", n.mass);
-  l.real("initial_displacement", n.initial_displacement);
-  l.real("initial_velocity", n.initial_velocity);
-  return std::move(l.v);
-}
-
-std::vector<SceneEntry> element_entries(const ElementSpec& e) {
-  EntryList l{"elements", {}};
-  if (!e.name.empty()) l.str("name", e.name);
-  l.str("type", to_string(e.kind));
-  l.names("nodes", e.nodes);
-  switch (e.kind) {
-    case ElementKind::Spring:
-      l.real("stiffness", e.stiffness);
-      l.real("preload", e.preload);
-      l.real("damping", e.damping);
-      l.real("mass", e.mass);
-      l.integer("masses", e.masses);
-      break;
-    case ElementKind::Dashpot: l.real("damping", e.damping); break;
-    case ElementKind::Bar:
-      l.real("mass", e.mass);
-      l.real("youngs_modulus", e.youngs_modulus);
-      l.real("area", e.area);
-      l.real("length", e.length);
-      l.integer("elements", e.elements);
-      l.str("mass_matrix", to_string(e.mass_matrix));
-      l.real("rayleigh_alpha", e.rayleigh_alpha);
-      l.real("rayleigh_beta", e.rayleigh_beta);
-      break;
-    case ElementKind::Lever: l.real("ratio", e.ratio); break;
-  }
-  return std::move(l.v);
-}
-
-std::vector<SceneEntry> contact_entries(const ContactPointSpec& c) {
-  EntryList l{"contacts", {}};
-  l.str("name", c.name);
-  l.str("type", to_string(c.kind));
-  l.names("nodes", c.nodes);
-  l.real("clearance", c.clearance);
-  if (c.kind == ContactPointKind::Stop) l.str("side", to_string(c.side));
-  if (c.restitution) l.real("restitution", *c.restitution);
-  if (c.penalty_stiffness) l.real("penalty_stiffness", *c.penalty_stiffness);
-  if (c.penalty_damping) l.real("penalty_damping", *c.penalty_damping);
-  return std::move(l.v);
-}
-
-/// Reads the values of one network entry (strict types, as read_field).
-struct NetReader {
-  const std::string& file;
-  bool use_lines;
-  LineMap& lines;
-
-  int line(const toml::node& n) const { return use_lines ? line_of(n) : 0; }
-  [[noreturn]] void fail_missing(const toml::table& t, const std::string& prefix, const std::string& rule) const {
-    fail(file, line(t), prefix, "{...}", rule);
-  }
-  double real(const toml::node& n, const std::string& key) const {
-    if (auto i = n.as_integer()) return static_cast<double>(i->get());
-    if (auto d = n.as_floating_point()) return d->get();
-    fail(file, line(n), key, fmt_node(n), "must be a number");
-  }
-  int integer(const toml::node& n, const std::string& key, long long lo, long long hi) const {
-    long long v = 0;
-    if (auto i = n.as_integer()) {
-      v = i->get();
-    } else if (auto d = n.as_floating_point()) {
-      const double x = d->get();
-      if (!(std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 9.0e18))
-        fail(file, line(n), key, fmt_node(n), "must be an integer");
-      v = static_cast<long long>(x);
-    } else {
-      fail(file, line(n), key, fmt_node(n), "must be an integer");
-    }
-    if (v < lo || v > hi) fail(file, line(n), key, fmt_node(n), range_rule(lo, hi));
-    return static_cast<int>(v);
-  }
-  std::string str(const toml::node& n, const std::string& key) const {
-    if (auto s = n.as_string()) return s->get();
-    fail(file, line(n), key, fmt_node(n), "must be a string");
-  }
-  std::vector<std::string> names(const toml::node& n, const std::string& key) {
-    auto a = n.as_array();
-    if (!a) fail(file, line(n), key, fmt_node(n), "must be an array of node names");
-    std::vector<std::string> v;
-    for (std::size_t i = 0; i < a->size(); ++i) {
-      const toml::node& e = *a->get(i);
-      const std::string ek = key + "[" + std::to_string(i) + "]";
-      lines[ek] = line(e);
-      auto s = e.as_string();
-      if (!s) fail(file, line(e), ek, fmt_node(e), "must be a string (a node name)");
-      v.push_back(s->get());
-    }
-    return v;
-  }
-  template <class E, std::size_t N>
-  E enumeration(const toml::node& n, const std::string& key, const EnumName<E> (&names)[N]) const {
-    E v{};
-    auto s = n.as_string();
-    if (!s || !enum_parse(names, s->get(), &v)) fail(file, line(n), key, fmt_node(n), one_of(enum_names(names)));
-    return v;
-  }
-};
-
-/// The value of the key 'type' of entry `prefix` (an element or contact), which decides the
-/// other keys allowed; required.
-template <class E, std::size_t N>
-E entry_type(const toml::table& t, const std::string& prefix, const EnumName<E> (&names)[N], NetReader& r) {
-  const toml::node* n = t.get("type");
-  if (!n) {
-    std::vector<std::string> q;
-    for (const auto& a : enum_names(names)) q.push_back(quote(a));
-    r.fail_missing(t, prefix, "must have a key 'type' (" + join(q, " | ") + ")");
-  }
-  r.lines[prefix + ".type"] = r.line(*n);
-  return r.enumeration(*n, prefix + ".type", names);
-}
-
-void read_network_array(const std::string& array, const toml::node& node, Scene& s, const std::string& file,
-                        bool use_lines, LineMap& lines) {
-  NetReader r{file, use_lines, lines};
-  const int line = r.line(node);
-  lines[array] = line;
-  const toml::array* a = node.as_array();
-  if (!a || (!a->empty() && !a->is_array_of_tables()))
-    fail(file, line, array, fmt_node(node),
-         "must be an array of tables ([[" + array + "]]); " + allowed_in_array(array));
-  // A key an entry of this type does not take: name the type's keys (and say whether the
-  // key belongs to another type).
-  auto check_key = [&](const std::string& k, const toml::node& v, const std::string& key, const std::string& what,
-                       const std::vector<std::string>& allowed, const std::vector<std::string>& all) {
-    if (contains(allowed, k)) return;
-    fail(file, r.line(v), key, fmt_node(v),
-         (contains(all, k) ? "not a key of a" + what + "; " : std::string("unknown key; ")) +
-             "allowed keys of a" + what + ": " + join(allowed, ", "));
-  };
-  for (std::size_t i = 0; i < a->size(); ++i) {
-    const toml::table& t = *a->get(i)->as_table();
-    const std::string prefix = array + "[" + std::to_string(i) + "]";
-    lines[prefix] = r.line(t);
-    if (array == "nodes") {
-      NodeSpec n;
-      for (const auto& [k, v] : sorted_entries(t)) {
-        const std::string key = prefix + "." + k;
-        lines[key] = r.line(*v);
-        if (k == "name") n.name = r.str(*v, key);
-        else if (k == "mass") n.mass = r.real(*v, key);
-        else if (k == "initial_displacement") n.initial_displacement = r.real(*v, key);
-        else if (k == "initial_velocity") n.initial_velocity = r.real(*v, key);
-        else
-          fail(file, r.line(*v), key, fmt_node(*v),
-               std::string(v->is_table() ? "unknown table; " : "unknown key; ") + allowed_in_array(array));
-      }
-      s.network.nodes.push_back(std::move(n));
-    } else if (array == "elements") {
-      ElementSpec e;
-      e.kind = entry_type(t, prefix, kElementNames, r);
-      const std::vector<std::string> allowed = element_keys(e.kind);
-      for (const auto& [k, v] : sorted_entries(t)) {
-        const std::string key = prefix + "." + k;
-        lines[key] = r.line(*v);
-        check_key(k, *v, key, std::string(" ") + to_string(e.kind) + " element", allowed, all_element_keys());
-        if (k == "name") e.name = r.str(*v, key);
-        else if (k == "nodes") e.nodes = r.names(*v, key);
-        else if (k == "stiffness") e.stiffness = r.real(*v, key);
-        else if (k == "preload") e.preload = r.real(*v, key);
-        else if (k == "damping") e.damping = r.real(*v, key);
-        else if (k == "mass") e.mass = r.real(*v, key);
-        else if (k == "masses") e.masses = r.integer(*v, key, 0, 100000);
-        else if (k == "youngs_modulus") e.youngs_modulus = r.real(*v, key);
-        else if (k == "area") e.area = r.real(*v, key);
-        else if (k == "length") e.length = r.real(*v, key);
-        else if (k == "elements") e.elements = r.integer(*v, key, 1, 100000);
-        else if (k == "mass_matrix") e.mass_matrix = r.enumeration(*v, key, kBarMassNames);
-        else if (k == "rayleigh_alpha") e.rayleigh_alpha = r.real(*v, key);
-        else if (k == "rayleigh_beta") e.rayleigh_beta = r.real(*v, key);
-        else if (k == "ratio") e.ratio = r.real(*v, key);
-      }
-      s.network.elements.push_back(std::move(e));
-    } else {
-      ContactPointSpec c;
-      c.kind = entry_type(t, prefix, kContactPointNames, r);
-      const std::vector<std::string> allowed = contact_keys(c.kind);
-      for (const auto& [k, v] : sorted_entries(t)) {
-        const std::string key = prefix + "." + k;
-        lines[key] = r.line(*v);
-        check_key(k, *v, key, std::string(" ") + to_string(c.kind) + " contact", allowed, all_contact_keys());
-        if (k == "name") c.name = r.str(*v, key);
-        else if (k == "nodes") c.nodes = r.names(*v, key);
-        else if (k == "clearance") c.clearance = r.real(*v, key);
-        else if (k == "side") c.side = r.enumeration(*v, key, kStopSideNames);
-        else if (k == "restitution") c.restitution = r.real(*v, key);
-        else if (k == "penalty_stiffness") c.penalty_stiffness = r.real(*v, key);
-        else if (k == "penalty_damping") c.penalty_damping = r.real(*v, key);
-      }
-      s.network.contacts.push_back(std::move(c));
-    }
-  }
-}
 
 void validate_impl(const Scene& s, const std::string& file, const LineMap& lines);
 
@@ -1457,9 +1112,10 @@ Scene load_scene_file(const std::string& path) {
 
 namespace {
 
-// Put one "dotted.key=value" into `root` (the scene as a TOML table); returns the key.
-// Only the key's place is checked here; the value is checked when the table is parsed.
-std::string insert_override(toml::table& root, const std::string& assignment) {
+// Put one "dotted.key=value" into `root` (`scene` as a TOML table); returns the key (a
+// network key as "ARRAY[INDEX].KEY", the loader's spelling). Only the key's place is checked
+// here; the value is checked when the table is parsed.
+std::string insert_override(toml::table& root, const Scene& scene, const std::string& assignment) {
   static const std::string kFile = "--set";
   const auto eq = assignment.find('=');
   if (eq == std::string::npos)
@@ -1485,6 +1141,8 @@ std::string insert_override(toml::table& root, const std::string& assignment) {
     value = parsed.get("x");
   }
 
+  // A network entry's key, by name or index: "contacts.seat.restitution", "elements[1].preload".
+  if (is_network_key(key)) return insert_network_override(root, scene, key, *value, kFile);
   // The key: "title" or "TABLE.KEY".
   std::string table, leaf;
   const auto dot = key.find('.');
@@ -1515,11 +1173,25 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
 
   toml::table root = to_table(scene);
   bool sets_tol_u = false;
-  for (const auto& a : assignments) sets_tol_u |= insert_override(root, a) == "contact.tol_u";
+  std::map<std::string, std::string> spelled;  // "contacts[1].restitution" → "contacts.seat.restitution"
+  for (const auto& a : assignments) {
+    const std::string key = insert_override(root, scene, a);
+    sets_tol_u |= key == "contact.tol_u";
+    const std::string given = trim(std::string_view(a).substr(0, a.find('=')));
+    if (given != key) spelled[key] = given;
+  }
   if (tol_u_auto && !sets_tol_u) root.get_as<toml::table>("contact")->insert_or_assign("tol_u", 0.0);
 
   // One parse and one validation of the result: the order of the overrides does not matter.
-  Scene out = from_table(root, kFile, false);
+  // A bad value of a network key is reported under the key as the user wrote it.
+  Scene out;
+  try {
+    out = from_table(root, kFile, false);
+  } catch (const SceneError& e) {
+    const auto it = spelled.find(e.key());
+    if (it == spelled.end()) throw;
+    throw SceneError(e.file(), e.line(), it->second, e.value(), e.rule());
+  }
   out.source = scene.source;
   scene = std::move(out);
 }
@@ -1595,14 +1267,6 @@ void for_each_scene_entry(const Scene& scene, const std::function<void(const Sce
   }
 }
 
-void for_each_network_entry(
-    const Scene& scene,
-    const std::function<void(const std::string& array, std::size_t index, const std::vector<SceneEntry>& keys)>& visit) {
-  const NetworkSpec& n = scene.network;
-  for (std::size_t i = 0; i < n.nodes.size(); ++i) visit("nodes", i, node_entries(n.nodes[i]));
-  for (std::size_t i = 0; i < n.elements.size(); ++i) visit("elements", i, element_entries(n.elements[i]));
-  for (std::size_t i = 0; i < n.contacts.size(); ++i) visit("contacts", i, contact_entries(n.contacts[i]));
-}
 
 std::string to_toml(const Scene& scene_in) {
   Scene resolved = scene_in;

@@ -42,6 +42,7 @@ std::string numeric_keys(const Scene& s) {
 }
 
 bool is_int_key(const Scene& s, const std::string& key) {
+  if (is_network_key(key)) return resolve_network_key(s, key, "--key", key).kind == SceneEntry::Kind::Int;
   bool r = false;
   for_each_scene_entry(s, [&](const SceneEntry& e) {
     if ((e.table.empty() ? e.key : e.table + "." + e.key) == key) r = e.kind == SceneEntry::Kind::Int;
@@ -100,6 +101,18 @@ const std::vector<std::string>& sweep_result_columns() {
 void check_sweep_key(const Scene& scene, const std::string& key) {
   bool found = false, numeric = false;
   std::string kind;
+  if (is_network_key(key)) {  // "elements.valve_spring.preload": the entry by name or index
+    NetworkKey k;
+    try {
+      k = resolve_network_key(scene, key, "--key", key);
+    } catch (const SceneError& e) {
+      throw SceneError("--key", 0, "key", key, e.rule());
+    }
+    if (k.kind == SceneEntry::Kind::Real || k.kind == SceneEntry::Kind::Int) return;
+    throw SceneError("--key", 0, "key", key,
+                     std::string("is ") + (k.kind == SceneEntry::Kind::Str ? "a string" : "an array of node names") +
+                         ", not a number: only numeric keys can be swept");
+  }
   for_each_scene_entry(scene, [&](const SceneEntry& e) {
     if ((e.table.empty() ? e.key : e.table + "." + e.key) != key) return;
     found = true;

@@ -30,4 +30,24 @@ rc=$?
 set -e
 [ "$rc" -eq 2 ] || { echo "mpirun --resume on another sweep: exit $rc, expected 2"; cat bad.txt; exit 1; }
 [ "$(grep -c 'is from another sweep' bad.txt)" -eq 1 ] || { echo "message not printed once:"; cat bad.txt; exit 1; }
-echo "sweep_mpi: --jobs 1, --jobs 2 and mpirun -np 2 agree ($rows rows); bad --resume exits 2"
+# A network entry's key by name (issue 26): elements.valve_spring.preload of the OHC example,
+# the same rows with --jobs 1, --jobs 2 and mpirun -np 2; the key's values in the first column
+nargs=("$src/examples/ohc_bucket_tappet.toml" --key elements.valve_spring.preload --from 150 --to 350
+       --points 3 --set run.t_end=0.02 --no-timing --quiet)
+"$camdyn" sweep "${nargs[@]}" --jobs 1 --out n1
+"$camdyn" sweep "${nargs[@]}" --jobs 2 --out n2
+"$mpiexec" --allow-run-as-root --oversubscribe -np 2 "$camdyn" sweep "${nargs[@]}" --out nm
+cmp n1/sweep.csv n2/sweep.csv
+cmp n1/sweep.csv nm/sweep.csv
+[ "$(cut -d, -f1 nm/sweep.csv | tr '\n' ' ')" = "elements.valve_spring.preload 150 250 350 " ] ||
+  { echo "network sweep: unexpected first column"; cat nm/sweep.csv; exit 1; }
+# an unknown entry name under mpirun: exit 2, the names listed, printed once
+set +e
+"$mpiexec" --allow-run-as-root --oversubscribe -np 2 "$camdyn" sweep "$src/examples/ohc_bucket_tappet.toml" \
+  --key elements.spring.preload --from 1 --to 2 --points 2 --quiet --out nbad > nbad.txt 2>&1
+rc=$?
+set -e
+[ "$rc" -eq 2 ] || { echo "mpirun unknown entry name: exit $rc, expected 2"; cat nbad.txt; exit 1; }
+[ "$(grep -c "no \[\[elements\]\] entry named 'spring'; \[\[elements\]\] has 2 entries: stem, valve_spring" nbad.txt)" -eq 1 ] ||
+  { echo "unknown-name message not printed once:"; cat nbad.txt; exit 1; }
+echo "sweep_mpi: --jobs 1, --jobs 2 and mpirun -np 2 agree ($rows rows; network key: 3 rows); bad --resume and a bad entry name exit 2"

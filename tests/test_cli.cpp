@@ -141,14 +141,14 @@ void expect_no_temp_files(const fs::path& d) {
 TEST_F(CliTest, HelpListsEveryCommand) {
   const auto r = camdyn("--help");
   EXPECT_EQ(r.status, 0) << r.err;
-  for (const char* cmd : {"run", "cam", "scene", "plot", "jump", "sweep"}) {
+  for (const char* cmd : {"run", "cam", "scene", "plot", "report", "jump", "sweep"}) {
     EXPECT_NE(r.out.find(cmd), std::string::npos) << "--help does not list " << cmd << "\n"
                                                   << r.out;
   }
 }
 
 TEST_F(CliTest, EveryCommandHasHelp) {
-  for (const char* cmd : {"run", "cam", "scene", "plot", "jump", "sweep"}) {
+  for (const char* cmd : {"run", "cam", "scene", "plot", "report", "jump", "sweep"}) {
     const auto r = camdyn(std::string(cmd) + " --help");
     EXPECT_EQ(r.status, 0) << cmd << ": " << r.err;
     EXPECT_NE(r.out.find(cmd), std::string::npos) << r.out;
@@ -266,6 +266,11 @@ TEST_F(CliTest, BadInputExitsTwoWithKeyAndRule) {
        {"cam.radii", "convex"}},
       {"cam --points out of range", "cam --points 0 --out D", "", "", {"--points"}},
       {"plot of a missing directory", "plot no_such_dir", "", "", {"no_such_dir"}},
+      {"report of a missing directory", "report no_such_dir", "", "",
+       {"camdyn: report: key 'DIR' = no_such_dir: not a directory\n"}},
+      {"report of a directory without results", "report .", "", "",
+       {"camdyn: report: key 'DIR' = .: holds neither summary.json (from 'camdyn run') nor sweep.csv (from "
+        "'camdyn sweep')\n"}},
       {"unknown paper case", "scene --case Z9", "", "", {"Z9", "B1"}},
   };
   ASSERT_GE(cases.size(), 10u);

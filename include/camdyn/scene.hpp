@@ -231,7 +231,8 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name);
 /// "PATH: cannot read scene file: <strerror>").
 Scene load_scene_file(const std::string& path);
 /// Apply "dotted.key=value" (value in TOML syntax; bare words are taken as strings, so
-/// contact.model=penalty works). The scene is converted to a TOML table, the key set and
+/// contact.model=penalty works). Network entries are addressed by name or index
+/// (resolve_network_key): contacts.seat.restitution=0.3, elements[1].preload=300. The scene is converted to a TOML table, the key set and
 /// the table parsed again with the same checks as a file (errors name file "--set", no
 /// line). On success the scene is replaced by the resolved, validated result (its source
 /// is kept); on error it is unchanged.
@@ -282,6 +283,31 @@ void for_each_scene_entry(const Scene& scene, const std::function<void(const Sce
 void for_each_network_entry(
     const Scene& scene,
     const std::function<void(const std::string& array, std::size_t index, const std::vector<SceneEntry>& keys)>& visit);
+
+/// One key of one network entry, addressed on the command line, as a Python override or as
+/// a sweep key by the entry's name — "contacts.seat.restitution", "elements.pushrod.elements",
+/// "nodes.valve.mass" (ARRAY.NAME.KEY; a name may contain dots, the key is after the last)
+/// — or by its 0-based index — "contacts[1].restitution" (ARRAY[INDEX].KEY).
+struct NetworkKey {
+  std::string array;       ///< "nodes" | "elements" | "contacts"
+  std::size_t index = 0;   ///< the entry's position in its array
+  std::string key;         ///< the entry's key, e.g. "restitution"
+  SceneEntry::Kind kind = SceneEntry::Kind::Real;  ///< Real, Int (masses, elements), Str or Names (nodes)
+  /// "ARRAY[INDEX].KEY", the spelling of the loader's own messages ("contacts[1].restitution").
+  std::string canonical() const;
+};
+/// Whether `key` is spelled as a network key: "nodes", "elements" or "contacts" followed by
+/// '.' or '['.
+bool is_network_key(std::string_view key);
+/// Resolve a network key against scene.network (the entry must exist and the key be one of
+/// the keys its type takes).
+/// @pre is_network_key(key)
+/// @throws SceneError(file, 0, key, value, rule) when the key is not ARRAY.NAME.KEY or
+///   ARRAY[INDEX].KEY, no entry has that name (the rule lists the names there are), the index
+///   is out of range (the rule gives the count and the names), or the key is not one of the
+///   entry's type (the rule lists that type's keys, as the file loader does).
+NetworkKey resolve_network_key(const Scene& scene, const std::string& key, const std::string& file,
+                               const std::string& value);
 
 /// Content equality (every field except `source`); exact comparison of doubles.
 bool operator==(const CamSpec& a, const CamSpec& b);

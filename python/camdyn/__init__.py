@@ -8,7 +8,8 @@ Python front end of the C++ library (issue 17). A *scene* is one of
 * ``None``: the built-in default scene (the paper's case B2, as ``camdyn run``).
 
 Overrides are dotted scene keys given as keyword arguments, exactly as the CLI's
-``--set``: ``camdyn.run("examples/case_A.toml", **{"cam.speed_rev_s": 3})``. All overrides
+``--set``: ``camdyn.run("examples/case_A.toml", **{"cam.speed_rev_s": 3})``; network entries
+by name: ``**{"contacts.seat.restitution": 0.3}``. All overrides
 are applied first and the scene is validated once, so their order never matters.
 
 Bad input raises :class:`SceneError` (a :class:`ValueError`) whose message is the one the
@@ -186,13 +187,18 @@ NETWORK_ARRAYS = ("nodes", "elements", "contacts")
 def _scene_spec(scene: Any, overrides: Mapping[str, Any]) -> Tuple[str, str, str, List[str]]:
     """(kind, text, source, assignments) for the C++ side.
 
-    ``nodes=[...]``, ``elements=[...]``, ``contacts=[...]`` overrides (the CLI's ``--set``
-    has no such keys) replace the scene's array: the scene is taken as a dict (a file or
+    Network entries are addressed by name or index like any dotted key
+    (``**{"contacts.seat.restitution": 0.3}``, ``**{"elements[1].preload": 300}``), or as a
+    dict by name (``contacts={"seat": {"restitution": 0.3}}``).
+    ``nodes=[...]``, ``elements=[...]``, ``contacts=[...]`` overrides (lists: the CLI's
+    ``--set`` has no such keys) replace the scene's array: the scene is taken as a dict (a file or
     TOML text through its resolved form, which needs Python ≥ 3.11's tomllib), the arrays
     replaced, and the result passed as a dict scene (source ``<dict>``).
     """
-    arrays = {k: v for k, v in overrides.items() if k in NETWORK_ARRAYS}
-    rest = {k: v for k, v in overrides.items() if k not in NETWORK_ARRAYS}
+    # A dict value addresses entries by name: contacts={"seat": {"restitution": 0.3}} is
+    # contacts.seat.restitution=0.3 (as "contacts.seat.restitution": 0.3).
+    arrays = {k: v for k, v in overrides.items() if k in NETWORK_ARRAYS and not isinstance(v, Mapping)}
+    rest = {k: v for k, v in overrides.items() if k not in arrays}
     if arrays:
         if isinstance(scene, Mapping):
             base = dict(scene)
@@ -604,7 +610,7 @@ SWEEP_COLUMNS = ("finished", "separations", "impacts", "max_contact_force", "min
 def sweep(scene: Any, key: str, values: Iterable[float], threads: int = 0,
           **overrides: Any) -> Dict[str, Any]:
     """Run ``scene`` once per value of the dotted ``key`` (like ``camdyn sweep``), in C++
-    threads.
+    threads. A network entry's key by name works too: ``"elements.valve_spring.preload"``.
 
     Returns:
         dict: ``key`` → the values (float64 array), each name of :data:`SWEEP_COLUMNS` →

@@ -4,6 +4,7 @@
 //   camdyn cam   [SCENE.toml] [--out DIR] [--points N] [--set KEY=VALUE]...
 //   camdyn scene [SCENE.toml] [--resolved] [--set KEY=VALUE]...   camdyn scene --keys [--json]
 //   camdyn plot  DIR [--zoom T0 T1]
+//   camdyn report DIR
 //   camdyn bench [SCENE ...] [--out DIR] [--quick] [--repeats N]
 //   camdyn jump  SCENE [--set KEY=VALUE]... [--out DIR] [--simulate] [--rel-tol R]
 //   camdyn sweep SCENE --key KEY --from A --to B (--step S | --points N [--log])
@@ -235,6 +236,8 @@ std::string companion_script_path(const char* env_var, const char* file_name) {
 std::string bench_plot_script_path() {
   return companion_script_path("CAMDYN_BENCH_PLOT_SCRIPT", "camdyn_bench_plot.py");
 }
+/// scripts/camdyn_report.py ($CAMDYN_REPORT_SCRIPT overrides).
+std::string report_script_path() { return companion_script_path("CAMDYN_REPORT_SCRIPT", "camdyn_report.py"); }
 /// scripts/camdyn_sweep_plot.py ($CAMDYN_SWEEP_PLOT_SCRIPT overrides).
 std::string sweep_plot_script_path() {
   return companion_script_path("CAMDYN_SWEEP_PLOT_SCRIPT", "camdyn_sweep_plot.py");
@@ -327,6 +330,19 @@ struct PlotOpts {
   std::string dir;
   std::vector<double> zoom;
 };
+
+/// DIR/report.html by scripts/camdyn_report.py (`reuse`: keep the figures already drawn).
+/// Returns the script's exit status (−1: not found or not started); `why` says what failed.
+int write_report(const std::string& dir, bool reuse, std::string* why) {
+  const std::string script = report_script_path();
+  if (script.empty()) {
+    *why = "camdyn_report.py not found";
+    return -1;
+  }
+  std::vector<std::string> args{dir, "--quiet"};
+  if (reuse) args.push_back("--reuse");
+  return run_plot_script(args, why, script);
+}
 
 struct BenchOpts {
   std::vector<std::string> scenes;
@@ -523,8 +539,12 @@ int cmd_sweep(const SweepOpts& o) {
       std::fprintf(stderr, "camdyn: warning: no figures drawn: camdyn_sweep_plot.py not found\n");
     } else if (run_plot_script({o.out, "--quiet"}, &why, script) != 0) {
       std::fprintf(stderr, "camdyn: warning: no figures drawn: %s\n", why.c_str());
-    } else if (!o.quiet) {
-      std::printf("figures: %s\n", join_path(o.out, "sweep_*.png").c_str());
+    } else {
+      if (!o.quiet) std::printf("figures: %s\n", join_path(o.out, "sweep_*.png").c_str());
+      if (write_report(o.out, true, &why) != 0)
+        std::fprintf(stderr, "camdyn: warning: no report written: %s\n", why.c_str());
+      else if (!o.quiet)
+        std::printf("report: %s\n", join_path(o.out, "report.html").c_str());
     }
   }
   return res.interrupted ? kExitFailed : kExitOk;
@@ -638,6 +658,10 @@ int cmd_run(const RunOpts& o) {
                   join_path(o.out, "contact_force.png").c_str(),
                   join_path(o.out, "contact_force_zoom.png").c_str());
     }
+    if (prc == 0 && write_report(o.out, true, &why) != 0)
+      std::fprintf(stderr, "camdyn: warning: no report written: %s\n", why.c_str());
+    else if (prc == 0 && !o.quiet)
+      std::printf("report: %s\n", join_path(o.out, "report.html").c_str());
   }
   return rc;
 }
@@ -745,6 +769,23 @@ int cmd_plot(const PlotOpts& o) {
   return rc;
 }
 
+int cmd_report(const std::string& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw SceneError("report", 0, "DIR", dir, "not a directory");
+  if (!fs::is_regular_file(join_path(dir, "summary.json"), ec) && !fs::is_regular_file(join_path(dir, "sweep.csv"), ec))
+    throw SceneError("report", 0, "DIR", dir,
+                     "holds neither summary.json (from 'camdyn run') nor sweep.csv (from 'camdyn sweep')");
+  std::string why;
+  const int rc = write_report(dir, false, &why);
+  if (rc == 2) return kExitBadInput;  // the script printed what is wrong with DIR
+  if (rc != 0) {
+    std::fprintf(stderr, "camdyn: cannot write the report: %s\n", why.c_str());
+    return kExitFailed;
+  }
+  std::printf("report: %s\n", join_path(dir, "report.html").c_str());
+  return kExitOk;
+}
+
 int cmd_bench(const BenchOpts& o) {
   // Input stage: every error here is bad input (exit 2, raised to main()).
   BenchOptions bo;
@@ -829,7 +870,7 @@ void add_common(CLI::App* sub, CommonOpts& c, const char* scene_help) {
       ->allow_extra_args(false);
 }
 
-const std::vector<std::string> kCommands{"run", "cam", "scene", "plot", "bench", "jump", "sweep"};
+const std::vector<std::string> kCommands{"run", "cam", "scene", "plot", "report", "bench", "jump", "sweep"};
 
 int real_main(int argc, char** argv) {
   CLI::App app{
@@ -847,6 +888,7 @@ int real_main(int argc, char** argv) {
       "  camdyn bench --quick                # work–precision: Lee vs penalty vs baselines\n"
       "  camdyn jump examples/circle_cam.toml # jump (separation) speed\n"
       "  camdyn sweep examples/case_A7.toml --key cam.speed_rev_s --from 5 --to 8 --points 31\n"
+      "  camdyn report out                   # out/report.html: figures and results in words\n"
       "Run 'camdyn COMMAND --help' for the options of a command.");
 
   RunOpts ro;
@@ -861,7 +903,8 @@ int real_main(int argc, char** argv) {
       ->capture_default_str();
   run->add_flag("-q,--quiet", ro.quiet, "Print nothing but errors");
   run->add_flag("--plot", ro.plot,
-                "Draw displacement.png, contact_force.png and contact_force_zoom.png in DIR "
+                "Draw displacement.png, contact_force.png and contact_force_zoom.png (networks "
+                "also network_motion.png, network_forces.png) and the page report.html in DIR "
                 "after the run (python3 + matplotlib)");
   run->footer(
       "history.csv columns: " +
@@ -915,6 +958,16 @@ int real_main(int argc, char** argv) {
                    "largest contact force)")
       ->type_name("T0 T1")
       ->expected(2);
+
+  std::string report_dir;
+  auto* report = app.add_subcommand(
+      "report",
+      "One self-contained HTML page of a run or a sweep, DIR/report.html: the figures "
+      "(embedded) and the results in words, from summary.json, events.csv and history.csv "
+      "(or sweep.csv) (python3 + matplotlib)");
+  report->add_option("dir", report_dir, "Output directory of 'camdyn run' or 'camdyn sweep'")
+      ->type_name("DIR")
+      ->required();
 
   BenchOpts bo;
   auto* bench = app.add_subcommand(
@@ -999,8 +1052,8 @@ int real_main(int argc, char** argv) {
       ->type_name("SECONDS");
   sweep->add_flag("-q,--quiet", swo.quiet, "No progress line or report");
   sweep->add_flag("--plot", swo.plot,
-                  "Draw sweep_force.png, sweep_bifurcation.png and sweep_impacts.png in DIR "
-                  "(python3 + matplotlib)");
+                  "Draw sweep_force.png, sweep_bifurcation.png and sweep_impacts.png and the "
+                  "page report.html in DIR (python3 + matplotlib)");
   sweep->footer("Exit status: 0 every point done (failed points are rows with finished = 0), "
                 "1 interrupted or I/O error, 2 bad input. Under mpirun rank 0 hands out the "
                 "points and computes too; --jobs is ignored there (one thread per rank).");
@@ -1011,8 +1064,8 @@ int real_main(int argc, char** argv) {
     for (const auto& c : kCommands) known = known || c == argv[1];
     if (!known) {
       std::fprintf(stderr,
-                   "camdyn: unknown command '%s' (allowed: run, cam, scene, plot, bench, jump, "
-                   "sweep; see camdyn --help)\n",
+                   "camdyn: unknown command '%s' (allowed: run, cam, scene, plot, report, "
+                   "bench, jump, sweep; see camdyn --help)\n",
                    argv[1]);
       return kExitBadInput;
     }
@@ -1027,7 +1080,7 @@ int real_main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
     std::string what = e.what();
-    if (argc < 2) what = "no command given (allowed: run, cam, scene, plot, bench, jump, sweep)";
+    if (argc < 2) what = "no command given (allowed: run, cam, scene, plot, report, bench, jump, sweep)";
     std::fprintf(stderr, "camdyn: %s\nRun 'camdyn --help' for the commands and options.\n",
                  what.c_str());
     return kExitBadInput;
@@ -1041,6 +1094,7 @@ int real_main(int argc, char** argv) {
   if (cam->parsed()) return cmd_cam(co);
   if (scene->parsed()) return cmd_scene(so);
   if (plot->parsed()) return cmd_plot(po);
+  if (report->parsed()) return cmd_report(report_dir);
   if (bench->parsed()) return cmd_bench(bo);
   if (jump->parsed()) return cmd_jump(jo);
   if (sweep->parsed()) {
@@ -1054,7 +1108,7 @@ int real_main(int argc, char** argv) {
     }
     return cmd_sweep(swo);
   }
-  std::fprintf(stderr, "camdyn: no command given (allowed: run, cam, scene, plot, bench, jump, sweep)\n");
+  std::fprintf(stderr, "camdyn: no command given (allowed: run, cam, scene, plot, report, bench, jump, sweep)\n");
   return kExitBadInput;
 }
 

@@ -2,7 +2,8 @@
 //
 // Feeds arbitrary bytes to camdyn::parse_scene as a TOML scene file; a scene that parses
 // is then turned into a Cam (profile validation: convexity, self-intersection) and a
-// CamDrive, and serialised back with to_toml and parsed again (round trip must hold).
+// CamDrive, and serialised back with to_toml and parsed again (round trip must hold); its
+// first line (less a leading '#') is applied as a --set override.
 // camdyn::SceneError is the one accepted way to reject input: any other exception,
 // crash, sanitizer report, timeout or a failed round trip is a finding.
 //
@@ -36,6 +37,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   } catch (const camdyn::SceneError& e) {
     std::fprintf(stderr, "to_toml output rejected: %s\n%s\n", e.what(), again.c_str());
     std::abort();
+  }
+  // The input's first line, less a leading '#', as a --set override (network keys by name
+  // or index included): applied or rejected with SceneError, nothing else.
+  const std::string_view first = text.substr(0, text.find('\n'));
+  if (first.find('=') != std::string_view::npos) {
+    camdyn::Scene changed = scene;
+    try {
+      camdyn::apply_override(changed, std::string(first.substr(first.rfind('#', 0) == 0 ? 1 : 0)));
+    } catch (const camdyn::SceneError&) {
+    }
   }
   // The cam must either build or be rejected with SceneError.
   try {
