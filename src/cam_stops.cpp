@@ -4,7 +4,7 @@
 // θ is monotone, the next angle ≡ b (mod 2π) beyond θ(t) in the direction of motion is
 // found in closed form and its time by the quadratic's stable root (bisection as a
 // fallback). A target must lie at least 1e-9 rad beyond θ(t): a step that has just landed
-// on a breakpoint is not stopped again by the round-off of that landing.
+// on a breakpoint is not stopped again by the round-off of that landing. The time returned
 #include <algorithm>
 #include <cmath>
 
