@@ -20,7 +20,7 @@ camdyn::CamSpec spec_of(camdyn::CamProfileKind kind) {
   }
   if (kind == camdyn::CamProfileKind::Law) {  // issue 24: an exhaust-valve-like law
     s.base_radius = 2.0;
-    s.law = "ramp 10 0.01; cycloidal 60 0.79; dwell 10; modsine 60 -0.79; ramp 10 -0.01; dwell 210";
+    s.law = "ramp 15 0.01; cycloidal 100 0.79; dwell 20; modsine 100 -0.79; ramp 15 -0.01; dwell 110";
   }
   if (kind == camdyn::CamProfileKind::Arc) {
     s.base_radius = 2.0;

@@ -15,7 +15,7 @@ constexpr double kTwoPi = 6.283185307179586476925286766559;
 }
 
 void DesignerStats::geometry_init(const Scene& scene, const Cam& cam) {
-  cam_ = std::make_shared<const Cam>(cam);
+  cam_ = std::make_shared<const Cam>(cam);  // a copy: the run's Cam outlives no guarantee here
   face_ = scene.cam.follower_face;
   roller_ = scene.cam.roller_radius;
   width_ = scene.cam.width;

@@ -30,6 +30,12 @@ Jet operator*(Jet a, Jet b) {
           a.d3 * b.v + 3 * a.d2 * b.d1 + 3 * a.d1 * b.d2 + a.v * b.d3};
 }
 Jet constant(double c) { return {c, 0, 0, 0}; }
+void set_motion(FollowerState& f, const Jet& X) {
+  f.s = X.v;
+  f.s1 = X.d1;
+  f.s2 = X.d2;
+  f.s3 = X.d3;
+}
 /// f∘g with f, f′, f″, f‴ at g.v (Faà di Bruno to third order).
 Jet compose(Jet g, double f0, double f1, double f2, double f3) {
   return {f0, f1 * g.d1, f2 * g.d1 * g.d1 + f1 * g.d2,
@@ -269,10 +275,7 @@ FollowerState TranslatingGeometry::on_arc(const Arc& a, int i, double theta) con
   f.rho = a.R;
   if (face_ == FollowerFace::Flat) {
     const Jet X = cX + constant(a.R);
-    f.s = X.v;
-    f.s1 = X.d1;
-    f.s2 = X.d2;
-    f.s3 = X.d3;
+    set_motion(f, X);
     f.cx = X.v;
     f.cy = cY.v;
     return f;
@@ -280,11 +283,7 @@ FollowerState TranslatingGeometry::on_arc(const Arc& a, int i, double theta) con
   const double A = a.R + rr_;
   const Jet q = constant(eps_) - cY;
   const Jet root = jsqrt(constant(A * A) - q * q);
-  const Jet X = cX + root;
-  f.s = X.v;
-  f.s1 = X.d1;
-  f.s2 = X.d2;
-  f.s3 = X.d3;
+  set_motion(f, cX + root);
   f.phi = std::atan2(q.v, root.v);
   f.cx = cX.v + a.R * std::cos(f.phi);
   f.cy = cY.v + a.R * std::sin(f.phi);

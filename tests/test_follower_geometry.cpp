@@ -30,6 +30,16 @@ CamSpec circle(double R, double e, FollowerFace face, double eps, double rr) {
   c.roller_radius = rr;
   return c;
 }
+CamSpec law_roller(const char* law, double rb, double rr, double eps) {
+  CamSpec c;
+  c.profile = CamProfileKind::Law;
+  c.law = law;
+  c.base_radius = rb;
+  c.follower_face = FollowerFace::Roller;
+  c.roller_radius = rr;
+  c.follower_offset = eps;
+  return c;
+}
 }  // namespace
 
 TEST(FollowerGeometry, KnifeEdgeAndRollerWithOffsetOnCircleCam) {
@@ -74,13 +84,7 @@ TEST(FollowerGeometry, KnifeEdgeAndRollerWithOffsetOnCircleCam) {
 TEST(FollowerGeometry, TorqueFromContactGeometryEqualsPowerBalance) {
   // T = N (C × n̂), N = F / cos φ (moment of the normal force about the cam centre) against
   // T = F s′(θ) (power: T ω = F ṡ). Law + offset roller, circle + offset knife edge.
-  CamSpec law;
-  law.profile = CamProfileKind::Law;
-  law.law = "dwell 90; cycloidal 80 8; dwell 20; modsine 80 -8; dwell 90";
-  law.base_radius = 30;
-  law.follower_face = FollowerFace::Roller;
-  law.roller_radius = 8;
-  law.follower_offset = 5;
+  const CamSpec law = law_roller("dwell 90; cycloidal 80 8; dwell 20; modsine 80 -8; dwell 90", 30, 8, 5);
   const CamSpec specs[] = {law, circle(2.0, 0.6, FollowerFace::KnifeEdge, -0.4, 0.0)};
   for (const CamSpec& sp : specs) {
     const Cam cam(sp);
@@ -97,14 +101,7 @@ TEST(FollowerGeometry, TorqueFromContactGeometryEqualsPowerBalance) {
 TEST(FollowerGeometry, LawProfileNormalMatchesPressureAngle) {
   // The synthesised profile (cam frame) is traced by profile_point; its normal at the
   // contact, turned into the fixed frame, must make the pressure angle with the axis.
-  CamSpec c;
-  c.profile = CamProfileKind::Law;
-  c.law = "dwell 60; poly345 100 10; dwell 40; poly345 100 -10; dwell 60";
-  c.base_radius = 25;
-  c.follower_face = FollowerFace::Roller;
-  c.roller_radius = 6;
-  c.follower_offset = -4;
-  const Cam cam(c);
+  const Cam cam(law_roller("dwell 60; poly345 100 10; dwell 40; poly345 100 -10; dwell 60", 25, 6, -4));
   for (double th = 1.1; th < 2.9; th += 0.13) {
     const auto a = cam.profile_point(th - 1e-6), b = cam.profile_point(th + 1e-6);
     const double tx = b[0] - a[0], ty = b[1] - a[1];
@@ -116,12 +113,7 @@ TEST(FollowerGeometry, LawProfileNormalMatchesPressureAngle) {
 }
 
 TEST(FollowerGeometry, UndercutAndConvexityNameCamAngles) {
-  CamSpec c;
-  c.profile = CamProfileKind::Law;
-  c.law = "dwell 150; cycloidal 30 10; cycloidal 30 -10; dwell 150";
-  c.base_radius = 10;
-  c.follower_face = FollowerFace::Roller;
-  c.roller_radius = 9;
+  CamSpec c = law_roller("dwell 150; cycloidal 30 10; cycloidal 30 -10; dwell 150", 10, 9, 0);
   try {
     Cam cam(c);
     FAIL();
@@ -179,6 +171,9 @@ TEST(ArcCam, KnifeEdgeJumpSpeedMatchesClosedFormOfTheArcs) {
   const double pb = std::atan2(Rb * fy / a, -Rb * fx / a);
   const double nx = d + rn * (d - fx) / b, ny = rn * fy / b;
   const double pn = std::atan2(ny, nx);
+  // r(ψ) and r″(ψ) in closed form on the arc that holds polar angle ψ: a = c·u, b = c × u,
+  // a′ = −b, b′ = a, S = √(R² − b²): r = a + S, r″ = −a − (a² − b²)/S − a² b²/S³
+  // (s(θ) = r(−θ), s″(θ) = r″(−θ)).
   auto r_of = [&](double psi) {
     psi = std::remainder(psi, 2 * kPi);
     const double ux = std::cos(psi), uy = std::sin(psi);
@@ -186,26 +181,15 @@ TEST(ArcCam, KnifeEdgeJumpSpeedMatchesClosedFormOfTheArcs) {
     if (std::fabs(psi) <= pn) { cx = d; cy = 0; R = rn; }
     else if (std::fabs(psi) <= pb) { cx = fx; cy = psi > 0 ? -fy : fy; R = Rf; }
     else { cx = 0; cy = 0; R = Rb; }
-    const double cu = cx * ux + cy * uy, cr = cx * uy - cy * ux;
-    return std::array<double, 2>{cu + std::sqrt(R * R - cr * cr), 0.0 * cr};
-  };
-  // r″(ψ) in closed form: a = c·u, b = c × u, a′ = −b, b′ = a, S = √(R² − b²):
-  // r = a + S, r″ = −a − (a² − b²)/S − a² b²/S³ (s″(θ) = r″(−θ)).
-  auto r2_of = [&](double psi) {
-    psi = std::remainder(psi, 2 * kPi);
-    const double ux = std::cos(psi), uy = std::sin(psi);
-    double cx, cy, R;
-    if (std::fabs(psi) <= pn) { cx = d; cy = 0; R = rn; }
-    else if (std::fabs(psi) <= pb) { cx = fx; cy = psi > 0 ? -fy : fy; R = Rf; }
-    else { cx = 0; cy = 0; R = Rb; }
     const double A = cx * ux + cy * uy, B = cx * uy - cy * ux, S = std::sqrt(R * R - B * B);
-    return -A - (A * A - B * B) / S - A * A * B * B / (S * S * S);
+    return std::array<double, 2>{A + S, -A - (A * A - B * B) / S - A * A * B * B / (S * S * S)};
   };
   const double m = 1.0, k = 500.0, delta0 = 1.0;
   double w2 = INFINITY;
   for (int i = 0; i < 72000; ++i) {
     const double th = 2 * kPi * i / 72000;
-    const double s = r_of(-th)[0], s2 = r2_of(-th);
+    const auto r = r_of(-th);
+    const double s = r[0], s2 = r[1];
     if (s2 < 0) w2 = std::min(w2, k * (delta0 + s - Rb) / (-m * s2));
   }
   Scene sc;
