@@ -9,6 +9,7 @@
     camdyn_plot.py cam DIR [--speed REV_S]
         DIR/cam.csv     -> DIR/cam_profile.png        the profile in the cam frame
                            DIR/cam_kinematics.png     lift, velocity, acceleration vs cam angle
+                           DIR/cam_geometry.png       jerk, pressure angle, radius of curvature
                            (speed: --speed, else DIR/cam_info.json written by `camdyn cam`)
     --quiet: do not list the files written.
 

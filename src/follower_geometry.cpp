@@ -141,6 +141,10 @@ TranslatingGeometry::TranslatingGeometry(const CamSpec& spec)
         fail("cam.follower_offset", fmt_num(eps_),
              "must be smaller in magnitude than the prime circle radius base_radius + roller_radius = " + fmt_num(Rp));
       d_ = std::sqrt(Rp * Rp - eps_ * eps_);
+      if (!(d_ + law_->min_lift() > 0))
+        fail("cam.follower_offset", fmt_num(eps_),
+             "the follower's contact point would pass behind the cam centre: √((base_radius + roller_radius)² − offset²) + min L = " +
+                 fmt_num(d_ + law_->min_lift()) + " must be > 0");
       check_law_profile(spec);
     }
   } else if (kind_ == CamProfileKind::Circle || kind_ == CamProfileKind::Arc) {
@@ -188,12 +192,12 @@ TranslatingGeometry::TranslatingGeometry(const CamSpec& spec)
     const FollowerState f = eval(kTwoPi * k / kScan);
     smin_ = std::min(smin_, f.s);
     smax_ = std::max(smax_, f.s);
-    if (!std::isnan(f.rho)) min_rho_ = std::min(min_rho_, f.rho);
+    if (f.rho > 0) min_rho_ = std::min(min_rho_, f.rho);  // convex parts (concave: ρ < 0)
   }
   for (double b : breaks_) {
     for (double th : {b - 1e-9, b + 1e-9}) {
       const FollowerState f = eval(th);
-      if (!std::isnan(f.rho)) min_rho_ = std::min(min_rho_, f.rho);
+      if (f.rho > 0) min_rho_ = std::min(min_rho_, f.rho);
     }
   }
   if (!std::isfinite(min_rho_)) min_rho_ = kNaN;

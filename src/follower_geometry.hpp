@@ -54,6 +54,7 @@ class TranslatingGeometry {
   const std::vector<double>& breaks() const { return breaks_; }
   double lift() const { return smax_ - smin_; }
   double min_position() const { return smin_; }
+  /// Smallest radius of curvature of the convex parts of the profile (NaN: none/point).
   double min_rho() const { return min_rho_; }
   /// Cam-frame profile point for plots: law — the contact point at cam angle a turned
   /// back into the cam frame; circle/arc — the arc point with outward normal angle a.

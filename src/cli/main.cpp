@@ -661,8 +661,9 @@ int cmd_cam(const CamOpts& o) {
     if (prc != 0) {
       std::fprintf(stderr, "camdyn: warning: no cam figures drawn: %s\n", why.c_str());
     } else if (!o.quiet) {
-      std::printf("figures: %s, %s\n", join_path(o.out, "cam_profile.png").c_str(),
-                  join_path(o.out, "cam_kinematics.png").c_str());
+      std::printf("figures: %s, %s, %s\n", join_path(o.out, "cam_profile.png").c_str(),
+                  join_path(o.out, "cam_kinematics.png").c_str(),
+                  join_path(o.out, "cam_geometry.png").c_str());
     }
   }
   return kExitOk;
