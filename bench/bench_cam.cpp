@@ -18,6 +18,16 @@ camdyn::CamSpec spec_of(camdyn::CamProfileKind kind) {
     s.lift_angles_deg = {0, 60, 120, 180, 240, 300};
     s.lift = {0.0, 0.1, 0.5, 0.8, 0.4, 0.05};
   }
+  if (kind == camdyn::CamProfileKind::Law) {  // issue 24: an exhaust-valve-like law
+    s.base_radius = 2.0;
+    s.law = "ramp 15 0.01; cycloidal 100 0.79; dwell 20; modsine 100 -0.79; ramp 15 -0.01; dwell 110";
+  }
+  if (kind == camdyn::CamProfileKind::Arc) {
+    s.base_radius = 2.0;
+    s.nose_radius = 0.6;
+    s.nose_distance = 1.8;
+    s.flank_radius = 5.0;
+  }
   return s;
 }
 
@@ -77,6 +87,10 @@ BENCHMARK_CAPTURE(SmallSteps, circle, camdyn::CamProfileKind::Circle)->Arg(1);
 BENCHMARK_CAPTURE(RandomJumps, circle, camdyn::CamProfileKind::Circle);
 BENCHMARK_CAPTURE(SmallSteps, lift, camdyn::CamProfileKind::Lift)->Arg(1);
 BENCHMARK_CAPTURE(RandomJumps, lift, camdyn::CamProfileKind::Lift);
+BENCHMARK_CAPTURE(SmallSteps, law, camdyn::CamProfileKind::Law)->Arg(1);
+BENCHMARK_CAPTURE(RandomJumps, law, camdyn::CamProfileKind::Law);
+BENCHMARK_CAPTURE(SmallSteps, arc, camdyn::CamProfileKind::Arc)->Arg(1);
+BENCHMARK_CAPTURE(RandomJumps, arc, camdyn::CamProfileKind::Arc);
 BENCHMARK(PaperMotionForm);
 BENCHMARK(PaperConstruct)->Unit(benchmark::kMicrosecond);
 

@@ -12,6 +12,7 @@
     camdyn_plot.py cam DIR [--speed REV_S]
         DIR/cam.csv     -> DIR/cam_profile.png        the profile in the cam frame
                            DIR/cam_kinematics.png     lift, velocity, acceleration vs cam angle
+                           DIR/cam_geometry.png       jerk, pressure angle, radius of curvature
                            (speed: --speed, else DIR/cam_info.json written by `camdyn cam`)
     --quiet: do not list the files written.
 
@@ -243,6 +244,19 @@ def plot_cam(d, speed=None):
     a = np.linspace(0, 2 * math.pi, 361)
     ax.plot(rmin * np.cos(a), rmin * np.sin(a), ":", lw=0.8, color="gray",
             label="circle r = %.4g" % rmin)
+    # The follower at θ = 0 (cam and fixed frames coincide): face, knife edge or roller.
+    face = str(info.get("follower_face") or "flat")
+    if face != "point" and np.all(np.isfinite(h[:1])):
+        eps = float(info.get("follower_offset") or 0.0)
+        rr = float(info.get("roller_radius") or 0.0)
+        x0 = float(h[0])
+        span = float(np.nanmax(r)) * 0.5
+        if face == "flat":
+            ax.plot([x0, x0], [-span, span], "-", lw=2.5, color="C3", label="flat face (θ = 0)")
+        else:
+            ax.plot([x0, x0 + span], [eps, eps], "-", lw=2.0, color="C3", label="%s (θ = 0)" % face)
+            if face == "roller" and rr > 0:
+                ax.plot(x0 + rr * np.cos(a), eps + rr * np.sin(a), "-", lw=1.5, color="C3")
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x (cam frame)")
     ax.set_ylabel("y (cam frame)")
@@ -274,6 +288,25 @@ def plot_cam(d, speed=None):
     for ax in axs:
         ax.grid(True, alpha=0.3)
     save(fig, os.path.join(d, "cam_kinematics.png"))
+
+    # Jerk, pressure angle and radius of curvature (cam.csv columns of issue 24).
+    if "d3X_dtheta3" in c and "pressure_angle" in c:
+        fig, axs = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
+        axs[0].plot(deg, c["d3X_dtheta3"], "-")
+        axs[0].set_ylabel("jerk $d^3X_C/d\\theta^3$")
+        axs[1].plot(deg, np.degrees(c["pressure_angle"]), "-")
+        axs[1].set_ylabel("pressure angle [deg]")
+        if "rho" in c:
+            axs[2].plot(deg, c["rho"], "-")
+        axs[2].set_ylabel("radius of curvature ρ")
+        axs[2].set_xlabel("cam angle θ [deg]")
+        axs[2].set_xlim(0, 360)
+        for ax in axs:
+            ax.grid(True, alpha=0.3)
+        cont = str(info.get("continuity") or "")
+        fig.suptitle(("Cam geometry" + ("\njoints: " + cont if cont else "") + "\n" + title).strip(),
+                     fontsize="small")
+        save(fig, os.path.join(d, "cam_geometry.png"))
 
 
 def main(argv=None):

@@ -22,6 +22,8 @@
 #include <utility>
 #include <vector>
 
+#include "cam_format.hpp"
+#include "follower_geometry.hpp"
 #include "spline.hpp"
 
 namespace camdyn {
@@ -31,34 +33,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kTwoPi = 2.0 * kPi;
 constexpr double kDeg = kPi / 180.0;
-
-std::string fmt_num(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[64];
-  auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
-
-/// "[a, b, c]"; a list longer than 8 values is shortened to its first 4 and last 2 values
-/// and its length ("[a, b, c, d, …, y, z] (180 values)"), so a message stays one line.
-std::string fmt_list(const std::vector<double>& v) {
-  const std::size_t n = v.size();
-  const bool cut = n > 8;
-  std::string s = "[";
-  for (std::size_t i = 0; i < n; ++i) {
-    if (cut && i == 4) {
-      s += ", …";
-      i = n - 3;
-      continue;
-    }
-    if (i) s += ", ";
-    s += fmt_num(v[i]);
-  }
-  s += "]";
-  if (cut) s += " (" + std::to_string(n) + " values)";
-  return s;
-}
 
 std::string fmt_deg1(double deg) {
   char buf[64];
@@ -186,6 +160,9 @@ struct Cam::Impl {
   // lift
   detail::PeriodicSpline Ls;
   double rb = 0;
+  // law, arc, and non-flat followers (follower_geometry.hpp)
+  std::shared_ptr<const detail::TranslatingGeometry> geo;
+  std::vector<double> breaks;
   // derived
   double lift = 0, min_rho = 0;
   // Segment of the last contact point: where the next search starts. The segment found
@@ -526,6 +503,18 @@ void Cam::Impl::build_lift(const CamSpec& spec) {
 CamPoint Cam::Impl::evaluate(double theta) const {
   CamPoint p;
   p.theta = theta;
+  if (geo) {
+    const detail::FollowerState f = geo->eval(theta);
+    p.X_C = f.s;
+    p.dX_dtheta = f.s1;
+    p.d2X_dtheta2 = f.s2;
+    p.d3X_dtheta3 = f.s3;
+    p.rho = f.rho;
+    p.pressure_angle = f.phi;
+    p.beta = std::atan2(f.cy, f.cx);
+    p.r = std::hypot(f.cx, f.cy);
+    return p;
+  }
   const double ct = std::cos(theta), st = std::sin(theta);
   switch (kind) {
     case CamProfileKind::Circle: {
@@ -533,18 +522,20 @@ CamPoint Cam::Impl::evaluate(double theta) const {
       p.X_C = X;
       p.dX_dtheta = -e * st;
       p.d2X_dtheta2 = -e * ct;
+      p.d3X_dtheta3 = e * st;
       p.rho = R;
       p.beta = std::atan2(Y, X);
       p.r = std::hypot(X, Y);
       break;
     }
     case CamProfileKind::Lift: {
-      double h, h1, h2;
-      Ls.eval(theta, &h, &h1, &h2);
+      double h, h1, h2, h3;
+      Ls.eval(theta, &h, &h1, &h2, &h3);
       h += rb;
       p.X_C = h;
       p.dX_dtheta = h1;
       p.d2X_dtheta2 = h2;
+      p.d3X_dtheta3 = h3;
       p.rho = h + h2;
       p.beta = std::atan2(-h1, h);
       p.r = std::hypot(h, h1);
@@ -557,6 +548,7 @@ CamPoint Cam::Impl::evaluate(double theta) const {
       const double s2 = d.x1 * d.x1 + d.y1 * d.y1;
       const double rho = s2 * std::sqrt(s2) / (d.x1 * d.y2 - d.y1 * d.x2);
       p.X_C = X;
+      p.d3X_dtheta3 = std::numeric_limits<double>::quiet_NaN();
       p.dX_dtheta = -Y;  // envelope theorem: ∂X/∂θ = −Y at the maximiser
       p.rho = rho;
       p.d2X_dtheta2 = rho - X;
@@ -564,6 +556,7 @@ CamPoint Cam::Impl::evaluate(double theta) const {
       p.r = std::hypot(X, Y);
       break;
     }
+    default: break;
   }
   return p;
 }
@@ -571,12 +564,27 @@ CamPoint Cam::Impl::evaluate(double theta) const {
 // =====================================================================================
 Cam::Cam(const CamSpec& spec) : impl_(std::make_unique<Impl>()) {
   impl_->kind = spec.profile;
+  const bool geo = spec.profile == CamProfileKind::Law || spec.profile == CamProfileKind::Arc ||
+                   spec.follower_face != FollowerFace::Flat;
+  if (geo && spec.profile == CamProfileKind::Circle) impl_->build_circle(spec);  // its checks
+  if (geo) {
+    auto g = std::make_shared<detail::TranslatingGeometry>(spec);
+    impl_->lift = g->lift();
+    impl_->min_rho = g->min_rho();
+    impl_->breaks = g->breaks();
+    impl_->geo = std::move(g);
+    return;
+  }
   switch (spec.profile) {
     case CamProfileKind::Points: impl_->build_points(spec); break;
     case CamProfileKind::Circle: impl_->build_circle(spec); break;
     case CamProfileKind::Lift: impl_->build_lift(spec); break;
+    case CamProfileKind::Law:
+    case CamProfileKind::Arc: break;  // handled above
   }
 }
+const std::vector<double>& Cam::breakpoints() const { return impl_->breaks; }
+const MotionLaw* Cam::law() const { return impl_->geo ? impl_->geo->law() : nullptr; }
 Cam::Cam(const Cam& o) : impl_(std::make_unique<Impl>(*o.impl_)) {}
 Cam& Cam::operator=(const Cam& o) {
   if (this != &o) impl_ = std::make_unique<Impl>(*o.impl_);
@@ -599,6 +607,7 @@ CamMotion Cam::motion(double theta, double omega, double omega_dot) const {
 
 CamMotion Cam::motion_paper(double theta, double omega, double omega_dot) const {
   const Impl& I = *impl_;
+  if (I.geo) return motion(theta, omega, omega_dot);  // no paper form for these followers
   const double ct = std::cos(theta), st = std::sin(theta);
   // Rotate a cam-frame vector into the momentarily coincident fixed frame.
   auto rotX = [&](double x, double y) { return x * ct - y * st; };
@@ -632,6 +641,7 @@ CamMotion Cam::motion_paper(double theta, double omega, double omega_dot) const 
       return paper_form(rotX(d.x, d.y), rotY(d.x, d.y), rotX(d.x1, d.y1), rotY(d.x1, d.y1),
                         rotX(d.x2, d.y2), rotY(d.x2, d.y2), omega, omega_dot);
     }
+    default: break;
   }
   return {};
 }
@@ -641,6 +651,7 @@ double Cam::min_radius_of_curvature() const { return impl_->min_rho; }
 
 std::array<double, 2> Cam::profile_point(double a) const {
   const Impl& I = *impl_;
+  if (I.geo) return I.geo->profile_point(a);
   switch (I.kind) {
     case CamProfileKind::Circle: return {I.e + I.R * std::cos(a), I.R * std::sin(a)};
     case CamProfileKind::Lift: {
@@ -654,6 +665,7 @@ std::array<double, 2> Cam::profile_point(double a) const {
       const Derivs d = I.derivs(a);
       return {d.x, d.y};
     }
+    default: break;
   }
   return {0.0, 0.0};
 }

@@ -32,7 +32,12 @@ DesignerStats::DesignerStats(const Scene& scene, double lift) : drive_(scene.cam
   tol_ = scene.run.period_tol;
 }
 
-void DesignerStats::sample_force(double /*t*/, double theta, double F) {
+DesignerStats::DesignerStats(const Scene& scene, const Cam& cam) : DesignerStats(scene, cam.lift()) {
+  geometry_init(scene, cam);
+}
+
+void DesignerStats::sample_force(double t, double theta, double F) {
+  if (cam_) geometry_sample(t, theta, F);
   if (!(F >= 0.0)) F = 0.0;  // NaN or a bilateral pull: the margin is gone
   if (std::isnan(min_F_) || F < min_F_) {
     min_F_ = F;
@@ -54,6 +59,7 @@ void DesignerStats::event(const ContactEvent& e) {
 }
 
 void DesignerStats::step(double t, double theta, double u, double v, double a, double gap) {
+  if (cam_) geometry_step(t);
   max_gap_ = std::max(max_gap_, gap);
   if (!drive_.constant_speed() || !have_prev_) max_omega_ = std::max(max_omega_, std::abs(drive_.omega(t)));
   // Section crossings in revolution units: x = (φ − φ_s)/2π, φ = dir (θ − θ₀); revolution
@@ -139,6 +145,7 @@ void DesignerStats::finish(Summary& s) const {
   s.poincare = poincare_;
   const double sv = lift_ * (max_omega_ > 0 ? max_omega_ : 1.0);
   s.period = detect_period(poincare_, lift_, sv, tol_, &s.period_kind);
+  if (cam_) geometry_finish(s);
 }
 
 }  // namespace detail

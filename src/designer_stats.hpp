@@ -10,6 +10,7 @@
 //   finish(summary)         writes the results into the Summary.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "camdyn/cam.hpp"
@@ -26,6 +27,9 @@ class DesignerStats {
  public:
   /// `lift`: the cam's lift (Cam::lift(), the period detector's length scale).
   DesignerStats(const Scene& scene, double lift);
+  /// Also the cam-geometry results (issue 24): pressure angle, radius of curvature, side
+  /// load, Hertz stress (cam.width > 0), cam torque T = F s′(θ) and power T ω.
+  DesignerStats(const Scene& scene, const Cam& cam);
 
   /// A contact force sample F ≥ 0 at time t, cam angle θ, while in contact.
   void sample_force(double t, double theta, double F);
@@ -58,6 +62,18 @@ class DesignerStats {
   double max_vimp_ = 0, max_vimp_theta_ = NAN;
   double max_gap_ = 0;
   std::vector<PoincareSample> poincare_;
+  // cam geometry (issue 24; designer_geometry.cpp)
+  std::shared_ptr<const Cam> cam_;
+  double E_star_ = 0, width_ = 0, roller_ = 0;
+  FollowerFace face_ = FollowerFace::Flat;
+  double geo_max_phi_ = NAN, geo_min_rho_ = NAN;
+  double max_side_ = NAN, max_hertz_ = NAN, max_hertz_theta_ = NAN;
+  double T_peak_ = NAN, P_peak_ = NAN, T_int_ = 0, P_int_ = 0, t_first_ = NAN;
+  double pend_t0_ = NAN, pend_T0_ = 0, pend_P0_ = 0, pend_t1_ = NAN, pend_T1_ = 0, pend_P1_ = 0;
+  void geometry_init(const Scene& scene, const Cam& cam);
+  void geometry_sample(double t, double theta, double F);
+  void geometry_step(double t);
+  void geometry_finish(Summary& s) const;
 };
 
 }  // namespace detail

@@ -681,6 +681,17 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
   o.num("max_impact_velocity", s.max_impact_velocity);
   o.num("max_impact_theta_deg", s.max_impact_theta_deg);
   o.num("max_gap", s.max_gap);
+  // cam geometry (issue 24)
+  o.num("max_pressure_angle_deg", s.max_pressure_angle_deg);
+  o.num("min_radius_of_curvature", s.min_radius_of_curvature);
+  o.num("max_side_load", s.max_side_load);
+  o.num("max_hertz_stress", s.max_hertz_stress);
+  o.num("max_hertz_theta_deg", s.max_hertz_theta_deg);
+  o.num("cam_torque_peak", s.cam_torque_peak);
+  o.num("cam_torque_mean", s.cam_torque_mean);
+  o.num("cam_power_peak", s.cam_power_peak);
+  o.num("cam_power_mean", s.cam_power_mean);
+  o.str("cam_continuity", s.cam_continuity);
   o.integer("period", s.period);
   o.str("period_kind", s.period_kind);
   {
@@ -729,7 +740,8 @@ void write_summary(const std::string& dir, const Summary& summary, const Scene& 
 
 const std::vector<std::string>& cam_columns() {
   static const std::vector<std::string> cols{"theta", "X_C",  "dX_dtheta", "d2X_dtheta2",
-                                             "beta",  "r",    "rho"};
+                                             "beta",  "r",    "rho", "d3X_dtheta3",
+                                             "pressure_angle", "profile_x", "profile_y"};
   return cols;
 }
 
@@ -741,8 +753,15 @@ std::string cam_csv(const Cam& cam, int points) {
   for (int i = 0; i < points; ++i) {
     const double theta = two_pi * double(i) / double(points);
     const CamPoint p = cam.evaluate(theta);
-    const double v[] = {theta, p.X_C, p.dX_dtheta, p.d2X_dtheta2, p.beta, p.r, p.rho};
-    for (size_t k = 0; k < 7; ++k) {
+    double jerk = p.d3X_dtheta3;
+    if (std::isnan(jerk)) {  // points spline: no exact h‴; central difference of h″
+      const double d = 1e-4;
+      jerk = (cam.evaluate(theta + d).d2X_dtheta2 - cam.evaluate(theta - d).d2X_dtheta2) / (2 * d);
+    }
+    const auto prof = cam.profile_point(theta);
+    const double v[] = {theta, p.X_C, p.dX_dtheta, p.d2X_dtheta2, p.beta, p.r, p.rho,
+                        jerk, p.pressure_angle, prof[0], prof[1]};
+    for (size_t k = 0; k < 11; ++k) {
       if (k) out += ',';
       append_double(out, v[k]);
     }

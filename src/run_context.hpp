@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "camdyn/cam.hpp"
+#include "cam_stops.hpp"
 #include "camdyn/simulator.hpp"
 #include "designer_stats.hpp"
 #include "engine.hpp"
@@ -129,7 +130,7 @@ class RunContext {
   RunContext(const Scene& sc, std::shared_ptr<const FollowerModel> model, Observer* obs,
              const std::atomic<bool>* stop)
       : sc_(sc), model_(std::move(model)), m_(*model_), cam_(sc.cam), drive_(sc.cam),
-        obs_(obs), stop_(stop), n_(m_.n()), designer_(sc, cam_.lift()) {
+        obs_(obs), stop_(stop), n_(m_.n()), designer_(sc, cam_) {
     engine_ = make_engine(model_, sc_.solver, sc_.contact.model == ContactModel::Lee, sc_.contact.tol_u);
     sum_.scene = sc.title;
     sum_.integrator = to_string(sc.solver.integrator);
@@ -206,6 +207,9 @@ class RunContext {
 
   double out_dt() const { return sc_.run.output_dt; }
   double next_output_time() const { return output_time(sc_, next_out_); }
+  // The time to step toward: t_next, or a cam breakpoint before it (cam_stops.hpp).
+  double stop_before(double t_next) const { return stops_.before(t_, t_next); }
+  double next_stop_time() const { return stop_before(next_output_time()); }
   // The cam's motion at t; the last two values are kept (a step asks for its ends and its
   // midpoint several times).
   CamMotion cam_at(double t) const {
@@ -379,6 +383,7 @@ class RunContext {
   const FollowerModel& m_;
   Cam cam_;
   CamDrive drive_;
+  CamStops stops_{sc_, cam_};
   Observer* obs_;
   const std::atomic<bool>* stop_;
   std::string stop_reason_ = "stopped by caller";

@@ -23,6 +23,7 @@
 
 #include <toml++/toml.h>
 
+#include "camdyn/cam.hpp"
 #include "scene_detail.hpp"
 
 namespace camdyn {
@@ -32,6 +33,7 @@ using namespace scene_detail;  // enum names, formatting helpers, network arrays
 
 
 const char* to_string(CamProfileKind v) { return enum_to_string(kProfileNames, v); }
+const char* to_string(FollowerFace v) { return enum_to_string(kFaceNames, v); }
 const char* to_string(FollowerKind v) { return enum_to_string(kFollowerNames, v); }
 const char* to_string(MassMatrixKind v) { return enum_to_string(kMassNames, v); }
 const char* to_string(ContactModel v) { return enum_to_string(kContactNames, v); }
@@ -46,6 +48,7 @@ const char* to_string(StopSide v) { return enum_to_string(kStopSideNames, v); }
 const char* to_string(BarMass v) { return enum_to_string(kBarMassNames, v); }
 
 bool parse_enum(std::string_view s, CamProfileKind* out) { return enum_parse(kProfileNames, s, out); }
+bool parse_enum(std::string_view s, FollowerFace* out) { return enum_parse(kFaceNames, s, out); }
 bool parse_enum(std::string_view s, FollowerKind* out) { return enum_parse(kFollowerNames, s, out); }
 bool parse_enum(std::string_view s, MassMatrixKind* out) { return enum_parse(kMassNames, s, out); }
 bool parse_enum(std::string_view s, ContactModel* out) { return enum_parse(kContactNames, s, out); }
@@ -351,6 +354,23 @@ const std::vector<Field>& fields() {
     v.push_back(F_ARR(cam, speed_table_t));
     v.push_back(F_ARR(cam, speed_table_rev_s));
     v.push_back(F_REAL(cam, theta0_deg));
+    {
+      Field f = mk("cam", "law", FK::Str);
+      f.str = [](Scene& s) -> std::string& { return s.cam.law; };
+      v.push_back(f);
+    }
+    v.push_back(ruled(F_REAL(cam, nose_radius), Rule::Gt, 0));
+    v.push_back(ruled(F_REAL(cam, nose_distance), Rule::Gt, 0));
+    v.push_back(ruled(F_REAL(cam, flank_radius), Rule::Gt, 0));
+    v.push_back(F_ENUM(cam, follower_face, kFaceNames));
+    v.push_back(F_REAL(cam, follower_offset));
+    v.push_back(ruled(F_REAL(cam, roller_radius), Rule::Ge, 0));
+    v.push_back(F_BOOL(cam, land_on_breaks));
+    v.push_back(ruled(F_REAL(cam, width), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(cam, youngs_modulus), Rule::Gt, 0));
+    v.push_back(ruled(F_REAL(cam, poisson_ratio), Rule::In, 0, 0.4999));
+    v.push_back(ruled(F_REAL(cam, follower_youngs_modulus), Rule::Gt, 0));
+    v.push_back(ruled(F_REAL(cam, follower_poisson_ratio), Rule::In, 0, 0.4999));
 
     v.push_back(F_ENUM(follower, kind, kFollowerNames));
     v.push_back(ruled(F_REAL(follower, mass), Rule::Gt, 0));
@@ -750,6 +770,16 @@ class Validator {
         if (!(c.base_radius + c.lift[i] > 0))
           fail_at(elem("cam.lift", i), fmt_num(c.lift[i]),
                   "must be > -cam.base_radius = " + fmt_num(-c.base_radius) + " (base_radius + lift > 0)");
+    }
+    // Motion laws, arc cams and the follower faces (issue 24): their rules live with the
+    // geometry (cam.cpp, follower_geometry.cpp); reported here with the scene's file.
+    if (c.profile == CamProfileKind::Law || c.profile == CamProfileKind::Arc ||
+        c.follower_face != FollowerFace::Flat) {
+      try {
+        Cam check(c);
+      } catch (const SceneError& e) {
+        fail_at(e.key(), e.value(), e.rule());
+      }
     }
     if (!(c.eccentricity < c.radius))
       fail_at("cam.eccentricity", fmt_num(c.eccentricity), "must be < cam.radius = " + fmt_num(c.radius));

@@ -25,7 +25,12 @@ struct EnumName {
 };
 
 inline constexpr EnumName<CamProfileKind> kProfileNames[] = {
-    {CamProfileKind::Points, "points"}, {CamProfileKind::Lift, "lift"}, {CamProfileKind::Circle, "circle"}};
+    {CamProfileKind::Points, "points"}, {CamProfileKind::Lift, "lift"}, {CamProfileKind::Circle, "circle"},
+    {CamProfileKind::Law, "law"}, {CamProfileKind::Arc, "arc"}};
+inline constexpr EnumName<FollowerFace> kFaceNames[] = {{FollowerFace::Flat, "flat"},
+                                                        {FollowerFace::KnifeEdge, "knife_edge"},
+                                                        {FollowerFace::Roller, "roller"},
+                                                        {FollowerFace::Point, "point"}};
 inline constexpr EnumName<FollowerKind> kFollowerNames[] = {{FollowerKind::Rigid, "rigid"},
                                                      {FollowerKind::ElasticBar, "elastic_bar"},
                                                      {FollowerKind::Network, "network"}};

@@ -6,6 +6,7 @@
 #include "camdyn/simulator.hpp"
 
 #include <cstdio>
+#include <cmath>
 #include <sstream>
 
 #include "contact/network_run.hpp"
@@ -155,6 +156,15 @@ std::string Summary::FullReport() const {
     << "  max penetration:    " << fmt(max_penetration) << "\n";
   if (first_tensile_time >= 0)
     o << "  constraint force first tensile at t = " << fmt(first_tensile_time) << "\n";
+  if (!cam_continuity.empty()) o << "  motion law joints:  " << cam_continuity << "\n";
+  if (std::isfinite(cam_torque_peak))
+    o << "  cam torque:         peak " << fmt(cam_torque_peak) << ", mean " << fmt(cam_torque_mean)
+      << "; power peak " << fmt(cam_power_peak) << ", mean " << fmt(cam_power_mean) << "\n";
+  if (std::isfinite(max_pressure_angle_deg) && max_pressure_angle_deg > 0)
+    o << "  pressure angle:     max " << fmt(max_pressure_angle_deg) << " deg, side load max "
+      << fmt(max_side_load) << "\n";
+  if (std::isfinite(max_hertz_stress))
+    o << "  Hertz stress:       max " << fmt(max_hertz_stress) << " at " << fmt(max_hertz_theta_deg) << " deg\n";
   o << "  energy residual:    " << fmt(energy_residual) << "\n"
     << "  cpu / wall:         " << fmt(cpu_seconds) << " s / " << fmt(wall_seconds) << " s\n";
   return o.str();

@@ -173,12 +173,13 @@ TEST_F(CliTest, CamWritesOneRevolution) {
   const std::string text = slurp(dir_ / "D" / "cam.csv");
   const auto lines = lines_of(text);
   ASSERT_FALSE(lines.empty());
-  EXPECT_EQ(lines[0], "theta,X_C,dX_dtheta,d2X_dtheta2,beta,r,rho");
+  // The first seven columns as before issue 24, then jerk, pressure angle and the profile.
+  EXPECT_EQ(lines[0], "theta,X_C,dX_dtheta,d2X_dtheta2,beta,r,rho,d3X_dtheta3,pressure_angle,profile_x,profile_y");
   ASSERT_EQ(lines.size(), 3601u);
   const double two_pi = 2 * std::acos(-1.0);
   for (size_t i = 1; i < lines.size(); ++i) {
     const auto f = split(lines[i], ',');
-    ASSERT_EQ(f.size(), 7u) << lines[i];
+    ASSERT_EQ(f.size(), 11u) << lines[i];
     for (const auto& x : f) ASSERT_TRUE(parses_as_double(x)) << lines[i];
     EXPECT_NEAR(std::strtod(f[0].c_str(), nullptr), two_pi * double(i - 1) / 3600.0, 1e-12);
     EXPECT_GT(std::strtod(f[5].c_str(), nullptr), 0.0) << "r > 0: " << lines[i];

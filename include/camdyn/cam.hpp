@@ -16,6 +16,7 @@
 #include <memory>
 #include <vector>
 
+#include "camdyn/motion_law.hpp"
 #include "camdyn/scene.hpp"
 
 namespace camdyn {
@@ -29,6 +30,10 @@ struct CamPoint {
   double beta = 0;         ///< polar angle of C in the fixed frame [rad], in (−π, π]
   double r = 0;            ///< distance of C from O [length]
   double rho = 0;          ///< radius of curvature of the profile at C [length], > 0
+                           ///< (NaN for a law with follower_face = "point": no profile)
+  double d3X_dtheta3 = 0;  ///< h‴(θ) [length/rad³] (NaN for a points spline: not exact)
+  double pressure_angle = 0;  ///< angle from the follower axis to the contact normal [rad]
+                              ///< (0 for a flat face; knife edge, roller: docs/cam_laws.md)
 };
 
 /// Position, velocity and acceleration of C along X. X is absolute (the face's distance
@@ -74,6 +79,12 @@ class Cam {
   /// R(−a)·(h(a), −h′(a)). As a runs over [0, 2π) the whole profile is traced.
   std::array<double, 2> profile_point(double a) const;
 
+  /// Cam angles [rad, in [0, 2π), sorted] where the follower's acceleration or jerk may
+  /// jump: the joints of a law, the tangency points of an arc cam (empty for the splines).
+  const std::vector<double>& breakpoints() const;
+  /// The motion law of cam.profile = "law" (nullptr otherwise).
+  const MotionLaw* law() const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
@@ -88,6 +99,10 @@ class CamDrive {
   double omega(double t) const;      ///< [rad/s]
   double omega_dot(double t) const;  ///< [rad/s²]
   bool constant_speed() const { return table_t_.empty(); }
+  /// The first time t* > t (at most `horizon`) at which θ(t*) ≡ one of `angles` (mod 2π);
+  /// +inf if none before the horizon. Exact for the constant speed and for the speed
+  /// table (θ piecewise quadratic). `angles` sorted in [0, 2π).
+  double next_time_at_angles(double t, const std::vector<double>& angles, double horizon) const;
 
  private:
   double theta0_ = 0, omega0_ = 0;

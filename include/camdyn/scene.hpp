@@ -19,7 +19,8 @@ namespace camdyn {
 
 // ---- enumerations, each with a to_string / parse pair so the CLI and reports need no
 // ---- extra code. parse_enum returns false on an unknown spelling.
-enum class CamProfileKind { Points, Lift, Circle };
+enum class CamProfileKind { Points, Lift, Circle, Law, Arc };
+enum class FollowerFace { Flat, KnifeEdge, Roller, Point };
 enum class FollowerKind { Rigid, ElasticBar, Network };
 enum class MassMatrixKind { Consistent, Lumped };
 enum class ContactModel { Lee, Penalty, Holonomic, Event };
@@ -29,7 +30,8 @@ enum class PenaltyLaw { Linear, HuntCrossley };
 enum class Integrator { ArkodeErk, ArkodeDirk, CvodeBdf, Ida };
 enum class LinearSolverKind { Auto, Dense, Klu };
 
-const char* to_string(CamProfileKind v);    // "points" | "lift" | "circle"
+const char* to_string(CamProfileKind v);    // "points" | "lift" | "circle" | "law" | "arc"
+const char* to_string(FollowerFace v);      // "flat" | "knife_edge" | "roller" | "point"
 const char* to_string(FollowerKind v);      // "rigid" | "elastic_bar" | "network"
 const char* to_string(MassMatrixKind v);    // "consistent" | "lumped"
 const char* to_string(ContactModel v);      // "lee" | "penalty" | "holonomic" | "event"
@@ -40,6 +42,7 @@ const char* to_string(Integrator v);        // "arkode-erk" | "arkode-dirk" | "c
 const char* to_string(LinearSolverKind v);  // "auto" | "dense" | "klu"
 
 bool parse_enum(std::string_view s, CamProfileKind* out);
+bool parse_enum(std::string_view s, FollowerFace* out);
 bool parse_enum(std::string_view s, FollowerKind* out);
 bool parse_enum(std::string_view s, MassMatrixKind* out);
 bool parse_enum(std::string_view s, ContactModel* out);
@@ -75,6 +78,34 @@ struct CamSpec {
   std::vector<double> speed_table_rev_s;
   /// Cam angle at t = 0 [deg], finite.
   double theta0_deg = 0.0;
+
+  // ---- motion laws, arc cams, follower geometry, designer results (issue 24;
+  // ---- docs/cam_laws.md). Defaults leave the three profiles above unchanged.
+  /// law: the segments, "KIND DURATION_DEG [RISE] …; …" spanning 360° (MotionLaw::parse).
+  std::string law;
+  /// arc: nose radius r_n [length], 0 < r_n < base_radius.
+  double nose_radius = 0.5;
+  /// arc: distance d of the nose centre from the cam centre [length], > 0.
+  double nose_distance = 1.5;
+  /// arc: flank radius R_f [length], > base_radius (tangent to base and nose arcs).
+  double flank_radius = 6.0;
+  /// Contact face of the translating follower: flat (the paper's), knife_edge, roller, or
+  /// point (law only: the lift is imposed, no cam shape, no base radius needed).
+  FollowerFace follower_face = FollowerFace::Flat;
+  /// knife_edge/roller: offset ε of the follower axis from the cam centre, along +Y [length].
+  double follower_offset = 0.0;
+  /// roller: roller radius R_r [length], > 0.
+  double roller_radius = 0.0;
+  /// Hand the cam's breakpoints (law joints, arc tangency points) to the integrator as
+  /// stop times, so that steps land on them.
+  bool land_on_breaks = true;
+  /// Designer results: cam width b [length] (0: no Hertz stress), Young's moduli
+  /// [force/length²] > 0 and Poisson ratios in [0, 0.5) of cam and follower face.
+  double width = 0.0;
+  double youngs_modulus = 2.1e5;
+  double poisson_ratio = 0.3;
+  double follower_youngs_modulus = 2.1e5;
+  double follower_poisson_ratio = 0.3;
 };
 
 /// The follower: rigid mass or elastic bar.

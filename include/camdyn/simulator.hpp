@@ -149,6 +149,23 @@ struct Summary {
   int period = 0;
   /// "period-1", "period-2", …, "not periodic", or "too few samples" (< 3 samples).
   std::string period_kind = "too few samples";
+  // ---- cam geometry results (issue 24; docs/cam_laws.md). NaN (null) where undefined.
+  /// Largest |pressure angle| over the cam's revolution [deg] (0 for a flat face).
+  double max_pressure_angle_deg = NAN;
+  /// Smallest radius of curvature of the cam profile [length] (NaN: point follower).
+  double min_radius_of_curvature = NAN;
+  /// Largest side load F·|tan φ| on the follower's guide while in contact [force].
+  double max_side_load = NAN;
+  /// Largest Hertz line-contact pressure p₀ while in contact [force/length²] (cam.width > 0
+  /// and a flat or roller face) and its cam angle [deg].
+  double max_hertz_stress = NAN;
+  double max_hertz_theta_deg = NAN;
+  /// Cam driving torque T = F·dX_C/dθ [force·length] and power T·ω: largest magnitude while
+  /// in contact, and time averages over the run (step ends, trapezoid; 0 while apart).
+  double cam_torque_peak = NAN, cam_torque_mean = NAN;
+  double cam_power_peak = NAN, cam_power_mean = NAN;
+  /// Motion law (cam.profile = "law"): continuity order at each joint, "C2 at 0°, …".
+  std::string cam_continuity;
   double cpu_seconds = 0, wall_seconds = 0;
   std::string integrator, contact_model;
   ModelDescription model;

@@ -692,7 +692,13 @@ int cmd_cam(const CamOpts& o) {
                           ",\n  \"points\": " + std::to_string(o.points) +
                           ",\n  \"lift\": " + json_number(cam.lift()) +
                           ",\n  \"min_radius_of_curvature\": " +
-                          json_number(cam.min_radius_of_curvature()) + "\n}\n");
+                          json_number(cam.min_radius_of_curvature()) +
+                          ",\n  \"profile\": " + json_string(to_string(sc.cam.profile)) +
+                          ",\n  \"follower_face\": " + json_string(to_string(sc.cam.follower_face)) +
+                          ",\n  \"follower_offset\": " + json_number(sc.cam.follower_offset) +
+                          ",\n  \"roller_radius\": " + json_number(sc.cam.roller_radius) +
+                          ",\n  \"continuity\": " + json_string(cam.law() ? cam.law()->continuity_report() : "") +
+                          "\n}\n");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "camdyn: warning: %s\n", e.what());
   }
@@ -700,6 +706,10 @@ int cmd_cam(const CamOpts& o) {
     std::printf("wrote %s (%d points): lift %s, smallest radius of curvature %s\n",
                 path.c_str(), o.points, fmt_g(cam.lift()).c_str(),
                 fmt_g(cam.min_radius_of_curvature()).c_str());
+    if (cam.law()) std::printf("motion law: continuity at the joints: %s\n", cam.law()->continuity_report().c_str());
+    if (!cam.breakpoints().empty())
+      std::printf("breakpoints: %zu (steps land on them: cam.land_on_breaks = %s)\n", cam.breakpoints().size(),
+                  sc.cam.land_on_breaks ? "true" : "false");
     std::fflush(stdout);
   }
   if (!o.no_plot) {
@@ -710,8 +720,9 @@ int cmd_cam(const CamOpts& o) {
     if (prc != 0) {
       std::fprintf(stderr, "camdyn: warning: no cam figures drawn: %s\n", why.c_str());
     } else if (!o.quiet) {
-      std::printf("figures: %s, %s\n", join_path(o.out, "cam_profile.png").c_str(),
-                  join_path(o.out, "cam_kinematics.png").c_str());
+      std::printf("figures: %s, %s, %s\n", join_path(o.out, "cam_profile.png").c_str(),
+                  join_path(o.out, "cam_kinematics.png").c_str(),
+                  join_path(o.out, "cam_geometry.png").c_str());
     }
   }
   return kExitOk;

@@ -103,7 +103,7 @@ class EventDriven final : public RunContext {
     if (!in_contact) start_free();
     const double dt_scan = std::min(1e-4, sc_.run.t_end / 100.0);
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
-      const double tout = next_output_time();
+      const double tout = next_stop_time();
       const double Ft = F_, Xdot_prev = cam_at(t_).Xdot, P_prev = dissipation_power();
       const double t_prev = t_;
       bool separation = false;

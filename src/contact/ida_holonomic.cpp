@@ -24,7 +24,7 @@ class IdaHolonomic final : public RunContext {
     sum_.model.linear_solver = to_string(ida.linear_solver());
     sum_.model.unknowns = ida.unknowns();
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
-      const double tout = next_output_time();
+      const double tout = next_stop_time();
       const double P_prev = dissipation_power(), t_prev = t_, W_prev = ida.work();
       t_ = ida.advance(tout, out_dt() <= 0.0);  // output_dt = 0: one row per IDA step
       y_ = ida.state();

@@ -155,7 +155,7 @@ class LeeClassic final : public RunContext {
     Eigen::VectorXd y1(2 * n_), yv(2 * n_), y_free(2 * n_), y_alt(2 * n_);
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       // Land on output times and t_end exactly.
-      const double t_next = next_output_time();
+      const double t_next = next_stop_time();
       const double h_planned = h;
       const double hs = fit_step(h, t_next);
       const bool lands = hs == t_next - t_;

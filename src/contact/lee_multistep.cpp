@@ -98,7 +98,7 @@ class LeeMultistep final : public RunContext {
       start_free();
     Eigen::VectorXd y1;
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
-      const double tout = next_output_time();
+      const double tout = next_stop_time();
       const double Ft = F_, Xdot_prev = cam_at(t_).Xdot, P_prev = dissipation_power();
       const double t_prev = t_;
       bool separation = false;

@@ -57,7 +57,7 @@ class NetworkEvent final : public NetworkRun {
     Eigen::VectorXd y1(2 * n_);
     const double gap_thr = gap_thr_;
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
-      const double tout = next_output_time();
+      const double tout = next_stop_time();
       const double P_prev = dissipation_power(t_, y_);
       const double t1 = eng_->advance(tout, y1);
       const double h = t1 - t_;

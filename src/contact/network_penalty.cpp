@@ -125,7 +125,7 @@ class NetworkPenalty final : public NetworkRun {
     eng_->reinit(t_, y_);
     Eigen::VectorXd y1(2 * n_), Fprev;
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
-      const double tout = next_output_time();
+      const double tout = next_stop_time();
       Fprev = F_;
       const double Pw_prev = cam_power(F_, cam_at(t_));
       const double P_prev = dissipation_power(t_, y_);

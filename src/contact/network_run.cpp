@@ -21,7 +21,7 @@ constexpr double kFloatLift = 0.01;  // a float: the cam above clearance + 1 % o
 NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                        const std::atomic<bool>* stop)
     : sc_(sc), mech_(std::move(mech)), mk_(*mech_), cam_(sc.cam), drive_(sc.cam), obs_(obs),
-      stop_(stop), n_(mk_.n()), m_(mk_.m()), designer_(sc, cam_.lift()) {
+      stop_(stop), n_(mk_.n()), m_(mk_.m()), designer_(sc, cam_) {
   sum_.scene = sc.title;
   sum_.integrator = to_string(sc.solver.integrator);
   sum_.contact_model = to_string(sc.contact.model);

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "camdyn/cam.hpp"
+#include "cam_stops.hpp"
 #include "camdyn/simulator.hpp"
 #include "designer_stats.hpp"
 #include "mechanism.hpp"
@@ -104,12 +105,16 @@ class NetworkRun {
   double initial_step() const;
   double out_dt() const { return sc_.run.output_dt; }
   double next_output_time() const;
+  // The time to step toward: t_next, or a cam breakpoint before it (cam_stops.hpp).
+  double stop_before(double t_next) const { return stops_.before(t_, t_next); }
+  double next_stop_time() const { return stop_before(next_output_time()); }
 
   const Scene& sc_;
   std::shared_ptr<const MechanicalSystem> mech_;
   const MechanicalSystem& mk_;
   Cam cam_;
   CamDrive drive_;
+  CamStops stops_{sc_, cam_};
   Observer* obs_;
   const std::atomic<bool>* stop_;
   std::string stop_reason_ = "stopped by caller";

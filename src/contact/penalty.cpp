@@ -96,7 +96,7 @@ class Penalty final : public RunContext {
     engine_->reinit(t_, y_);
     Eigen::VectorXd y1(2 * n_);
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
-      const double tout = next_output_time();
+      const double tout = next_stop_time();
       const double Ft = F_;
       const double Xdot_prev = cam_at(t_).Xdot;
       const double P_prev = dissipation_power();

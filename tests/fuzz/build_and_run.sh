@@ -16,7 +16,8 @@ CXX="${CXX_FUZZ:-clang++}"
 mkdir -p "$OUT/corpus" "$OUT/artifacts"
 
 # toml++ is compiled from its headers here (toml_impl.cpp below) so the parser itself is
-# instrumented too; scene.cpp, scene_network.cpp and cam.cpp need nothing else from the library.
+# instrumented too; scene.cpp, scene_network.cpp and cam.cpp (+ the cam geometry of issue 24:
+# follower_geometry, motion_law, motion_law_parse) need nothing else from the library.
 #
 # Known upstream bug, found by this fuzzer on the first minute: toml++ 3.3.0 (Debian's)
 # reaches TOML_UNREACHABLE (undefined behaviour) in is_non_ascii_horizontal_whitespace()
@@ -50,6 +51,7 @@ printf '#define TOML_IMPLEMENTATION\n#include <toml++/toml.h>\n' > "$OUT/toml_im
   -DTOML_HEADER_ONLY=0 \
   "${TOML_INC[@]}" -I"$SRC/include" -I"$SRC/src" \
   "$SRC/tests/fuzz/fuzz_scene.cpp" "$SRC/src/scene.cpp" "$SRC/src/scene_network.cpp" "$SRC/src/cam.cpp" \
+  "$SRC/src/follower_geometry.cpp" "$SRC/src/motion_law.cpp" "$SRC/src/motion_law_parse.cpp" \
   "$OUT/toml_impl.cpp" -o "$OUT/fuzz_scene"
 
 for f in "$SRC"/examples/*.toml "$SRC"/tests/hard/*.toml; do
