@@ -77,6 +77,22 @@ double cam_scale(const CamSpec& c) {
 // the gap X_C − u₀, a difference of two numbers of the cam's size: below 1000 ulps of the
 // largest cam radius it is round-off.
 void check_tolerances(const Scene& sc) {
+  {
+    // One Poincaré sample (and one designer record) per revolution: a cam speed of 1e22
+    // rev/s asked for 1e19 of them in the first step (std::bad_alloc; found by
+    // tests/test_tolerance_contract.cpp's fuzzed overrides).
+    const CamSpec& c = sc.cam;
+    double w = c.speed_table_t.empty() ? std::abs(c.speed_rev_s) : 0.0;
+    for (double x : c.speed_table_rev_s) w = std::max(w, std::abs(x));
+    if (w * sc.run.t_end > 1e7) {
+      char v[64], b[200];
+      std::snprintf(v, sizeof v, "%g", w);
+      std::snprintf(b, sizeof b,
+                    "times run.t_end = %g must be <= 1e7 revolutions (one Poincaré sample is kept per revolution)",
+                    sc.run.t_end);
+      throw SceneError(sc.source, 0, c.speed_table_t.empty() ? "cam.speed_rev_s" : "cam.speed_table_rev_s", v, b);
+    }
+  }
   if (sc.follower.kind == FollowerKind::Network || sc.contact.model != ContactModel::Lee) return;
   const double floor = 1000.0 * std::numeric_limits<double>::epsilon() * cam_scale(sc.cam);
   if (sc.contact.tol_u < floor) {
@@ -158,6 +174,7 @@ Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower
     throw SceneError(scene_.source, 0, "solver.integrator", "ida",
                      "a user-defined follower runs on arkode-erk, arkode-dirk or cvode-bdf (ida: "
                      "single-follower holonomic scenes only)");
+  check_tolerances(scene_);
   mech_ = make_user_system(scene_, std::move(follower));
   extra_columns_ = detail::NetworkRun::extra_columns(*mech_);
 }
