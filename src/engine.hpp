@@ -30,11 +30,17 @@
 
 namespace camdyn {
 
-/// A negative SUNDIALS return flag, turned into an exception naming the call.
+/// What a SUNDIALS return flag of `call` means, in words ("the error test failed
+/// repeatedly (…)"); "failed" where the flag carries no meaning (creation failures, and
+/// calls whose name explains itself in parentheses). src/sundials_flags.cpp.
+std::string sundials_flag_words(const std::string& call, int flag);
+
+/// A negative SUNDIALS return flag, turned into an exception naming the call and saying
+/// what the flag means (never the bare number: issue 25).
 class SundialsError : public std::runtime_error {
  public:
   SundialsError(const std::string& call, int flag)
-      : std::runtime_error(call + " failed with flag " + std::to_string(flag)), flag_(flag) {}
+      : std::runtime_error(call + ": " + sundials_flag_words(call, flag)), flag_(flag) {}
   int flag() const { return flag_; }
 
  private:

@@ -673,6 +673,8 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
     o.raw("first_tensile_time", "null");
   }
   o.num("energy_residual", s.energy_residual);
+  o.str("tolerance_meaning", s.tolerance_meaning);
+  o.str("tolerance_warning", s.tolerance_warning);
   // designer results (issue 15); NaN → null
   o.num("min_contact_force", s.min_contact_force);
   o.num("min_force_theta_deg", s.min_force_theta_deg);

@@ -259,6 +259,9 @@ enum class FK { Real, Int, Bool, Str, Arr, Enum };
 // Int keys: imin ≤ v ≤ imax (also at parse time).
 enum class Rule { Finite, Gt, Ge, In, GtLe, ZeroOrIn };
 
+/// Largest magnitude of any real input (and reciprocal of the smallest positive one).
+constexpr double kMaxMagnitude = 1e50;
+
 struct Field {
   const char* table;  // "" for a top-level key
   const char* key;
@@ -670,6 +673,13 @@ class Validator {
 
   void finite(const std::string& key, double v) const {
     if (!std::isfinite(v)) fail_at(key, fmt_num(v), "must be a finite number");
+    // Issue 25: E = 1e308 or a preload of 1e308 passed and the integrator then failed on
+    // the overflowing products. No unit system needs magnitudes beyond 1e50, and products
+    // of a few such quantities stay far inside double precision.
+    if (std::abs(v) > kMaxMagnitude)
+      fail_at(key, fmt_num(v),
+              "is not a physical magnitude: must be <= " + fmt_num(kMaxMagnitude) +
+                  " in absolute value (products with the scene's other quantities would overflow double precision)");
   }
   void finite(const std::string& key, const std::vector<double>& v) const {
     for (std::size_t i = 0; i < v.size(); ++i) finite(elem(key, i), v[i]);
@@ -732,6 +742,10 @@ class Validator {
         case FK::Real: {
           const double v = f.real(s);
           finite(key, v);
+          if (f.rule == Rule::Gt && f.lo == 0.0 && v > 0.0 && v < 1.0 / kMaxMagnitude)
+            fail_at(key, fmt_num(v),
+                    "is not a physical magnitude: must be >= " + fmt_num(1.0 / kMaxMagnitude) +
+                        " (its reciprocal would overflow double precision in the scene's products)");
           const bool ok = f.rule == Rule::Finite ? true
                           : f.rule == Rule::Gt   ? v > f.lo
                           : f.rule == Rule::Ge   ? v >= f.lo

@@ -131,6 +131,13 @@ struct Summary {
   double max_penetration = 0;  ///< max(0, −gap)
   double first_tensile_time = -1;  ///< holonomic: first time the constraint force pulls
   double energy_residual = 0;      ///< |W − ΔT − ΔV − D| at the end
+  /// What solver.rtol (and contact.tol_u) bound on this run's engine and method, in words
+  /// (FullReport's "tolerance" line; docs/tolerances.md).
+  std::string tolerance_meaning;
+  /// Non-empty when the requested tolerance is known to buy less accuracy on this engine
+  /// than on the one-step engines (cvode-bdf on an elastic follower: BDF orders ≤ 2 damp
+  /// the modes the step resolves). FullReport prints it as a warning line.
+  std::string tolerance_warning;
   // ---- designer results (issue 15). Angles are cam angles in degrees in [0, 360);
   // ---- NaN (null in summary.json) when the thing did not happen.
   /// Smallest contact force while in contact (the margin; 0 if the follower separated:
