@@ -118,6 +118,15 @@ std::vector<std::pair<std::string, const toml::node*>> sorted_entries(const toml
 
 /// "nodes", "elements" or "contacts".
 bool is_network_array(std::string_view s);
+
+/// The allowed keys of [[nodes]], of every element / contact type, and of each one type
+/// (src/scene_network.cpp; the scene-key reference lists them too).
+const std::vector<std::string>& node_keys();
+const std::vector<std::string>& all_element_keys();
+std::vector<std::string> element_keys(ElementKind kind);
+const std::vector<std::string>& all_contact_keys();
+std::vector<std::string> contact_keys(ContactPointKind kind);
+bool contains(const std::vector<std::string>& v, std::string_view s);
 /// Parse one network array of `root` into s.network (strict types; errors name
 /// "ARRAY[i].KEY" and the line when use_lines).
 void read_network_array(const std::string& array, const toml::node& node, Scene& s, const std::string& file,

@@ -31,8 +31,7 @@ bool is_network_array(std::string_view s) {
   return false;
 }
 
-namespace {
-
+// The allowed keys of each network entry type (also read by the scene-key reference).
 const std::vector<std::string>& node_keys() {
   static const std::vector<std::string> k{"name", "mass", "initial_displacement", "initial_velocity"};
   return k;
@@ -77,6 +76,8 @@ std::vector<std::string> contact_keys(ContactPointKind kind) {
 bool contains(const std::vector<std::string>& v, std::string_view s) {
   return std::find(v.begin(), v.end(), s) != v.end();
 }
+
+namespace {
 
 std::string allowed_in_array(std::string_view array) {
   if (array == "nodes") return "allowed keys in [[nodes]]: " + join(node_keys(), ", ");
