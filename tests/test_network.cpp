@@ -324,7 +324,8 @@ TEST(SurgeSpring, FirstSurgeFrequencyConvergesLikeNMinus2) {
     const Mechanism mech(s);
     ASSERT_EQ(mech.n(), N + 1);
     // valve held: unknown 0 (the named node) removed
-    const Eigen::MatrixXd K = mech.K().bottomRightCorner(N, N), M = mech.M().bottomRightCorner(N, N);
+    const Eigen::MatrixXd K = Eigen::MatrixXd(mech.K()).bottomRightCorner(N, N),
+                          M = Eigen::MatrixXd(mech.M()).bottomRightCorner(N, N);
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
     const double f1 = std::sqrt(es.eigenvalues()[0]) / (2 * M_PI);
     err.push_back(std::abs(f1 - f_exact) / f_exact);
