@@ -109,6 +109,20 @@ class EngineBase : public OdeEngine {
   void caught(const char* what) {
     if (callback_error_.empty()) callback_error_ = what;
   }
+  // A callback's body: 0, or −1 with the exception's message kept for check().
+  template <class Body>
+  static int guarded(void* ud, Body body) {
+    auto* self = static_cast<EngineBase*>(ud);
+    try {
+      body(self);
+      return 0;
+    } catch (const std::exception& e) {
+      self->caught(e.what());
+    } catch (...) {
+      self->caught("unknown exception");
+    }
+    return -1;
+  }
   void set_root_count(int n, RootFn fn) {
     if (n < 0) throw std::invalid_argument("OdeEngine::set_roots: n < 0");
     if (n > 0 && !fn) throw std::invalid_argument("OdeEngine::set_roots: no function");
@@ -151,48 +165,24 @@ class EngineBase : public OdeEngine {
     return linsys(t, y, jcur, gamma, ud);
   }
   static int linsys(double t, N_Vector y, sunbooleantype* jcur, double gamma, void* ud) {
-    auto* self = static_cast<EngineBase*>(ud);
-    try {
+    return guarded(ud, [&](EngineBase* self) {
       self->newton_->prepare(t, N_VGetArrayPointer(y), gamma);
       *jcur = SUNTRUE;
-      return 0;
-    } catch (const std::exception& e) {
-      self->caught(e.what());
-    } catch (...) {
-      self->caught("unknown exception");
-    }
-    return -1;
+    });
   }
 
   static int rhs_cb(double t, N_Vector y, N_Vector ydot, void* ud) {
-    auto* self = static_cast<EngineBase*>(ud);
-    try {
+    return guarded(ud, [&](EngineBase* self) {
       ++self->stats_.rhs_evals;
       self->sys_.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-      return 0;
-    } catch (const std::exception& e) {
-      self->caught(e.what());
-    } catch (...) {
-      self->caught("unknown exception");
-    }
-    return -1;
+    });
   }
   static int root_cb(double t, N_Vector y, double* g, void* ud) {
-    auto* self = static_cast<EngineBase*>(ud);
-    try {
-      self->root_fn_(t, N_VGetArrayPointer(y), g);
-      return 0;
-    } catch (const std::exception& e) {
-      self->caught(e.what());
-    } catch (...) {
-      self->caught("unknown exception");
-    }
-    return -1;
+    return guarded(ud, [&](EngineBase* self) { self->root_fn_(t, N_VGetArrayPointer(y), g); });
   }
   // ARKLsJacFn and CVLsJacFn have the same signature.
   static int jac_cb(double t, N_Vector y, N_Vector, SUNMatrix Jac, void* ud, N_Vector, N_Vector, N_Vector) {
-    auto* self = static_cast<EngineBase*>(ud);
-    try {
+    return guarded(ud, [&](EngineBase* self) {
       Eigen::MatrixXd& J = self->J_;
       J.setZero(self->n_, self->n_);
       self->sys_.jacobian(t, N_VGetArrayPointer(y), J);
@@ -200,13 +190,7 @@ class EngineBase : public OdeEngine {
         throw std::runtime_error("OdeSystem::jacobian resized its matrix");
       // Both column-major with leading dimension n.
       std::memcpy(SUNDenseMatrix_Data(Jac), J.data(), sizeof(double) * std::size_t(self->n_) * std::size_t(self->n_));
-      return 0;
-    } catch (const std::exception& e) {
-      self->caught(e.what());
-    } catch (...) {
-      self->caught("unknown exception");
-    }
-    return -1;
+    });
   }
 
   bool trial_;
@@ -540,16 +524,9 @@ class CvodeOde final : public EngineBase {
     stats_.lin_setups += setups_.delta(nls);
   }
   static int project_cb(double t, N_Vector ycur, N_Vector corr, double, N_Vector, void* ud) {
-    auto* self = static_cast<CvodeOde*>(ud);
-    try {
-      self->proj_(t, N_VGetArrayPointer(ycur), N_VGetArrayPointer(corr));
-      return 0;
-    } catch (const std::exception& e) {
-      self->caught(e.what());
-    } catch (...) {
-      self->caught("unknown exception");
-    }
-    return -1;
+    return guarded(ud, [&](EngineBase* self) {
+      static_cast<CvodeOde*>(self)->proj_(t, N_VGetArrayPointer(ycur), N_VGetArrayPointer(corr));
+    });
   }
   Mat A_;
   LS ls_;

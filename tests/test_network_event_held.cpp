@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "camdyn/simulator.hpp"
+#include "network_run_support.hpp"
 
 namespace camdyn {
 namespace {
@@ -34,29 +35,8 @@ Scene two_mass_train() {
   return s;
 }
 
-struct Outcome {
-  Summary sum;
-  std::vector<HistoryRow> rows;
-  std::vector<std::string> cols;
-  int col(const std::string& name) const {
-    for (size_t i = 0; i < cols.size(); ++i)
-      if (cols[i] == name) return int(i);
-    ADD_FAILURE() << "no column " << name;
-    return 0;
-  }
-};
-Outcome simulate_train(const Scene& s) {
-  struct Keep : Observer {
-    std::vector<HistoryRow>* rows;
-    void on_row(const HistoryRow& r) override { rows->push_back(r); }
-  } keep;
-  Outcome r;
-  keep.rows = &r.rows;
-  Simulator sim(s);
-  r.cols = sim.extra_columns();
-  r.sum = sim.run(&keep);
-  return r;
-}
+using Outcome = camdyn_test::NetRun;
+Outcome simulate_train(const Scene& s) { return camdyn_test::run_keeping_rows(s); }
 
 class HeldEvent : public ::testing::TestWithParam<Integrator> {};
 
@@ -74,14 +54,12 @@ TEST_P(HeldEvent, ClosedGapsStayAtZeroAndNoSpuriousEvents) {
   ASSERT_TRUE(r.sum.finished) << r.sum.message;
   double worst = 0.0;
   long closed_rows = 0;
-  for (const char* c : {"cam", "seat"}) {
-    const int g = r.col(std::string("gap_") + c), in = r.col(std::string("in_") + c);
+  for (const std::string c : {"cam", "seat"})
     for (const HistoryRow& row : r.rows)
-      if (row.extra[in] == 1.0) {
-        worst = std::max(worst, std::abs(row.extra[g]));
+      if (r.col(row, "in_" + c) == 1.0) {
+        worst = std::max(worst, std::abs(r.col(row, "gap_" + c)));
         ++closed_rows;
       }
-  }
   std::printf("%s: %zu rows, %ld closed-contact samples, max |g| closed %.3g m, %zu events\n",
               to_string(GetParam()), r.rows.size(), closed_rows, worst, r.sum.events.size());
   EXPECT_GT(closed_rows, 1000);
@@ -106,15 +84,13 @@ INSTANTIATE_TEST_SUITE_P(Engines, HeldEvent,
 // samples and of the event times.
 double distance(const Outcome& a, const Outcome& ref) {
   double d = 0.0;
-  const int ua = a.col("u_tappet"), va = a.col("u_valve");
-  const int ur = ref.col("u_tappet"), vr = ref.col("u_valve");
   size_t j = 0;
   long matched = 0;
   for (const HistoryRow& row : a.rows) {
     while (j < ref.rows.size() && ref.rows[j].t < row.t - 1e-12) ++j;
     if (j == ref.rows.size() || std::abs(ref.rows[j].t - row.t) > 1e-12) continue;
     ++matched;
-    d = std::max({d, std::abs(row.extra[ua] - ref.rows[j].extra[ur]), std::abs(row.extra[va] - ref.rows[j].extra[vr])});
+    for (const char* c : {"u_tappet", "u_valve"}) d = std::max(d, std::abs(a.col(row, c) - ref.col(ref.rows[j], c)));
   }
   EXPECT_GT(matched, 300);
   return d;
