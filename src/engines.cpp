@@ -21,7 +21,6 @@
 #include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
 #include <cvode/cvode_proj.h>
-#include <klu.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
@@ -33,6 +32,7 @@
 #include <vector>
 
 #include "engine.hpp"
+#include "sparse_lu.hpp"
 #include "sundials_raii.hpp"
 
 namespace camdyn {
@@ -213,18 +213,9 @@ struct ModelEntries {
 class SchurSolver {
  public:
   SchurSolver(const FollowerModel& m, bool dense, EngineStats& stats)
-      : m_(m), dense_(dense), n_(m.n()), stats_(stats) {
-    if (!m.rigid()) {
-      S_ = m.K();  // copy of the shared pattern
-      klu_l_defaults(&common_);
-    }
+      : m_(m), n_(m.n()), stats_(stats), lu_(dense, stats) {
+    if (!m.rigid()) S_ = m.K();  // copy of the shared pattern
   }
-  ~SchurSolver() {
-    if (numeric_) klu_l_free_numeric(&numeric_, &common_);
-    if (symbolic_) klu_l_free_symbolic(&symbolic_, &common_);
-  }
-  SchurSolver(const SchurSolver&) = delete;
-  SchurSolver& operator=(const SchurSolver&) = delete;
 
   void setup(double g, double dFdq, double dFdv) {
     if (factored_ && g == g_ && dFdq == dFdq_ && dFdv == dFdv_) return;  // S unchanged
@@ -246,23 +237,7 @@ class SchurSolver {
         if (j == 0 && e.row(p) == 0) v -= g * dFdv + g * g * dFdq;
         x[p] = v;
       }
-    if (dense_) {
-      lu_.compute(Eigen::MatrixXd(S_));
-      return;
-    }
-    long* Ap = S_.outerIndexPtr();
-    long* Ai = S_.innerIndexPtr();
-    if (!symbolic_) {
-      symbolic_ = klu_l_analyze(n_, Ap, Ai, &common_);
-      if (!symbolic_) throw SundialsError("klu_l_analyze", -1);
-      ++stats_.lin_analyses;
-    }
-    if (!numeric_) {
-      numeric_ = klu_l_factor(Ap, Ai, x, symbolic_, &common_);
-      if (!numeric_) throw SundialsError("klu_l_factor", -1);
-    } else if (!klu_l_refactor(Ap, Ai, x, symbolic_, numeric_, &common_)) {
-      throw SundialsError("klu_l_refactor", -1);
-    }
+    lu_.factor(S_);
   }
   // x = (I − γJ)⁻¹ b, in place on b (length 2n).
   //
@@ -290,13 +265,13 @@ class SchurSolver {
     rhs_.noalias() = m_.M() * V;
     rhs_.noalias() -= g_ * (m_.K() * U);
     rhs_[0] += g_ * dFdq_ * U[0];
-    solve_S(rhs_.data());
+    lu_.solve(rhs_.data());
     V = rhs_;
     if (held) {
       if (!z_valid_) {
         z_.setZero(n);
         z_[0] = 1.0;
-        solve_S(z_.data());
+        lu_.solve(z_.data());
         z_valid_ = true;
       }
       const double lambda = (bv0 - V[0]) / z_[0];
@@ -307,18 +282,7 @@ class SchurSolver {
   }
 
  private:
-  // x = S⁻¹ x in place.
-  void solve_S(double* x) {
-    if (dense_) {
-      Eigen::Map<Eigen::VectorXd> X(x, n_);
-      X = lu_.solve(Eigen::VectorXd(X));
-    } else if (!klu_l_solve(symbolic_, numeric_, n_, 1, x, &common_)) {
-      throw SundialsError("klu_l_solve", -1);
-    }
-  }
-
   const FollowerModel& m_;
-  bool dense_;
   long n_;
   EngineStats& stats_;
   bool factored_ = false, z_valid_ = false;
@@ -326,35 +290,20 @@ class SchurSolver {
   double g_ = 0, dFdq_ = 0, dFdv_ = 0, s_rigid_ = 1;
   SparseMatrix S_;
   Eigen::VectorXd rhs_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
-  klu_l_common common_{};
-  klu_l_symbolic* symbolic_ = nullptr;
-  klu_l_numeric* numeric_ = nullptr;
+  detail::SparseLu lu_;
 };
 
-// The SchurSolver as a SUNDIALS linear solver: "direct" with a 1 × 1 placeholder matrix
-// that the integrator passes along but never reads (the system is ours). The engine's
+// The SchurSolver as a SUNDIALS linear solver (detail::CustomLinearSolver). The engine's
 // linear-system function hands over γ and the contact law's derivatives (prepare), the
 // solver's setup factorises (if they changed), its solve applies (I − γJ)⁻¹.
 class SchurLinearSolver {
  public:
   SchurLinearSolver(const FollowerModel& m, bool dense, EngineStats& stats, SUNContext ctx)
-      : schur_(m, dense, stats), n_(m.n()) {
-    ls_.reset(SUNLinSolNewEmpty(ctx));
-    if (!ls_) throw SundialsError("SUNLinSolNewEmpty", -1);
-    ls_->content = this;
-    ls_->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; };
-    ls_->ops->setup = &SchurLinearSolver::ls_setup;
-    ls_->ops->solve = &SchurLinearSolver::ls_solve;
-    ls_->ops->free = [](SUNLinearSolver S) {
-      SUNLinSolFreeEmpty(S);
-      return 0;
-    };
-    placeholder_.reset(SUNDenseMatrix(1, 1, ctx));
-    if (!placeholder_) throw SundialsError("SUNDenseMatrix", -1);
-  }
-  SUNLinearSolver ls() { return ls_.get(); }
-  SUNMatrix placeholder() { return placeholder_.get(); }
+      : schur_(m, dense, stats), n_(m.n()),
+        cls_(ctx, [this] { schur_.setup(gamma_, dFdq_, dFdv_); },
+             [this](double* x) { schur_.solve(x, held_ && *held_); }) {}
+  SUNLinearSolver ls() { return cls_.ls(); }
+  SUNMatrix placeholder() { return cls_.placeholder(); }
   // From the linear-system function: the system I − γJ at (t, y) under the contact force f.
   void prepare(const ContactForce* f, double t, const double* y, double gamma) {
     if (f)
@@ -369,31 +318,11 @@ class SchurLinearSolver {
   void watch(const HeldContact* const* held) { held_ = held; }
 
  private:
-  static int ls_setup(SUNLinearSolver S, SUNMatrix) {
-    try {
-      auto* self = static_cast<SchurLinearSolver*>(S->content);
-      self->schur_.setup(self->gamma_, self->dFdq_, self->dFdv_);
-      return 0;
-    } catch (...) {
-      return -1;
-    }
-  }
-  static int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, double) {
-    try {
-      auto* self = static_cast<SchurLinearSolver*>(S->content);
-      N_VScale(1.0, b, x);
-      self->schur_.solve(N_VGetArrayPointer(x), self->held_ && *self->held_);
-      return 0;
-    } catch (...) {
-      return -1;
-    }
-  }
   SchurSolver schur_;
   long n_;
   double gamma_ = 0, dFdq_ = 0, dFdv_ = 0;
   const HeldContact* const* held_ = nullptr;
-  Mat placeholder_;
-  LS ls_;
+  detail::CustomLinearSolver cls_;
 };
 
 // ---------------------------------------------------------------- DIRK -----------

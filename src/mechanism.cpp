@@ -1,13 +1,13 @@
 // camdyn — the mechanism builder for network scenes (src/mechanism.hpp has the maths).
 #include "mechanism.hpp"
 
-#include <Eigen/Cholesky>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
+#include "engine.hpp"       // resolve_linear_solver
 #include "run_context.hpp"  // detail::fmt
 
 namespace camdyn {
@@ -116,95 +116,115 @@ Mechanism::Mechanism(const Scene& scene) {
     desc_.network.push_back(d.str());
   }
 
-  // ---- assemble over full DOFs
-  Eigen::MatrixXd Mf = Eigen::MatrixXd::Zero(n_full, n_full), Kf = Mf, Cf = Mf;
-  Eigen::VectorXd ff = Eigen::VectorXd::Zero(n_full);
-  auto add2 = [](Eigen::MatrixXd& A, int a, int b, double x) {
-    // x [1 −1; −1 1] on (a, b); ground rows/columns dropped
-    if (a >= 0) A(a, a) += x;
-    if (b >= 0) A(b, b) += x;
-    if (a >= 0 && b >= 0) {
-      A(a, b) -= x;
-      A(b, a) -= x;
-    }
-  };
-  for (const Stiff& l : links) {
-    add2(Kf, l.a, l.b, l.k);
-    add2(Cf, l.a, l.b, l.c);
-    if (l.a >= 0) ff[l.a] -= l.P;
-    if (l.b >= 0) ff[l.b] += l.P;
-  }
-  for (const auto& pm : point_mass) Mf(pm.first, pm.first) += pm.second;
-  for (const MassPair& p : mass_pairs) {
-    if (p.a >= 0) Mf(p.a, p.a) += p.md;
-    if (p.b >= 0) Mf(p.b, p.b) += p.md;
-    if (p.a >= 0 && p.b >= 0) {
-      Mf(p.a, p.b) += p.mo;
-      Mf(p.b, p.a) += p.mo;
-    }
-  }
-
-  // ---- levers: q_full = Lf q (outputs expressed through their inputs)
+  // ---- levers: q_full = Lf q (an output is ratio × its input, chains resolved: every row
+  //      of Lf has at most one entry)
   std::vector<int> red(n_full, -1);
   std::map<int, std::pair<int, double>> dep;
   for (const auto& lv : levers) dep[lv.first] = lv.second;
   n_ = 0;
   for (int i = 0; i < n_full; ++i)
     if (!dep.count(i)) red[i] = n_++;
-  Eigen::MatrixXd Lf = Eigen::MatrixXd::Zero(n_full, n_);
-  std::function<Eigen::RowVectorXd(int, int)> expr = [&](int i, int depth) -> Eigen::RowVectorXd {
-    if (depth > n_full) throw std::invalid_argument("levers form a cycle");
-    if (i < 0) return Eigen::RowVectorXd::Zero(n_);
-    auto it = dep.find(i);
-    if (it == dep.end()) {
-      Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(n_);
-      r[red[i]] = 1.0;
-      return r;
+  std::vector<std::pair<int, double>> lrow(n_full);  // (reduced DOF or −1, coefficient)
+  for (int i = 0; i < n_full; ++i) {
+    int k = i, depth = 0;
+    double c = 1.0;
+    for (auto it = dep.find(k); it != dep.end(); it = dep.find(k)) {
+      if (++depth > n_full) throw std::invalid_argument("levers form a cycle");
+      c *= it->second.second;
+      k = it->second.first;
+      if (k < 0) break;
     }
-    return it->second.second * expr(it->second.first, depth + 1);
-  };
-  for (int i = 0; i < n_full; ++i) Lf.row(i) = expr(i, 0);
-  M_ = Lf.transpose() * Mf * Lf;
-  K_ = Lf.transpose() * Kf * Lf;
-  if (any_damping) C_ = Lf.transpose() * Cf * Lf;
-  f0_ = Lf.transpose() * ff;
-  L_ = Lf.topRows(n_named);
+    lrow[i] = k < 0 ? std::make_pair(-1, 0.0) : std::make_pair(red[k], c);
+  }
 
-  Eigen::LLT<Eigen::MatrixXd> llt(M_);
-  if (llt.info() != Eigen::Success)
+  // ---- assemble M, K, C, f₀ directly over the reduced DOFs: Lfᵀ A Lf entry by entry
+  using Trip = Eigen::Triplet<double, long>;
+  std::vector<Trip> tm, tk, tc;
+  Eigen::VectorXd ff = Eigen::VectorXd::Zero(n_full);
+  // x [1 −1; −1 1] on full DOFs (a, b); ground (−1) and grounded lever outputs dropped
+  auto add2 = [&](std::vector<Trip>& A, int a, int b, double x) {
+    if (x == 0.0) return;
+    const int ia = a >= 0 ? lrow[a].first : -1, ib = b >= 0 ? lrow[b].first : -1;
+    const double ca = ia >= 0 ? lrow[a].second : 0.0, cb = ib >= 0 ? lrow[b].second : 0.0;
+    if (ia >= 0) A.emplace_back(ia, ia, x * ca * ca);
+    if (ib >= 0) A.emplace_back(ib, ib, x * cb * cb);
+    if (ia >= 0 && ib >= 0) {
+      A.emplace_back(ia, ib, -x * ca * cb);
+      A.emplace_back(ib, ia, -x * ca * cb);
+    }
+  };
+  for (const Stiff& l : links) {
+    add2(tk, l.a, l.b, l.k);
+    add2(tc, l.a, l.b, l.c);
+    if (l.a >= 0) ff[l.a] -= l.P;
+    if (l.b >= 0) ff[l.b] += l.P;
+  }
+  auto add_mass = [&](int a, int b, double x) {  // x on (a, b) of the full mass matrix
+    if (a < 0 || b < 0 || lrow[a].first < 0 || lrow[b].first < 0) return;
+    tm.emplace_back(lrow[a].first, lrow[b].first, x * lrow[a].second * lrow[b].second);
+  };
+  for (const auto& pm : point_mass) add_mass(pm.first, pm.first, pm.second);
+  for (const MassPair& p : mass_pairs) {
+    add_mass(p.a, p.a, p.md);
+    add_mass(p.b, p.b, p.md);
+    if (p.mo != 0.0) {
+      add_mass(p.a, p.b, p.mo);
+      add_mass(p.b, p.a, p.mo);
+    }
+  }
+  M_.resize(n_, n_);
+  K_.resize(n_, n_);
+  M_.setFromTriplets(tm.begin(), tm.end());
+  K_.setFromTriplets(tk.begin(), tk.end());
+  if (any_damping) {
+    C_.resize(n_, n_);
+    C_.setFromTriplets(tc.begin(), tc.end());
+  }
+  f0_ = Eigen::VectorXd::Zero(n_);
+  for (int i = 0; i < n_full; ++i)
+    if (lrow[i].first >= 0) f0_[lrow[i].first] += lrow[i].second * ff[i];
+  {
+    std::vector<Trip> tl;
+    for (int i = 0; i < n_named; ++i)
+      if (lrow[i].first >= 0) tl.emplace_back(i, lrow[i].first, lrow[i].second);
+    L_.resize(n_named, n_);
+    L_.setFromTriplets(tl.begin(), tl.end());
+  }
+
+  Mldlt_.compute(M_);
+  if (Mldlt_.info() != Eigen::Success || !(Mldlt_.vectorD().minCoeff() > 0.0))
     throw std::invalid_argument("network: the mass matrix is not positive definite (a node without mass)");
-  Minv_ = llt.solve(Eigen::MatrixXd::Identity(n_, n_));
-  MinvK_ = Minv_ * K_;
-  if (any_damping) MinvC_ = Minv_ * C_;
-  Minvf0_ = Minv_ * f0_;
 
   // ---- contacts
   for (const ContactPointSpec& cs : net.contacts) {
     MechanismContact c;
     c.name = cs.name;
     c.kind = cs.kind;
-    Eigen::RowVectorXd tf = Eigen::RowVectorXd::Zero(n_full);
+    Eigen::RowVectorXd tr = Eigen::RowVectorXd::Zero(n_);  // the row over the reduced DOFs
+    auto tf = [&](int i, double x) {
+      if (i >= 0 && lrow[i].first >= 0) tr[lrow[i].first] += x * lrow[i].second;
+    };
     const int a = dof(cs.nodes.at(0));
     std::ostringstream d;
     d << "contact '" << cs.name << "' (" << to_string(cs.kind) << ", ";
     switch (cs.kind) {
       case ContactPointKind::Cam:
-        tf[a] = 1.0;
+        tf(a, 1.0);
         c.cam = true;
         d << "cam on " << cs.nodes[0];
         break;
       case ContactPointKind::Lash:
-        tf[dof(cs.nodes.at(1))] = 1.0;
-        tf[a] -= 1.0;
+        tf(dof(cs.nodes.at(1)), 1.0);
+        tf(a, -1.0);
         d << cs.nodes[0] << " below " << cs.nodes[1];
         break;
       case ContactPointKind::Stop:
-        tf[a] = cs.side == StopSide::Below ? 1.0 : -1.0;
+        tf(a, cs.side == StopSide::Below ? 1.0 : -1.0);
         d << "stop " << to_string(cs.side) << " " << cs.nodes[0];
         break;
     }
     c.g0 = cs.clearance;
-    c.t = tf * Lf;
+    c.t = tr;
     c.restitution = cs.restitution.value_or(scene.contact.restitution);
     c.penalty_stiffness = cs.penalty_stiffness.value_or(scene.contact.penalty_stiffness);
     c.penalty_damping = cs.penalty_damping.value_or(scene.contact.penalty_damping);
@@ -213,7 +233,7 @@ Mechanism::Mechanism(const Scene& scene) {
     contacts_.push_back(std::move(c));
   }
   finish_contacts([&](const double* b, double* x) {
-    Eigen::Map<Eigen::VectorXd>(x, n_) = Minv_ * Eigen::Map<const Eigen::VectorXd>(b, n_);
+    Eigen::Map<Eigen::VectorXd>(x, n_) = Mldlt_.solve(Eigen::Map<const Eigen::VectorXd>(b, n_));
   });
   force_scale_ = f0_.size() ? f0_.cwiseAbs().maxCoeff() : 0.0;
 
@@ -241,13 +261,15 @@ Mechanism::Mechanism(const Scene& scene) {
   desc_.nodes = n_;
   desc_.unknowns = 2 * n_;
   desc_.mass = any_mass_matrix ? "consistent" : "lumped";
-  desc_.sparse = false;
-  desc_.linear_solver = scene.solver.integrator == Integrator::ArkodeErk ? "none" : "dense";
+  desc_.sparse = true;
+  desc_.linear_solver = scene.solver.integrator == Integrator::ArkodeErk
+                            ? "none"
+                            : (resolve_linear_solver(scene.solver, n_) == LinearSolverKind::Dense ? "dense" : "klu");
   desc_.damping = any_damping;
   desc_.preload = any_preload;
   desc_.contact = "unilateral × " + std::to_string(m());
   desc_.rhs_terms = {"inertia"};
-  if (K_.size() && K_.cwiseAbs().maxCoeff() > 0) desc_.rhs_terms.push_back("stiffness");
+  if (K_.nonZeros() > 0) desc_.rhs_terms.push_back("stiffness");
   if (any_preload) desc_.rhs_terms.push_back("preload");
   if (any_damping) desc_.rhs_terms.push_back("damping");
   if (!levers.empty()) desc_.rhs_terms.push_back("levers");
@@ -256,9 +278,9 @@ Mechanism::Mechanism(const Scene& scene) {
 
 bool Mechanism::acceleration_jacobian(double, const double*, const double*, Eigen::MatrixXd& dadq,
                                       Eigen::MatrixXd& dadv) const {
-  dadq = -MinvK_;
+  dadq = -Mldlt_.solve(Eigen::MatrixXd(K_));
   if (damped())
-    dadv = -MinvC_;
+    dadv = -Mldlt_.solve(Eigen::MatrixXd(C_));
   else
     dadv.setZero(n_, n_);
   return true;
@@ -268,9 +290,10 @@ void Mechanism::acceleration(double, const double* q, const double* v, const Eig
                              bool homogeneous) const {
   Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
   Eigen::Map<Eigen::VectorXd> A(a, n_);
-  A.noalias() = -MinvK_ * Q;
-  if (!homogeneous) A += Minvf0_;
-  if (damped()) A.noalias() -= MinvC_ * V;
+  Eigen::VectorXd r = -(K_ * Q);
+  if (!homogeneous) r += f0_;
+  if (damped()) r.noalias() -= C_ * V;
+  A = Mldlt_.solve(r);
   if (F.size()) A.noalias() += MinvTt_ * F;
 }
 
@@ -349,7 +372,8 @@ class UserMechanism final : public MechanicalSystem {
     f_->force(0.0, q0_.data(), zero.data(), r.data());
     force_scale_ = r.cwiseAbs().maxCoeff();
     for (int i = 0; i < n_; ++i) node_names_.push_back("q" + std::to_string(i));
-    L_ = Eigen::MatrixXd::Identity(n_, n_);
+    L_.resize(n_, n_);
+    L_.setIdentity();
     desc_.follower = "user: " + f_->name();
     desc_.nodes = n_;
     desc_.unknowns = 2 * n_;

@@ -14,17 +14,23 @@
 //     mₑ/2 I, C += αMₑ + βKₑ.
 //   W = T M⁻¹ Tᵀ (m × m): the contacts' inverse mass matrix (Lee's M* for several contacts).
 //
-// Networks are small (a valve train has a handful to a few hundred unknowns): dense
-// matrices, M⁻¹ from one Cholesky factorisation. Only what the scene asks for is built
-// (C only if some element damps; the description lists the assembled network).
+// M, C, K, L are sparse (CSC): a valve train has a handful of unknowns, a pushrod meshed
+// finely 10⁵ (issue 23: memory and work per step linear in the unknowns). M⁻¹ acts through
+// one sparse LDLᵀ factorisation of M (no fill for a chain); the implicit engines solve
+// their Newton systems through the sparse Schur complement M + γC + γ²K (ode_engine.hpp,
+// SparseNewton). Only what the scene asks for is built (C only if some element damps; the
+// description lists the assembled network).
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "camdyn/follower_system.hpp"
+#include "camdyn/model.hpp"  // SparseMatrix
 #include "camdyn/model_description.hpp"
 #include "camdyn/scene.hpp"
 
@@ -61,7 +67,7 @@ class MechanicalSystem {
   }
   /// Named nodes and their displacement q_node = L_row · q.
   const std::vector<std::string>& node_names() const { return node_names_; }
-  const Eigen::MatrixXd& L() const { return L_; }  ///< named nodes × unknowns
+  const SparseMatrix& L() const { return L_; }  ///< named nodes × unknowns
   const Eigen::VectorXd& q0() const { return q0_; }
   const Eigen::VectorXd& v0() const { return v0_; }
   const ModelDescription& description() const { return desc_; }
@@ -74,7 +80,8 @@ class MechanicalSystem {
   /// without r's constant part.
   virtual void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F,
                             double* a, bool homogeneous = false) const = 0;
-  /// ∂a/∂q, ∂a/∂v without contacts (n × n); false if not available.
+  /// ∂a/∂q, ∂a/∂v without contacts (n × n, dense: for small systems; a Mechanism's
+  /// engines use its sparse M, C, K instead); false if not available.
   virtual bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
                                      Eigen::MatrixXd& dadv) const = 0;
   virtual double kinetic_energy(const double* v) const = 0;
@@ -104,7 +111,8 @@ class MechanicalSystem {
       }
   }
   int n_ = 0, primary_ = 0;
-  Eigen::MatrixXd MinvTt_, T_, W_, L_;
+  Eigen::MatrixXd MinvTt_, T_, W_;
+  SparseMatrix L_;
   Eigen::VectorXd q0_, v0_;
   std::vector<MechanismContact> contacts_;
   std::vector<std::string> node_names_;
@@ -119,16 +127,11 @@ class Mechanism final : public MechanicalSystem {
   /// @throws std::invalid_argument on a mass matrix that is not positive definite.
   explicit Mechanism(const Scene& scene);
 
-  const Eigen::MatrixXd& M() const { return M_; }
-  const Eigen::MatrixXd& K() const { return K_; }
-  const Eigen::MatrixXd& C() const { return C_; }  ///< zero-sized if undamped
+  const SparseMatrix& M() const { return M_; }
+  const SparseMatrix& K() const { return K_; }
+  const SparseMatrix& C() const { return C_; }  ///< zero-sized if undamped
   bool damped() const { return C_.size() > 0; }
   const Eigen::VectorXd& f0() const { return f0_; }
-  const Eigen::MatrixXd& Minv() const { return Minv_; }
-  /// M⁻¹K, M⁻¹C (empty if undamped), M⁻¹f₀.
-  const Eigen::MatrixXd& MinvK() const { return MinvK_; }
-  const Eigen::MatrixXd& MinvC() const { return MinvC_; }
-  const Eigen::VectorXd& Minvf0() const { return Minvf0_; }
 
   bool linear() const override { return true; }
   void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
@@ -141,8 +144,9 @@ class Mechanism final : public MechanicalSystem {
   double damping_power(const double* v) const override;
 
  private:
-  Eigen::MatrixXd M_, K_, C_, Minv_, MinvK_, MinvC_;
-  Eigen::VectorXd f0_, Minvf0_;
+  SparseMatrix M_, K_, C_;
+  Eigen::SimplicialLDLT<SparseMatrix> Mldlt_;
+  Eigen::VectorXd f0_;
 };
 
 /// A user's follower as the system the network methods integrate (src/mechanism.cpp).

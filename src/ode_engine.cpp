@@ -1,5 +1,6 @@
-// camdyn — the generic OdeEngine (ode_engine.hpp) on SUNDIALS 6.4: y' = f(t, y) with dense
-// linear algebra, for the network (several-contact) methods.
+// camdyn — the generic OdeEngine (ode_engine.hpp) on SUNDIALS 6.4: y' = f(t, y), for the
+// network (several-contact) methods. Linear algebra of the implicit engines: a mechanism's
+// sparse Schur complement with KLU (OdeSystem::newton, sparse_newton.hpp), else dense.
 //
 //   arkode-erk   ERKStep, Dormand–Prince 5(4)
 //   arkode-dirk  ARKStep, SDIRK 5-stage 4(3); SUNDenseMatrix + SUNLinSol_Dense; Jacobian
@@ -21,6 +22,7 @@
 #include <arkode/arkode_arkstep.h>
 #include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
+#include <cvode/cvode_proj.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
@@ -32,6 +34,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "sparse_newton.hpp"
 #include "sundials_raii.hpp"
 
 namespace camdyn {
@@ -63,6 +66,9 @@ inline Eigen::Map<Eigen::VectorXd> map(N_Vector v) {
 // is the native one divided by a constant: the Newton test (coefficient scaled alike) and
 // the difference-quotient increments behave as in native mode, the error test never fails.
 constexpr double kHugeTol = 1e30;
+// With a projection, ERK/DIRK are reset after every step: the first step after a reset may
+// grow by ARKODE's normal factor only (its default for a first step is 10⁴).
+constexpr double kGrowthAfterReset = 20.0;
 
 // Counter of a SUNDIALS integrator read as a running delta (robust to resets that zero it).
 struct Counter {
@@ -81,7 +87,10 @@ class EngineBase : public OdeEngine {
       : OdeEngine(spec, std::move(sys)), trial_(trial) {
     if (n_ < 1) throw std::invalid_argument("OdeEngine: system size must be ≥ 1");
     if (!sys_.rhs) throw std::invalid_argument("OdeEngine: no right-hand side");
-    if (sys_.linear && !sys_.jacobian) throw std::invalid_argument("OdeEngine: linear = true needs a jacobian");
+    if (sys_.linear && !sys_.jacobian && !sys_.newton)
+      throw std::invalid_argument("OdeEngine: linear = true needs a jacobian or the sparse Newton structure");
+    if (sys_.newton && 2 * sys_.newton->M->rows() != n_)
+      throw std::invalid_argument("OdeEngine: the sparse Newton structure's size is not half the system's");
     y_ = make_nvec(n_, ctx_.ctx);
     tmp_ = make_nvec(n_, ctx_.ctx);
     local_error_ = Eigen::VectorXd::Zero(n_);
@@ -100,6 +109,20 @@ class EngineBase : public OdeEngine {
   void caught(const char* what) {
     if (callback_error_.empty()) callback_error_ = what;
   }
+  // A callback's body: 0, or −1 with the exception's message kept for check().
+  template <class Body>
+  static int guarded(void* ud, Body body) {
+    auto* self = static_cast<EngineBase*>(ud);
+    try {
+      body(self);
+      return 0;
+    } catch (const std::exception& e) {
+      self->caught(e.what());
+    } catch (...) {
+      self->caught("unknown exception");
+    }
+    return -1;
+  }
   void set_root_count(int n, RootFn fn) {
     if (n < 0) throw std::invalid_argument("OdeEngine::set_roots: n < 0");
     if (n > 0 && !fn) throw std::invalid_argument("OdeEngine::set_roots: no function");
@@ -113,35 +136,53 @@ class EngineBase : public OdeEngine {
     if (hit_root_ && !root_info_.empty()) check(get(mem, root_info_.data()), call);
   }
 
+  // ERK/DIRK native mode, after a step that ended at tret with state y_: the projected
+  // state in y_; true if it moved (the stepper must restart there).
+  bool project_step_end(double tret) {
+    if (!proj_) return false;
+    corr_.setZero(n_);
+    proj_(tret, N_VGetArrayPointer(y_.get()), corr_.data());
+    if (!(corr_.cwiseAbs().maxCoeff() > 0.0)) return false;
+    map(y_.get()) += corr_;
+    return true;
+  }
+
+  // The sparse Schur path (OdeSystem::newton): our own linear solver; the integrator's
+  // linear-system function hands over γ and the state.
+  void make_sparse_solver() {
+    const bool dense = resolve_linear_solver(spec_, n_ / 2) == LinearSolverKind::Dense;
+    newton_ = std::make_unique<detail::SparseNewtonSolver>(*sys_.newton, dense, stats_);
+    cls_ = std::make_unique<detail::CustomLinearSolver>(
+        ctx_.ctx, [this] { newton_->setup(); }, [this](double* x) { newton_->solve(x); });
+  }
+  // ARKLsLinSysFn / CVLsLinSysFn (ARKODE's has the mass matrix M in addition).
+  static int ark_linsys(double t, N_Vector y, N_Vector, SUNMatrix, SUNMatrix, sunbooleantype, sunbooleantype* jcur,
+                        double gamma, void* ud, N_Vector, N_Vector, N_Vector) {
+    return linsys(t, y, jcur, gamma, ud);
+  }
+  static int cv_linsys(double t, N_Vector y, N_Vector, SUNMatrix, sunbooleantype, sunbooleantype* jcur, double gamma,
+                       void* ud, N_Vector, N_Vector, N_Vector) {
+    return linsys(t, y, jcur, gamma, ud);
+  }
+  static int linsys(double t, N_Vector y, sunbooleantype* jcur, double gamma, void* ud) {
+    return guarded(ud, [&](EngineBase* self) {
+      self->newton_->prepare(t, N_VGetArrayPointer(y), gamma);
+      *jcur = SUNTRUE;
+    });
+  }
+
   static int rhs_cb(double t, N_Vector y, N_Vector ydot, void* ud) {
-    auto* self = static_cast<EngineBase*>(ud);
-    try {
+    return guarded(ud, [&](EngineBase* self) {
       ++self->stats_.rhs_evals;
       self->sys_.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-      return 0;
-    } catch (const std::exception& e) {
-      self->caught(e.what());
-    } catch (...) {
-      self->caught("unknown exception");
-    }
-    return -1;
+    });
   }
   static int root_cb(double t, N_Vector y, double* g, void* ud) {
-    auto* self = static_cast<EngineBase*>(ud);
-    try {
-      self->root_fn_(t, N_VGetArrayPointer(y), g);
-      return 0;
-    } catch (const std::exception& e) {
-      self->caught(e.what());
-    } catch (...) {
-      self->caught("unknown exception");
-    }
-    return -1;
+    return guarded(ud, [&](EngineBase* self) { self->root_fn_(t, N_VGetArrayPointer(y), g); });
   }
   // ARKLsJacFn and CVLsJacFn have the same signature.
   static int jac_cb(double t, N_Vector y, N_Vector, SUNMatrix Jac, void* ud, N_Vector, N_Vector, N_Vector) {
-    auto* self = static_cast<EngineBase*>(ud);
-    try {
+    return guarded(ud, [&](EngineBase* self) {
       Eigen::MatrixXd& J = self->J_;
       J.setZero(self->n_, self->n_);
       self->sys_.jacobian(t, N_VGetArrayPointer(y), J);
@@ -149,19 +190,16 @@ class EngineBase : public OdeEngine {
         throw std::runtime_error("OdeSystem::jacobian resized its matrix");
       // Both column-major with leading dimension n.
       std::memcpy(SUNDenseMatrix_Data(Jac), J.data(), sizeof(double) * std::size_t(self->n_) * std::size_t(self->n_));
-      return 0;
-    } catch (const std::exception& e) {
-      self->caught(e.what());
-    } catch (...) {
-      self->caught("unknown exception");
-    }
-    return -1;
+    });
   }
 
   bool trial_;
   ContextHolder ctx_;
   NVec y_, tmp_;
   Eigen::MatrixXd J_;
+  Eigen::VectorXd corr_;
+  std::unique_ptr<detail::SparseNewtonSolver> newton_;
+  std::unique_ptr<detail::CustomLinearSolver> cls_;
   std::string callback_error_;
   Counter steps_, setups_;
 };
@@ -220,15 +258,28 @@ class ErkOde final : public EngineBase {
     double tret = 0;
     const int flag = check(ERKStepEvolve(mem, tout, y_.get(), &tret, ARK_ONE_STEP), "ERKStepEvolve");
     fetch_root_info(flag, ARK_ROOT_RETURN, &ERKStepGetRootInfo, mem, "ERKStepGetRootInfo");
-    y_out = map(y_.get());
     long ns = 0;
     check(ERKStepGetNumSteps(mem, &ns), "ERKStepGetNumSteps");
     stats_.steps += steps_.delta(ns);
+    if (!hit_root_ && project_step_end(tret)) {
+      double hnext = 0;
+      check(ERKStepGetCurrentStep(mem, &hnext), "ERKStepGetCurrentStep");
+      check(ERKStepReset(mem, tret, y_.get()), "ERKStepReset");
+      check(ERKStepSetInitStep(mem, hnext), "ERKStepSetInitStep");
+      check(ERKStepGetNumSteps(mem, &ns), "ERKStepGetNumSteps");
+      steps_.base = ns;
+    }
+    y_out = map(y_.get());
     return tret;
   }
   void dense(double t, Eigen::VectorXd& y_out) override {
     check(ERKStepGetDky(mem_.get(), t, 0, tmp_.get()), "ERKStepGetDky");
     y_out = map(tmp_.get());
+  }
+  void set_projection(ProjFn fn) override {
+    // ≤ 1: ARKODE's default (10⁴)
+    check(ERKStepSetMaxFirstGrowth(mem_.get(), fn ? kGrowthAfterReset : 0.0), "ERKStepSetMaxFirstGrowth");
+    proj_ = std::move(fn);
   }
   void set_roots(int n, RootFn fn) override {
     set_root_count(n, std::move(fn));
@@ -243,15 +294,24 @@ class ErkOde final : public EngineBase {
 class DirkOde final : public EngineBase {
  public:
   DirkOde(const SolverSpec& spec, OdeSystem sys, bool trial) : EngineBase(spec, std::move(sys), trial) {
-    A_.reset(not_null(SUNDenseMatrix(n_, n_, ctx_.ctx), "SUNDenseMatrix"));
-    ls_.reset(not_null(SUNLinSol_Dense(y_.get(), A_.get(), ctx_.ctx), "SUNLinSol_Dense"));
+    if (!sys_.newton) {
+      A_.reset(not_null(SUNDenseMatrix(n_, n_, ctx_.ctx), "SUNDenseMatrix"));
+      ls_.reset(not_null(SUNLinSol_Dense(y_.get(), A_.get(), ctx_.ctx), "SUNLinSol_Dense"));
+    } else {
+      make_sparse_solver();
+    }
     mem_.reset(not_null(ARKStepCreate(nullptr, &EngineBase::rhs_cb, 0.0, y_.get(), ctx_.ctx), "ARKStepCreate"));
     void* mem = mem_.get();
     check(ARKStepSetTableNum(mem, ARKODE_SDIRK_5_3_4, ARKODE_ERK_NONE), "ARKStepSetTableNum");
     check(ARKStepSetUserData(mem, this), "ARKStepSetUserData");
     check(ARKStepSetMaxNumSteps(mem, -1), "ARKStepSetMaxNumSteps");
-    check(ARKStepSetLinearSolver(mem, ls_.get(), A_.get()), "ARKStepSetLinearSolver");
-    if (sys_.jacobian) check(ARKStepSetJacFn(mem, &EngineBase::jac_cb), "ARKStepSetJacFn");
+    if (sys_.newton) {
+      check(ARKStepSetLinearSolver(mem, cls_->ls(), cls_->placeholder()), "ARKStepSetLinearSolver");
+      check(ARKStepSetLinSysFn(mem, &EngineBase::ark_linsys), "ARKStepSetLinSysFn");
+    } else {
+      check(ARKStepSetLinearSolver(mem, ls_.get(), A_.get()), "ARKStepSetLinearSolver");
+      if (sys_.jacobian) check(ARKStepSetJacFn(mem, &EngineBase::jac_cb), "ARKStepSetJacFn");
+    }
     if (trial_) {
       // Spec tolerances scaled up to rtol = 1e30: the error test never rejects, while the
       // Newton test (coefficient 0.01 scaled alike) and the difference-quotient increments
@@ -322,17 +382,31 @@ class DirkOde final : public EngineBase {
     double tret = 0;
     const int flag = check(ARKStepEvolve(mem, tout, y_.get(), &tret, ARK_ONE_STEP), "ARKStepEvolve");
     fetch_root_info(flag, ARK_ROOT_RETURN, &ARKStepGetRootInfo, mem, "ARKStepGetRootInfo");
-    y_out = map(y_.get());
     long ns = 0, nls = 0;
     check(ARKStepGetNumSteps(mem, &ns), "ARKStepGetNumSteps");
     check(ARKStepGetNumLinSolvSetups(mem, &nls), "ARKStepGetNumLinSolvSetups");
     stats_.steps += steps_.delta(ns);
     stats_.lin_setups += setups_.delta(nls);
+    if (!hit_root_ && project_step_end(tret)) {
+      double hnext = 0;
+      check(ARKStepGetCurrentStep(mem, &hnext), "ARKStepGetCurrentStep");
+      check(ARKStepReset(mem, tret, y_.get()), "ARKStepReset");
+      check(ARKStepSetInitStep(mem, hnext), "ARKStepSetInitStep");
+      check(ARKStepGetNumSteps(mem, &ns), "ARKStepGetNumSteps");
+      check(ARKStepGetNumLinSolvSetups(mem, &nls), "ARKStepGetNumLinSolvSetups");
+      steps_.base = ns;
+      setups_.base = nls;
+    }
+    y_out = map(y_.get());
     return tret;
   }
   void dense(double t, Eigen::VectorXd& y_out) override {
     check(ARKStepGetDky(mem_.get(), t, 0, tmp_.get()), "ARKStepGetDky");
     y_out = map(tmp_.get());
+  }
+  void set_projection(ProjFn fn) override {
+    check(ARKStepSetMaxFirstGrowth(mem_.get(), fn ? kGrowthAfterReset : 0.0), "ARKStepSetMaxFirstGrowth");
+    proj_ = std::move(fn);
   }
   void set_roots(int n, RootFn fn) override {
     set_root_count(n, std::move(fn));
@@ -349,8 +423,12 @@ class DirkOde final : public EngineBase {
 class CvodeOde final : public EngineBase {
  public:
   CvodeOde(const SolverSpec& spec, OdeSystem sys, bool trial) : EngineBase(spec, std::move(sys), trial) {
-    A_.reset(not_null(SUNDenseMatrix(n_, n_, ctx_.ctx), "SUNDenseMatrix"));
-    ls_.reset(not_null(SUNLinSol_Dense(y_.get(), A_.get(), ctx_.ctx), "SUNLinSol_Dense"));
+    if (!sys_.newton) {
+      A_.reset(not_null(SUNDenseMatrix(n_, n_, ctx_.ctx), "SUNDenseMatrix"));
+      ls_.reset(not_null(SUNLinSol_Dense(y_.get(), A_.get(), ctx_.ctx), "SUNLinSol_Dense"));
+    } else {
+      make_sparse_solver();
+    }
     mem_.reset(not_null(CVodeCreate(CV_BDF, ctx_.ctx), "CVodeCreate"));
     void* mem = mem_.get();
     check(CVodeInit(mem, &EngineBase::rhs_cb, 0.0, y_.get()), "CVodeInit");
@@ -359,8 +437,13 @@ class CvodeOde final : public EngineBase {
     check(CVodeSetMaxNumSteps(mem, trial ? kTrialMaxSteps : -1), "CVodeSetMaxNumSteps");
     if (trial) check(CVodeSetErrHandlerFn(mem, &detail::quiet_cvode_errors, nullptr), "CVodeSetErrHandlerFn");
     if (spec.max_step > 0) check(CVodeSetMaxStep(mem, spec.max_step), "CVodeSetMaxStep");
-    check(CVodeSetLinearSolver(mem, ls_.get(), A_.get()), "CVodeSetLinearSolver");
-    if (sys_.jacobian) check(CVodeSetJacFn(mem, &EngineBase::jac_cb), "CVodeSetJacFn");
+    if (sys_.newton) {
+      check(CVodeSetLinearSolver(mem, cls_->ls(), cls_->placeholder()), "CVodeSetLinearSolver");
+      check(CVodeSetLinSysFn(mem, &EngineBase::cv_linsys), "CVodeSetLinSysFn");
+    } else {
+      check(CVodeSetLinearSolver(mem, ls_.get(), A_.get()), "CVodeSetLinearSolver");
+      if (sys_.jacobian) check(CVodeSetJacFn(mem, &EngineBase::jac_cb), "CVodeSetJacFn");
+    }
     if (sys_.max_order > 0) check(CVodeSetMaxOrd(mem, sys_.max_order), "CVodeSetMaxOrd");
   }
   ~CvodeOde() override { mem_.reset(); }  // CVodeFree before the solver and matrix it uses
@@ -413,6 +496,16 @@ class CvodeOde final : public EngineBase {
     count();
     return tret;
   }
+  void set_projection(ProjFn fn) override {
+    void* mem = mem_.get();
+    if (fn && !projection_set_) {
+      check(CVodeSetProjFn(mem, &CvodeOde::project_cb), "CVodeSetProjFn");
+      check(CVodeSetProjErrEst(mem, SUNFALSE), "CVodeSetProjErrEst");
+      projection_set_ = true;
+    }
+    if (projection_set_) check(CVodeSetProjFrequency(mem, fn ? 1 : 0), "CVodeSetProjFrequency");
+    proj_ = std::move(fn);
+  }
   void dense(double t, Eigen::VectorXd& y_out) override {
     check(CVodeGetDky(mem_.get(), t, 0, tmp_.get()), "CVodeGetDky");
     y_out = map(tmp_.get());
@@ -430,10 +523,16 @@ class CvodeOde final : public EngineBase {
     stats_.steps += steps_.delta(ns);
     stats_.lin_setups += setups_.delta(nls);
   }
+  static int project_cb(double t, N_Vector ycur, N_Vector corr, double, N_Vector, void* ud) {
+    return guarded(ud, [&](EngineBase* self) {
+      static_cast<CvodeOde*>(self)->proj_(t, N_VGetArrayPointer(ycur), N_VGetArrayPointer(corr));
+    });
+  }
   Mat A_;
   LS ls_;
   std::unique_ptr<void, CvDel> mem_;
   double first_h_ = 0;
+  bool projection_set_ = false;
 };
 
 }  // namespace

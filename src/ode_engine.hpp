@@ -26,10 +26,32 @@
 #include <memory>
 #include <vector>
 
+#include "camdyn/model.hpp"  // SparseMatrix
 #include "camdyn/scene.hpp"
 #include "engine.hpp"  // SundialsError, check_flag, EngineStats
 
 namespace camdyn {
+
+/// The Newton matrix of a mechanism, y = [q; v], q̇ = v, M v̇ = f₀ − K q − C v + Tᵀ F(t, y):
+/// the implicit engines solve (I − γJ)x = b through the n × n Schur complement
+///   S x_v = M b_v − γ K̃ b_u (+ T_Aᵀ μ),   x_u = b_u + γ x_v,   S = M + γC̃ + γ²K̃,
+/// K̃ = K − Tᵀ diag(∂F/∂g) T, C̃ = C − Tᵀ diag(∂F/∂ġ) T, sparse (KLU, one symbolic analysis
+/// per run; dense LU for ≤ 16 unknowns as solver.linear_solver = "auto" says) instead of a
+/// dense 2n × 2n matrix: O(nnz) per factorisation and solve.
+struct SparseNewton {
+  const SparseMatrix* M = nullptr;  ///< required
+  const SparseMatrix* K = nullptr;  ///< required
+  const SparseMatrix* C = nullptr;  ///< null: undamped
+  Eigen::MatrixXd T;                ///< contact rows (m × n)
+  /// F's derivatives at (t, y) along the contacts (a penalty law): dFdg, dFdgd (m entries).
+  /// Empty: F does not depend on y (a prescribed force, or none).
+  std::function<void(double t, const double* y, Eigen::VectorXd& dFdg, Eigen::VectorXd& dFdgd)> contact_derivatives;
+  /// The contacts (indices into T) held at the acceleration level inside f — F_A =
+  /// W_AA⁻¹(Ẍ_C,A − T_A M⁻¹(f₀ − Kq − Cv)), so J's velocity rows are P M⁻¹[−K, −C] with
+  /// T_A P = 0 — read at every solve: the system is bordered with T_A (x_v,A = b_v,A).
+  /// Null: none.
+  const std::vector<int>* held = nullptr;
+};
 
 /// The system an OdeEngine integrates.
 struct OdeSystem {
@@ -41,9 +63,12 @@ struct OdeSystem {
   /// Optional dense Jacobian J = ∂f/∂y (size × size, column-major Eigen matrix, already
   /// sized). Empty: SUNDIALS' difference-quotient Jacobian (implicit engines only).
   std::function<void(double t, const double* y, Eigen::MatrixXd& J)> jacobian;
+  /// Optional, preferred to `jacobian` by the implicit engines: the sparse structure of the
+  /// Newton matrix (a Mechanism).
+  std::shared_ptr<const SparseNewton> newton;
   /// true: f is linear in y (ARKStepSetLinear / one Newton iteration per stage with the
   /// exact Jacobian; trial steps are then exactly affine in anything f depends on
-  /// linearly). Needs `jacobian`.
+  /// linearly). Needs `jacobian` or `newton`.
   bool linear = false;
   /// cvode-bdf only: the largest BDF order (0: CVODE's default 5). Orders ≥ 3 are not
   /// A-stable: an undamped stiff system (a chain of stiff springs and bars) wants ≤ 2.
@@ -78,6 +103,20 @@ class OdeEngine {
   /// interpolant, GetDky with k = 0). @pre t within the last step.
   virtual void dense(double t, Eigen::VectorXd& y_out) = 0;
 
+  /// Projection onto a manifold the method keeps (e.g. its closed contacts' displacement and
+  /// velocity levels), applied to every accepted step's end state (native mode):
+  /// fn(t, y, corr) writes corr = P(y) − y (size() entries). cvode-bdf: CVODE's own
+  /// projection (CVodeSetProjFn, every step; the correction enters its Nordsieck history;
+  /// the error test keeps the unprojected estimate — projected, it vanishes where the
+  /// constraints fix every unknown, a valve clamped between cam and seat, and CVODE's steps
+  /// then grew until its interpolant put a separation 3e-7 s off). arkode-erk / arkode-dirk (ARKODE 6.4 has no
+  /// projection): after each step the state is projected and the stepper reset there with
+  /// its planned next step size, its growth limited to the normal factor (after a reset
+  /// ARKODE allows 10⁴: a valve at rest stepped over a whole lift event). A state returned
+  /// at a root (interpolated) is not projected. Empty fn: none.
+  using ProjFn = std::function<void(double t, const double* y, double* corr)>;
+  virtual void set_projection(ProjFn fn) { proj_ = std::move(fn); }
+
   /// Root functions g(t, y) (count n ≥ 0; 0 switches rootfinding off); all directions.
   using RootFn = std::function<void(double t, const double* y, double* g)>;
   virtual void set_roots(int n, RootFn fn) = 0;
@@ -105,6 +144,7 @@ class OdeEngine {
   bool hit_root_ = false;
   std::vector<int> root_info_;
   RootFn root_fn_;
+  ProjFn proj_;
 };
 
 }  // namespace camdyn

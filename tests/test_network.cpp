@@ -22,6 +22,7 @@
 #include "camdyn/output.hpp"
 #include "camdyn/simulator.hpp"
 #include "mechanism.hpp"
+#include "network_run_support.hpp"
 
 namespace camdyn {
 namespace {
@@ -78,29 +79,8 @@ Scene net_scene(double speed) {
   return s;
 }
 
-struct NetRun {
-  Summary sum;
-  std::vector<HistoryRow> rows;
-  std::vector<std::string> cols;
-  double col(const HistoryRow& r, const std::string& name) const {
-    for (size_t i = 0; i < cols.size(); ++i)
-      if (cols[i] == name) return r.extra[i];
-    ADD_FAILURE() << "no column " << name;
-    return NAN;
-  }
-};
-NetRun run(const Scene& s) {
-  struct Keep : Observer {
-    std::vector<HistoryRow>* rows;
-    void on_row(const HistoryRow& r) override { rows->push_back(r); }
-  } keep;
-  NetRun r;
-  keep.rows = &r.rows;
-  Simulator sim(s);
-  r.cols = sim.extra_columns();
-  r.sum = sim.run(&keep);
-  return r;
-}
+using camdyn_test::NetRun;
+NetRun run(const Scene& s) { return camdyn_test::run_keeping_rows(s); }
 std::vector<ContactEvent> events_of(const Summary& s, const std::string& kind, const std::string& contact) {
   std::vector<ContactEvent> out;
   for (const ContactEvent& e : s.events)
@@ -324,7 +304,8 @@ TEST(SurgeSpring, FirstSurgeFrequencyConvergesLikeNMinus2) {
     const Mechanism mech(s);
     ASSERT_EQ(mech.n(), N + 1);
     // valve held: unknown 0 (the named node) removed
-    const Eigen::MatrixXd K = mech.K().bottomRightCorner(N, N), M = mech.M().bottomRightCorner(N, N);
+    const Eigen::MatrixXd K = Eigen::MatrixXd(mech.K()).bottomRightCorner(N, N),
+                          M = Eigen::MatrixXd(mech.M()).bottomRightCorner(N, N);
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
     const double f1 = std::sqrt(es.eigenvalues()[0]) / (2 * M_PI);
     err.push_back(std::abs(f1 - f_exact) / f_exact);

@@ -125,9 +125,10 @@ class NetworkLee final : public NetworkRun {
     OdeSystem sys;
     sys.size = 2 * n_;
     sys.rhs = [this](double t, const double* y, double* yd) { rhs(t, y, yd); };
-    // The mechanism's own Jacobian (the force shape does not depend on the state); a
-    // user's follower without one: difference quotients.
-    {
+    // The mechanism's sparse Newton structure (the force shape does not depend on the
+    // state); a user's follower: its dense Jacobian, without one difference quotients.
+    sys.newton = sparse_newton();
+    if (!sys.newton) {
       Eigen::MatrixXd dq, dv;
       const Eigen::VectorXd q0 = mk_.q0(), v0 = mk_.v0();
       if (mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq, dv))
@@ -140,7 +141,7 @@ class NetworkLee final : public NetworkRun {
           J.bottomRightCorner(n_, n_) = dadv;
         };
     }
-    sys.linear = mk_.linear() && bool(sys.jacobian);
+    sys.linear = mk_.linear() && (sys.jacobian || sys.newton);
     sys.max_order = 2;  // cvode-bdf: A-stable BDF on the undamped stiff chain (as elastic bars)
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, true));
     eng_ = engines_.back().get();

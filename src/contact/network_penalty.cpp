@@ -25,7 +25,24 @@ class NetworkPenalty final : public NetworkRun {
     });
     Eigen::MatrixXd dq0, dv0;
     const Eigen::VectorXd q0 = mk_.q0(), v0 = mk_.v0();
-    if (mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq0, dv0))
+    // a Mechanism: the sparse Newton structure with the laws' derivatives along the
+    // contacts, K̃ = K + dF/ds TᵀT (F = f(s, ŝ), s = −g)
+    if (auto sn = sparse_newton()) {
+      sys.newton = sn;
+      sn->contact_derivatives =
+          [this](double t, const double* y, Eigen::VectorXd& dFdg, Eigen::VectorXd& dFdgd) {
+            yv_ = Eigen::Map<const Eigen::VectorXd>(y, 2 * n_);
+            const CamMotion cm = cam_at(t);
+            dFdg.resize(m_);
+            dFdgd.resize(m_);
+            for (int j = 0; j < m_; ++j) {
+              double dq = 0, dv = 0;
+              penalty_derivatives(params(j), -gap(j, yv_, cm), -gap_rate(j, yv_, cm), &dq, &dv);
+              dFdg[j] = -dq;
+              dFdgd[j] = -dv;
+            }
+          };
+    } else if (mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq0, dv0))
       sys.jacobian = [this](double t, const double* y, Eigen::MatrixXd& J) {
         const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
         yv_ = Y;

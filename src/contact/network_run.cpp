@@ -60,6 +60,17 @@ OdeSystem NetworkRun::contact_system(ForceFn forces) {
   return sys;
 }
 
+std::shared_ptr<SparseNewton> NetworkRun::sparse_newton() const {
+  const auto* mech = dynamic_cast<const Mechanism*>(&mk_);
+  if (!mech) return nullptr;
+  auto sn = std::make_shared<SparseNewton>();
+  sn->M = &mech->M();
+  sn->K = &mech->K();
+  sn->C = mech->damped() ? &mech->C() : nullptr;
+  sn->T = mk_.T();
+  return sn;
+}
+
 CamMotion NetworkRun::cam_at(double t) const {
   CamMotion m = cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
   m.X -= x_base_;

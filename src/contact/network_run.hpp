@@ -59,6 +59,10 @@ class NetworkRun {
   /// v̇ = M⁻¹(r(t, q, v) + TᵀF) with the method's contact forces forces(t, y, F) (m entries).
   using ForceFn = std::function<void(double t, const Eigen::VectorXd& y, Eigen::VectorXd& F)>;
   OdeSystem contact_system(ForceFn forces);
+  /// The implicit engines' sparse Newton structure (M, K, C, T) of a linear Mechanism;
+  /// null for a user's FollowerSystem (dense Jacobian). The method adds its contact
+  /// derivatives or held set.
+  std::shared_ptr<SparseNewton> sparse_newton() const;
 
   // ---- geometry and forces
   /// The cam's lift above its base circle at t: X = X_C − min_θ X_C, Ẋ_C, Ẍ_C.

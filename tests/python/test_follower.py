@@ -337,7 +337,11 @@ def test_python_follower_cost(model, integrator, capsys):
     t_py, r_py = best_of(3, lambda: camdyn.run(sc, follower=CubicSpring()))
     t_cc, r_cc = best_of(3, lambda: camdyn.run(sc, follower=camdyn.CubicSpringFollower(M, K, K3, P)))
     assert r_py.summary["finished"] and r_cc.summary["finished"]
-    assert r_py.summary["steps"] == r_cc.summary["steps"]
+    # The same work within 10 %: since the event method projects its held contact every
+    # step (issue 23), the Python and C++ followers' round-off-level differences reach
+    # CVODE's step-size choices on this fully held one-unknown follower (339 against 316
+    # steps measured; Lee on arkode-erk: equal).
+    assert abs(r_py.summary["steps"] - r_cc.summary["steps"]) <= 0.1 * r_cc.summary["steps"]
     calls = [0]
 
     class Counted(CubicSpring):
@@ -350,6 +354,6 @@ def test_python_follower_cost(model, integrator, capsys):
     with capsys.disabled():
         print(f"\n[python follower cost] {model}/{integrator}, 1 rev at 5 rev/s: {steps} steps, "
               f"{calls[0]} calls of force(); Python {t_py * 1e3:.1f} ms ({steps / t_py:.0f} steps/s), "
-              f"C++ {t_cc * 1e3:.1f} ms ({steps / t_cc:.0f} steps/s): "
+              f"C++ {t_cc * 1e3:.1f} ms ({r_cc.summary['steps'] / t_cc:.0f} steps/s): "
               f"{t_py / t_cc:.1f}x slower, {(t_py - t_cc) / calls[0] * 1e6:.2f} us more per call")
     assert t_py > 0 and t_cc > 0
