@@ -151,6 +151,14 @@ std::string Summary::FullReport() const {
     << "  max penetration:    " << fmt(max_penetration) << "\n";
   if (first_tensile_time >= 0)
     o << "  constraint force first tensile at t = " << fmt(first_tensile_time) << "\n";
+  for (const ContactResult& c : contacts) {
+    auto ang = [&](double d) { return std::isnan(d) ? std::string("-") : fmt(d) + " deg"; };
+    o << "  contact '" << c.name << "': min force " << (std::isnan(c.min_force) ? std::string("-") : fmt(c.min_force))
+      << " at " << ang(c.min_force_theta_deg) << " (outside the lash take-up), " << c.impacts << " impacts (max "
+      << fmt(c.max_impact_velocity) << " at " << ang(c.max_impact_theta_deg) << ", first at "
+      << ang(c.first_impact_theta_deg) << "), " << c.separations << " separations (first at "
+      << ang(c.first_separation_theta_deg) << ")\n";
+  }
   o << "  energy residual:    " << fmt(energy_residual) << "\n"
     << "  cpu / wall:         " << fmt(cpu_seconds) << " s / " << fmt(wall_seconds) << " s\n";
   return o.str();

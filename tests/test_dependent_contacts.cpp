@@ -19,6 +19,7 @@
 #include <memory>
 #include <string>
 
+#include "camdyn/cam.hpp"
 #include "camdyn/follower_system.hpp"
 #include "camdyn/simulator.hpp"
 #include "contact/active_set.hpp"
@@ -261,6 +262,75 @@ INSTANTIATE_TEST_SUITE_P(Methods, UserTwoRows,
                                            Case{ContactModel::Event, Integrator::ArkodeErk, 0.2e-3, "event_erk"},
                                            Case{ContactModel::Lee, Integrator::ArkodeErk, 0.0, "lee_erk_no_lash"}),
                          [](const auto& i) { return std::string(i.param.name); });
+
+}  // namespace
+}  // namespace camdyn
+
+namespace camdyn {
+namespace {
+
+// ---- results per contact (issue 28) against a second path: the rows and events --------
+// On the OHC example, ContactResult is recomputed here from what history.csv and
+// events.csv hold (the rows' F_/in_ columns, the events' kind/contact/θ/speed) and the
+// take-up window from the Cam API: rows with |X(θ) − clearance| ≤ 1 % of the lift.
+TEST(ContactResults, OhcMatchTheRowsAndEvents) {
+  Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_bucket_tappet.toml");
+  s.run.output_dt = 1e-5;
+  Simulator sim(s);
+  Rows obs;
+  const Summary sum = sim.run(&obs);
+  ASSERT_TRUE(sum.finished) << sum.message;
+  const std::vector<std::string> cols = sim.extra_columns();
+  const Cam cam(s.cam);
+  const double lift = cam.lift();
+  ASSERT_EQ(sum.contacts.size(), s.network.contacts.size());
+  auto deg = [](double th) {
+    double d = std::fmod(th * 180.0 / M_PI, 360.0);
+    return d < 0 ? d + 360.0 : d;
+  };
+  auto in_window = [&](double theta) {
+    const double X = cam.motion(theta, 1.0, 0.0).X - s.cam.base_radius;
+    for (const ContactPointSpec& c : s.network.contacts)
+      if (c.kind == ContactPointKind::Cam && std::abs(X - c.clearance) <= 0.01 * lift) return true;
+    return false;
+  };
+  for (size_t j = 0; j < s.network.contacts.size(); ++j) {
+    const std::string name = s.network.contacts[j].name;
+    const ContactResult& cr = sum.contacts[j];
+    EXPECT_EQ(cr.name, name);
+    double minF = NAN, vmax = 0, first_imp = NAN, first_sep = NAN;
+    long imp = 0, sep = 0;
+    for (const HistoryRow& r : obs.rows)
+      if (col(cols, r, "in_" + name) == 1.0 && !in_window(r.theta)) {
+        const double F = col(cols, r, "F_" + name);
+        if (std::isnan(minF) || F < minF) minF = F;
+      }
+    for (const ContactEvent& e : sum.events) {
+      if (e.contact != name) continue;
+      if (e.kind == "impact") {
+        ++imp;
+        vmax = std::max(vmax, e.impact_velocity);
+        if (std::isnan(first_imp)) first_imp = deg(e.theta);
+      } else if (e.kind == "separation") {
+        ++sep;
+        if (std::isnan(first_sep)) first_sep = deg(e.theta);
+        if (!in_window(e.theta)) minF = 0.0;
+      }
+    }
+    EXPECT_EQ(cr.impacts, imp) << name;
+    EXPECT_EQ(cr.separations, sep) << name;
+    EXPECT_DOUBLE_EQ(cr.max_impact_velocity, vmax) << name;
+    EXPECT_NEAR(cr.first_impact_theta_deg, first_imp, 1e-9) << name;
+    EXPECT_NEAR(cr.first_separation_theta_deg, first_sep, 1e-9) << name;
+    EXPECT_NEAR(cr.min_force, minF, 1e-9 * std::abs(minF)) << name;
+  }
+  // the cam's margin on the lobe, not the lash take-up's 1.7 N: the valve spring's
+  // preload less the inertia on the nose is hundreds of newtons here
+  EXPECT_GT(sum.contacts[0].min_force, 100.0);
+  // the seat is closed on the base circle with the preload (250 N), then let go and landed
+  EXPECT_EQ(sum.contacts[1].impacts, 1);
+  EXPECT_EQ(sum.contacts[1].separations, 1);
+}
 
 }  // namespace
 }  // namespace camdyn

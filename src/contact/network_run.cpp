@@ -28,6 +28,10 @@ NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
   sum_.contact_model = to_string(sc.contact.model);
   sum_.model = mk_.description();
   sum_.min_gap = INFINITY;
+  for (const MechanismContact& c : mk_.contacts()) {
+    sum_.contacts.emplace_back();
+    sum_.contacts.back().name = c.name;
+  }
   unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
   // The base circle, so that a cam contact's gap sees the lift X_C − X_base: a lift table
   // gives it (cam.base_radius: the table's L = 0, also where its spline rings a little
@@ -359,6 +363,9 @@ void NetworkRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
     r.extra.push_back(u[i]);
     r.extra.push_back(v[i]);
   }
+  if (!in_take_up(t))
+    for (int j = 0; j < m_; ++j)
+      if (active[j]) sample_contact(j, F[j], angle_deg_mod360(r.theta));
   last_row_t_ = t;
   if (obs_ && obs_->on_output(r) == ObserverAction::Stop) observer_stop_ = true;
 }
@@ -377,7 +384,36 @@ void NetworkRun::record_event(EventKind type, int contact, double v, double impu
     if (e.type != EventKind::Separation || on_lift) designer_.event(e);
   }
   sum_.events.push_back(e);
+  ContactResult& cr = sum_.contacts[contact];
+  const double th = angle_deg_mod360(e.theta);
+  if (type == EventKind::Separation) {
+    ++cr.separations;
+    if (std::isnan(cr.first_separation_theta_deg)) cr.first_separation_theta_deg = th;
+    if (!in_take_up(te)) sample_contact(contact, 0.0, th);
+  } else if (type == EventKind::Impact) {
+    ++cr.impacts;
+    if (std::isnan(cr.first_impact_theta_deg)) cr.first_impact_theta_deg = th;
+    if (std::isnan(cr.max_impact_theta_deg) || v > cr.max_impact_velocity) {
+      cr.max_impact_velocity = v;
+      cr.max_impact_theta_deg = th;
+    }
+  }
   if (obs_) obs_->on_event(e);
+}
+
+bool NetworkRun::in_take_up(double t) const {
+  const double X = cam_at(t).X, d = kFloatLift * cam_.lift();
+  for (const MechanismContact& c : mk_.contacts())
+    if (c.cam && std::abs(X - c.g0) <= d) return true;
+  return false;
+}
+
+void NetworkRun::sample_contact(int j, double F, double theta_deg) {
+  ContactResult& cr = sum_.contacts[j];
+  if (std::isnan(cr.min_force) || F < cr.min_force) {
+    cr.min_force = std::max(F, 0.0);
+    cr.min_force_theta_deg = theta_deg;
+  }
 }
 
 void NetworkRun::after_step(double h, double dW, double P_prev, double P_end) {

@@ -99,6 +99,10 @@ class NetworkRun {
   void emit_row();
   void emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F,
                    const std::vector<char>& active, double W, double D);
+  /// Inside the lash take-up window at t (simulator.hpp ContactResult).
+  bool in_take_up(double t) const;
+  /// A force sample of closed contact j for its ContactResult::min_force.
+  void sample_contact(int j, double F, double theta_deg);
   void record_event(EventKind type, int contact, double v, double impulse = 0.0,
                     double t_event = NAN);
   /// After an accepted step (state updated): dW the cam's work over the step, P_prev the
