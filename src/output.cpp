@@ -707,6 +707,28 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
     t += s.poincare.empty() ? "]" : "\n  ]";
     o.raw("poincare", t);
   }
+  if (!s.contacts.empty()) {
+    // per contact (issue 28; the lash take-up window: include/camdyn/simulator.hpp)
+    std::string t = "[";
+    for (size_t i = 0; i < s.contacts.size(); ++i) {
+      const ContactResult& c = s.contacts[i];
+      std::string u;
+      JsonObject k(u, o.child_indent() + 2);
+      k.str("name", c.name);
+      k.num("min_force", c.min_force);
+      k.num("min_force_theta_deg", c.min_force_theta_deg);
+      k.num("max_impact_velocity", c.max_impact_velocity);
+      k.num("max_impact_theta_deg", c.max_impact_theta_deg);
+      k.num("first_separation_theta_deg", c.first_separation_theta_deg);
+      k.num("first_impact_theta_deg", c.first_impact_theta_deg);
+      k.integer("impacts", c.impacts);
+      k.integer("separations", c.separations);
+      k.close();
+      t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
+    }
+    t += "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
+    o.raw("contacts", t);
+  }
   o.raw("model", model_json(s.model, o.child_indent()));
   o.integer("events", static_cast<long long>(s.events.size()));
   {

@@ -274,6 +274,14 @@ std::string Summary::FullReport() const {
     o << "  Hertz stress:       max " << fmt(max_hertz_stress) << " at " << fmt(max_hertz_theta_deg) << " deg\n";
   if (!tolerance_meaning.empty()) o << "  tolerance:          " << tolerance_meaning << "\n";
   if (!tolerance_warning.empty()) o << "  warning:            " << tolerance_warning << "\n";
+  for (const ContactResult& c : contacts) {
+    auto ang = [&](double d) { return std::isnan(d) ? std::string("-") : fmt(d) + " deg"; };
+    o << "  contact '" << c.name << "': min force " << (std::isnan(c.min_force) ? std::string("-") : fmt(c.min_force))
+      << " at " << ang(c.min_force_theta_deg) << " (outside the lash take-up), " << c.impacts << " impacts (max "
+      << fmt(c.max_impact_velocity) << " at " << ang(c.max_impact_theta_deg) << ", first at "
+      << ang(c.first_impact_theta_deg) << "), " << c.separations << " separations (first at "
+      << ang(c.first_separation_theta_deg) << ")\n";
+  }
   o << "  energy residual:    " << fmt(energy_residual) << "\n"
     << "  cpu / wall:         " << fmt(cpu_seconds) << " s / " << fmt(wall_seconds) << " s\n";
   return o.str();

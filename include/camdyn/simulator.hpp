@@ -105,6 +105,25 @@ enum class Termination {
 /// "solver_error", "invalid_scene", "error" (summary.json's "termination").
 const char* to_string(Termination v);
 
+/// Results of one contact of a network or user follower (issue 28; summary.json
+/// "contacts", FullReport, Python). Angles: cam degrees in [0, 360); NaN (null) when the
+/// thing did not happen. The lash take-up window: the output rows where the cam's lift X
+/// lies within 1 % of the lift of some cam contact's clearance (|X − c| ≤ 0.01·lift: the
+/// load passes between the cam and the stops there, the forces fall to zero by design);
+/// min_force leaves those rows out, and a separation inside it is no loss of margin.
+struct ContactResult {
+  std::string name;
+  /// Smallest force while closed over the output rows outside the lash take-up window (0
+  /// if the contact separated outside it); NaN if never closed there.
+  double min_force = NAN;
+  double min_force_theta_deg = NAN;
+  double max_impact_velocity = 0;     ///< largest approach speed at its impacts
+  double max_impact_theta_deg = NAN;
+  double first_separation_theta_deg = NAN;
+  double first_impact_theta_deg = NAN;
+  long impacts = 0, separations = 0;
+};
+
 struct Summary {
   std::string scene;
   bool finished = false;  ///< termination == Termination::Finished
@@ -177,6 +196,9 @@ struct Summary {
   std::string integrator, contact_model;
   ModelDescription model;
   std::vector<ContactEvent> events;
+  /// Per contact (network and user followers; empty otherwise), in the contacts' order.
+  /// The top-level designer fields above follow the primary (first cam) contact only.
+  std::vector<ContactResult> contacts;
 
   std::string BriefReport() const;
   std::string FullReport() const;

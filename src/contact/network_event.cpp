@@ -113,11 +113,13 @@ class NetworkEvent final : public NetworkRun {
       const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
       yv_ = Y;
       const CamMotion cm = cam_at(t);
-      Eigen::VectorXd F;
-      if (!set_.empty()) F = held_forces(t, yv_, cm, set_);
+      Eigen::VectorXd F;  // the separation function of the active contacts (force units)
+      if (!set_.empty()) held_forces(t, yv_, cm, set_, &F);
       // Offsets keep every function away from zero at a restart (SUNDIALS stops with
       // "root found at and very near t" on a function that stays at zero): a gap triggers
-      // at −10⁻³ tol_u, a force at −10⁻¹² of the largest force so far.
+      // at −10⁻³ tol_u, an active contact's margin F − g̈/W_jj (its force while held, −its
+      // opening acceleration as a force once complementarity opens it) at −10⁻¹² of the
+      // largest force so far.
       const double F_thr = 1e-12 * std::max(F_ref_, mk_.force_scale());
       for (int j = 0; j < m_; ++j) g[j] = active_[j] ? F[j] + F_thr : gap(j, yv_, cm) + open_thr(j);
     });

@@ -410,8 +410,10 @@ class NetworkLee final : public NetworkRun {
         h = 0.5 * hs;
         continue;
       }
-      // acceleration level
-      const Eigen::VectorXd Fa = held_forces(t1, y1, cm1, set);
+      // acceleration level (complementarity: a contact it opens has no force and a
+      // negative margin)
+      Eigen::VectorXd margin_a;
+      const Eigen::VectorXd Fa = held_forces(t1, y1, cm1, set, &margin_a);
       double err_c = 0.0, pc = 5.0;
       // (CVODE only: a one-step engine on a user's nonlinear follower iterates too; with the
       // allowance there, the user-follower separation test on ERK ended in a step size
@@ -475,9 +477,11 @@ class NetworkLee final : public NetworkRun {
           auto f = [&](double x) {
             const double tau = s.t0 + x * hs;
             interpolate(s, tau, yi_);
-            return held_forces(tau, yi_, cam_at(tau), set)[j];
+            Eigen::VectorXd mg;
+            held_forces(tau, yi_, cam_at(tau), set, &mg);
+            return mg[j];
           };
-          const double x = first_below(f, F_[j], Fa[j], F_thr, hs, t1);
+          const double x = first_below(f, F_[j], margin_a[j], F_thr, hs, t1);
           if (x >= 0.0 && x < x_first) {
             x_first = x;
             who = j;

@@ -69,6 +69,7 @@ class NetworkPenalty final : public NetworkRun {
  private:
   OdeEngine* eng_;
   Eigen::VectorXd yv_;
+  bool penetration_checked() const override { return false; }  // the law penetrates
 
   // The law of contact j at penetration s and its rate ŝ; el: the elastic part.
   PenaltyParams params(int j) const {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "camdyn/initial_state.hpp"
+#include "active_set.hpp"
 #include "run_context.hpp"  // StepFailure, Clock, fmt
 
 namespace camdyn {
@@ -16,6 +17,7 @@ namespace detail {
 
 namespace {
 constexpr double kFloatLift = 0.01;  // a float: the cam above clearance + 1 % of its lift
+constexpr double kCheckGaps = 10.0;  // the step check's gap tolerance in tol_u
 }  // namespace
 
 NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
@@ -27,6 +29,10 @@ NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
   sum_.contact_model = to_string(sc.contact.model);
   sum_.model = mk_.description();
   sum_.min_gap = INFINITY;
+  for (const MechanismContact& c : mk_.contacts()) {
+    sum_.contacts.emplace_back();
+    sum_.contacts.back().name = c.name;
+  }
   unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
   // The base circle, so that a cam contact's gap sees the lift X_C − X_base
   // (cam_lift_base, include/camdyn/initial_state.hpp: cam.base_radius for a lift table,
@@ -94,24 +100,36 @@ void NetworkRun::acceleration(double t, const Eigen::VectorXd& y, const Eigen::V
 }
 
 Eigen::VectorXd NetworkRun::held_forces(double t, const Eigen::VectorXd& y, const CamMotion& cm,
-                                        const std::vector<int>& set) const {
+                                        const std::vector<int>& set, Eigen::VectorXd* margin,
+                                        bool* ok) const {
   Eigen::VectorXd F = Eigen::VectorXd::Zero(m_);
+  if (margin) *margin = Eigen::VectorXd::Zero(m_);
+  if (ok) *ok = true;
   if (set.empty()) return F;
   Eigen::VectorXd a0;
   acceleration(t, y, F, a0);  // free acceleration
   const int k = int(set.size());
   Eigen::MatrixXd Wss(k, k);
-  Eigen::VectorXd b(k);
+  Eigen::VectorXd b(k);  // the gap accelerations without contact forces
   for (int i = 0; i < k; ++i) {
-    b[i] = cam_acc(set[i], cm) - mk_.contacts()[set[i]].t.dot(a0);
+    b[i] = mk_.contacts()[set[i]].t.dot(a0) - cam_acc(set[i], cm);
     for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(set[i], set[l]);
   }
-  Eigen::VectorXd Fs;
-  if (k == 1)
-    Fs = b / Wss(0, 0);
-  else
-    Fs = Wss.completeOrthogonalDecomposition().solve(b);
-  for (int i = 0; i < k; ++i) F[set[i]] = Fs[i];
+  if (!unilateral_) {  // holonomic: every contact held, pulls allowed
+    const Eigen::VectorXd Fs = k == 1 ? Eigen::VectorXd(-b / Wss(0, 0))
+                                      : Eigen::VectorXd(Wss.completeOrthogonalDecomposition().solve(-b));
+    for (int i = 0; i < k; ++i) F[set[i]] = Fs[i];
+    if (margin)
+      for (int i = 0; i < k; ++i) (*margin)[set[i]] = Fs[i];
+    return F;
+  }
+  // complementarity (active_set.hpp): an open-going contact carries no force, redundant
+  // ones share by the minimal norm
+  const ContactLcpResult r = solve_contact_lcp(Wss, b);
+  if (ok) *ok = r.ok;
+  for (int i = 0; i < k; ++i) F[set[i]] = r.F[i];
+  if (margin)
+    for (int i = 0; i < k; ++i) (*margin)[set[i]] = r.F[i] - r.w[i] / Wss(i, i);
   return F;
 }
 
@@ -123,23 +141,28 @@ std::vector<int> NetworkRun::active_list() const {
 }
 
 void NetworkRun::settle_active(const CamMotion& cm) {
-  for (;;) {
-    const std::vector<int> set = active_list();
-    F_ = held_forces(t_, y_, cm, set);
-    if (!unilateral_) return;  // holonomic: contacts never release
-    F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
-    const double thr = 1e-12 * std::max(F_ref_, 1e-300);
-    int worst = -1;
-    for (int j : set)
-      if (F_[j] < -thr && (worst < 0 || F_[j] < F_[worst])) worst = j;
-    if (worst < 0) {
-      for (int j : set) F_[j] = std::max(F_[j], 0.0);
-      return;
-    }
-    active_[worst] = 0;
-    ++sum_.separations;
-    record_event(EventKind::Separation, worst, 0.0);
+  const std::vector<int> set = active_list();
+  Eigen::VectorXd margin;
+  bool ok = true;
+  F_ = held_forces(t_, y_, cm, set, &margin, &ok);
+  if (!unilateral_) return;  // holonomic: contacts never release
+  if (!ok) {
+    std::string names;
+    for (int j : set) names += (names.empty() ? "'" : ", '") + mk_.contacts()[j].name + "'";
+    throw StepFailure("the closed contacts " + names +
+                      " jam: no bounded contact forces keep them closed (a node driven into a stop)");
   }
+  F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
+  // a closed contact the acceleration level opens (no force, its gap accelerating open)
+  // leaves the active set; the others' forces do not change (complementarity)
+  const double thr = 1e-12 * std::max(F_ref_, 1e-300);
+  for (int j : set)
+    if (margin[j] < -thr) {
+      active_[j] = 0;
+      F_[j] = 0.0;
+      ++sum_.separations;
+      record_event(EventKind::Separation, j, 0.0);
+    }
 }
 
 void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion& cm) {
@@ -183,40 +206,81 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
     stick[j] = !unilateral_ || e == 0.0 || (1.0 + e) * approach < v_stick[j];
     soft = soft && approach < v_stick[j];
   }
-  Eigen::VectorXd P = Eigen::VectorXd::Zero(m_);
-  for (;;) {
-    const int k = int(S.size());
-    if (k == 0) break;
-    Eigen::MatrixXd Wss(k, k);
-    Eigen::VectorXd rhs(k);
+  // The impulses over the contacts S taking part: the closing ones reach ġ⁺ = −e ġ⁻ (0
+  // when they stick), the active ones ġ⁺ = 0.
+  auto system = [&](const std::vector<int>& set, Eigen::MatrixXd& Wss, Eigen::VectorXd& b) {
+    const int k = int(set.size());
+    Wss.resize(k, k);
+    b.resize(k);  // ġ⁻ − target
     for (int i = 0; i < k; ++i) {
-      const int j = S[i];
+      const int j = set[i];
       const double target = is_closing[j] && !stick[j] ? -mk_.contacts()[j].restitution * gd[j] : 0.0;
-      rhs[i] = target - gd[j];
-      for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, S[l]);
+      b[i] = gd[j] - target;
+      for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, set[l]);
     }
-    const Eigen::VectorXd Ps = Wss.completeOrthogonalDecomposition().solve(rhs);
-    // An impulse that would pull by a trace (the velocity drift of an active contact, or
-    // round-off) is not a pull: only one below −1e-6 of the largest leaves S.
-    // A touch (soft): a contact whose pull would change its own speed by less than its
-    // sticking speed keeps it: the sandwich of a valve landing on its seat while the rocker
-    // still rests on it is then held by both, and the acceleration level decides which
-    // contact lets go (without it the two contacts traded places at the sticking speed
-    // every few nanoseconds, and the step size underflowed).
-    int worst = -1;
-    const double thr = 1e-6 * Ps.cwiseAbs().maxCoeff();
-    auto pulls = [&](int i) {
-      if (!unilateral_ || !(Ps[i] < -thr)) return false;
-      return !(soft && -Ps[i] * mk_.W()(S[i], S[i]) < v_stick[S[i]]);
-    };
-    for (int i = 0; i < k; ++i)
-      if (pulls(i) && (worst < 0 || Ps[i] < Ps[worst])) worst = i;
-    if (worst < 0) {
-      P.setZero();
-      for (int i = 0; i < k; ++i) P[S[i]] = (unilateral_ && !soft) ? std::max(Ps[i], 0.0) : Ps[i];
-      break;
+  };
+  Eigen::VectorXd P = Eigen::VectorXd::Zero(m_);
+  bool solved = !unilateral_ && S.empty();
+  if (!unilateral_ || soft) {
+    // Holonomic: every contact held, signed impulses. A touch (soft): a contact whose pull
+    // would change its own speed by less than its sticking speed keeps it: the sandwich of
+    // a valve landing on its seat while the rocker still rests on it is then held by both,
+    // and the acceleration level decides which contact lets go (without it the two
+    // contacts traded places at the sticking speed every few nanoseconds, and the step
+    // size underflowed; with complementarity alone the OHV train's event method took 5922
+    // events for Lee's 42). Only where the held system is consistent: on a singular W_SS
+    // (two contacts on one node) its least-squares compromise would leave both half-way.
+    std::vector<int> T = S;
+    for (;;) {
+      const int k = int(T.size());
+      if (k == 0) {
+        solved = true;
+        break;
+      }
+      Eigen::MatrixXd Wss;
+      Eigen::VectorXd b;
+      system(T, Wss, b);
+      const Eigen::VectorXd Ps = Wss.completeOrthogonalDecomposition().solve(-b);
+      const double scale = b.cwiseAbs().maxCoeff() + Wss.cwiseAbs().maxCoeff() * Ps.cwiseAbs().maxCoeff();
+      if (unilateral_ && (Wss * Ps + b).cwiseAbs().maxCoeff() > 1e-9 * scale) break;  // inconsistent
+      int worst = -1;
+      const double thr = 1e-6 * Ps.cwiseAbs().maxCoeff();
+      auto pulls = [&](int i) {
+        if (!unilateral_ || !(Ps[i] < -thr)) return false;
+        return !(-Ps[i] * mk_.W()(T[i], T[i]) < v_stick[T[i]]);
+      };
+      for (int i = 0; i < k; ++i)
+        if (pulls(i) && (worst < 0 || Ps[i] < Ps[worst])) worst = i;
+      if (worst < 0) {
+        for (int i = 0; i < k; ++i) P[T[i]] = Ps[i];
+        S = T;
+        solved = true;
+        break;
+      }
+      T.erase(T.begin() + worst);  // it would pull: it leaves (or stays open)
     }
-    S.erase(S.begin() + worst);  // it would pull: it leaves (or stays open)
+  }
+  if (!solved) {
+    // By complementarity (active_set.hpp): P ≥ 0, ġ⁺ ≥ target, P·(ġ⁺ − target) = 0,
+    // redundant contacts (W_SS singular) sharing by the minimal norm; the ones it leaves
+    // moving apart leave S. (The release of the most-pulling contact from a least-squares
+    // solve it replaced left both contacts of one node half-way: issue 28.)
+    Eigen::MatrixXd Wss;
+    Eigen::VectorXd b;
+    system(S, Wss, b);
+    const ContactLcpResult r = solve_contact_lcp(Wss, b);
+    if (!r.ok) {
+      std::string names;
+      for (int j : S) names += (names.empty() ? "'" : ", '") + mk_.contacts()[j].name + "'";
+      throw StepFailure("at an impact the contacts " + names + " jam: no bounded impulses keep them apart");
+    }
+    const double v_sep = 1e-6 * std::max(v_impact_ref_, 1e-300);
+    std::vector<int> kept;
+    for (size_t i = 0; i < S.size(); ++i) {
+      P[S[i]] = r.F[i];
+      if (r.F[i] > 0.0 || r.w[i] <= v_sep) kept.push_back(S[i]);
+    }
+    S = kept;
   }
   y_.tail(n_) += mk_.MinvTt() * P;
   const double T_after = mk_.kinetic_energy(y_.data() + n_);
@@ -289,6 +353,9 @@ void NetworkRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
     r.extra.push_back(u[i]);
     r.extra.push_back(v[i]);
   }
+  if (!in_take_up(t))
+    for (int j = 0; j < m_; ++j)
+      if (active[j]) sample_contact(j, F[j], angle_deg_mod360(r.theta));
   last_row_t_ = t;
   if (obs_ && obs_->on_output(r) == ObserverAction::Stop) observer_stop_ = true;
 }
@@ -307,7 +374,36 @@ void NetworkRun::record_event(EventKind type, int contact, double v, double impu
     if (e.type != EventKind::Separation || on_lift) designer_.event(e);
   }
   sum_.events.push_back(e);
+  ContactResult& cr = sum_.contacts[contact];
+  const double th = angle_deg_mod360(e.theta);
+  if (type == EventKind::Separation) {
+    ++cr.separations;
+    if (std::isnan(cr.first_separation_theta_deg)) cr.first_separation_theta_deg = th;
+    if (!in_take_up(te)) sample_contact(contact, 0.0, th);
+  } else if (type == EventKind::Impact) {
+    ++cr.impacts;
+    if (std::isnan(cr.first_impact_theta_deg)) cr.first_impact_theta_deg = th;
+    if (std::isnan(cr.max_impact_theta_deg) || v > cr.max_impact_velocity) {
+      cr.max_impact_velocity = v;
+      cr.max_impact_theta_deg = th;
+    }
+  }
   if (obs_) obs_->on_event(e);
+}
+
+bool NetworkRun::in_take_up(double t) const {
+  const double X = cam_at(t).X, d = kFloatLift * cam_.lift();
+  for (const MechanismContact& c : mk_.contacts())
+    if (c.cam && std::abs(X - c.g0) <= d) return true;
+  return false;
+}
+
+void NetworkRun::sample_contact(int j, double F, double theta_deg) {
+  ContactResult& cr = sum_.contacts[j];
+  if (std::isnan(cr.min_force) || F < cr.min_force) {
+    cr.min_force = std::max(F, 0.0);
+    cr.min_force_theta_deg = theta_deg;
+  }
 }
 
 void NetworkRun::after_step(double h, double dW, double P_prev, double P_end) {
@@ -322,6 +418,7 @@ void NetworkRun::after_step(double h, double dW, double P_prev, double P_end) {
     sum_.max_penetration = std::max(sum_.max_penetration, -g);
     sum_.max_contact_force = std::max(sum_.max_contact_force, F_[j]);
   }
+  check_complementarity(cm);
   const int p = mk_.primary();
   const MechanismContact& c = mk_.contacts()[p];
   Eigen::VectorXd a;
@@ -346,6 +443,28 @@ void NetworkRun::after_step(double h, double dW, double P_prev, double P_end) {
     throw StepFailure(Termination::MaxSteps, "run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
   if (!y_.allFinite() || !F_.allFinite()) throw StepFailure(Termination::NonFinite, "non-finite state");
   if (obs_ && (sum_.steps & 255) == 0) obs_->on_progress(t_, sc_.run.t_end, sum_.steps);
+}
+
+void NetworkRun::check_complementarity(const CamMotion& cm) const {
+  // Tolerances: a closed contact's gap is held to tol_u by Lee's displacement level and
+  // drifts a little under the event method's acceleration level; kCheckGaps·tol_u allows
+  // that and still catches a contact pushing across an open gap or a node sinking into a
+  // stop by a visible amount. Penalty contacts penetrate by their law (F/k_p): only the
+  // force-on-open-gap check applies there (the law cannot violate it).
+  if (!unilateral_) return;
+  const double tol = kCheckGaps * sc_.contact.tol_u;
+  const double F_thr = 1e-9 * std::max(F_ref_, mk_.force_scale());
+  for (int j = 0; j < m_; ++j) {
+    const double g = gap(j, y_, cm);
+    const std::string where = "at t = " + fmt(t_) + " (cam angle " + fmt(angle_deg_mod360(drive_.theta(t_))) +
+                              " deg): contact '" + mk_.contacts()[j].name + "' ";
+    if (F_[j] > F_thr && g > tol)
+      throw StepFailure(where + "carries a force of " + fmt(F_[j]) + " N while its gap is open (" + fmt(g) +
+                        " > " + fmt(kCheckGaps) + " tol_u): complementarity violated");
+    if (penetration_checked() && -g > tol)
+      throw StepFailure(where + "penetrates by " + fmt(-g) + " (> " + fmt(kCheckGaps) +
+                        " tol_u = " + fmt(tol) + ")");
+  }
 }
 
 double NetworkRun::fit_step(double h, double t_next) const { return fit_step_size(sc_, t_, h, t_next); }

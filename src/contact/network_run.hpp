@@ -73,15 +73,22 @@ class NetworkRun {
   double cam_acc(int j, const CamMotion& cm) const;
   /// a = M⁻¹(f₀ − Kq − Cv + TᵀF).
   void acceleration(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F, Eigen::VectorXd& a) const;
-  /// The acceleration level: forces on the contacts of `set` that keep g̈ = 0 there
-  /// (W_SS F_S = Ẍ_C,S − T_S M⁻¹(f₀ − Kq − Cv)), zero elsewhere; least squares of minimum
-  /// norm if W_SS is singular (two contacts on one rigid chain).
+  /// The acceleration level of the closed contacts `set`, by complementarity
+  /// (src/contact/active_set.hpp): F_S ≥ 0, g̈_S = W_SS F_S + T_S a_free − Ẍ_C,S ≥ 0,
+  /// F_S·g̈_S = 0; redundant contacts (W_SS singular: two contacts on one node or one rigid
+  /// chain) share by the minimal norm; zero off the set. Holonomic (contact.separation =
+  /// false): g̈_S = 0 with signed forces. `margin` (m entries): F_j − g̈_j/W_jj on the set,
+  /// a force that is > 0 while contact j carries force and < 0 once the acceleration level
+  /// opens it, continuous through the switch (the separation function); `ok` false: no
+  /// bounded forces (the contacts jam).
   Eigen::VectorXd held_forces(double t, const Eigen::VectorXd& y, const CamMotion& cm,
-                              const std::vector<int>& set) const;
+                              const std::vector<int>& set, Eigen::VectorXd* margin = nullptr,
+                              bool* ok = nullptr) const;
   /// Active contacts as a list.
   std::vector<int> active_list() const;
   /// F_ from the acceleration level for the active set, releasing (with a separation
-  /// event) every contact whose force would pull (< −thr·scale), most negative first.
+  /// event) every contact the complementarity solution opens (margin < −thr·scale).
+  /// @throws StepFailure naming the contacts if they jam.
   void settle_active(const CamMotion& cm);
   /// Resolve an impact at the current state: `closing` contacts (gap ≈ 0, approaching)
   /// and the active ones take a Newton impulse (g⁺ = −e g⁻ on the closing ones, or 0 when
@@ -100,11 +107,21 @@ class NetworkRun {
   void emit_row();
   void emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F,
                    const std::vector<char>& active, double W, double D);
+  /// Inside the lash take-up window at t (simulator.hpp ContactResult).
+  bool in_take_up(double t) const;
+  /// A force sample of closed contact j for its ContactResult::min_force.
+  void sample_contact(int j, double F, double theta_deg);
   void record_event(EventKind type, int contact, double v, double impulse = 0.0,
                     double t_event = NAN);
   /// After an accepted step (state updated): dW the cam's work over the step, P_prev the
   /// dissipated power at its start (P_end at its end if not the current state's).
   void after_step(double h, double dW, double P_prev, double P_end = NAN);
+  /// The check after every accepted step (issue 28): a contact carrying force across an
+  /// open gap, or a gap below −kCheckGaps·tol_u (not for penalty: its law penetrates),
+  /// stops the run with a StepFailure naming the contact, the time and the cam angle.
+  void check_complementarity(const CamMotion& cm) const;
+  /// false for the penalty method (its contacts penetrate by their law).
+  virtual bool penetration_checked() const { return true; }
   double fit_step(double h, double t_next) const;
   double initial_step() const;
   double out_dt() const { return sc_.run.output_dt; }

@@ -1,0 +1,114 @@
+// camdyn — the contact LCP with the minimal-norm split (active_set.hpp has the maths).
+#include "active_set.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace camdyn {
+namespace detail {
+
+namespace {
+constexpr int kMaxEnumerated = 10;  // 2¹⁰ supports of tiny solves at most
+constexpr double kRel = 1e-9;       // round-off allowance relative to the problem's scale
+
+struct Candidate {
+  Eigen::VectorXd F, w;
+  bool valid = false;
+};
+
+// The minimal-norm F supported on `P` (mask over 0..k−1) and its validity.
+Candidate try_support(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, const std::vector<int>& P) {
+  const int k = int(b.size()), p = int(P.size());
+  Candidate c;
+  c.F = Eigen::VectorXd::Zero(k);
+  if (p > 0) {
+    Eigen::MatrixXd Wp(p, p);
+    Eigen::VectorXd bp(p);
+    for (int i = 0; i < p; ++i) {
+      bp[i] = b[P[i]];
+      for (int l = 0; l < p; ++l) Wp(i, l) = W(P[i], P[l]);
+    }
+    const Eigen::VectorXd z = p == 1 ? Eigen::VectorXd::Constant(1, -bp[0] / Wp(0, 0))
+                                     : Eigen::VectorXd(Wp.completeOrthogonalDecomposition().solve(-bp));
+    for (int i = 0; i < p; ++i) c.F[P[i]] = z[i];
+  }
+  c.w = W * c.F + b;
+  const double Fmax = c.F.cwiseAbs().maxCoeff();
+  const double sw = b.cwiseAbs().maxCoeff() + W.cwiseAbs().maxCoeff() * Fmax + 1e-300;
+  std::vector<char> in(k, 0);
+  for (int j : P) in[j] = 1;
+  c.valid = c.F.allFinite();
+  for (int j = 0; j < k && c.valid; ++j) {
+    if (in[j])
+      c.valid = c.F[j] >= -kRel * Fmax && std::abs(c.w[j]) <= kRel * sw;
+    else
+      c.valid = c.w[j] >= -kRel * sw;
+  }
+  if (c.valid) {
+    c.F = c.F.cwiseMax(0.0);
+    for (int j = 0; j < k; ++j)
+      if (in[j]) c.w[j] = 0.0;  // held: exactly, up to the round-off just allowed
+  }
+  return c;
+}
+}  // namespace
+
+ContactLcpResult solve_contact_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b) {
+  const int k = int(b.size());
+  ContactLcpResult r;
+  if (k == 0) {
+    r.F = r.w = Eigen::VectorXd();
+    r.ok = true;
+    return r;
+  }
+  std::vector<int> all(k);
+  for (int j = 0; j < k; ++j) all[j] = j;
+  // the whole set held (the usual case: every contact carries force)
+  Candidate best = try_support(W, b, all);
+  if (best.valid) {
+    r.F = best.F;
+    r.w = best.w;
+    r.ok = true;
+    return r;
+  }
+  if (k <= kMaxEnumerated) {
+    for (unsigned mask = 0; mask + 1 < (1u << k); ++mask) {
+      std::vector<int> P;
+      for (int j = 0; j < k; ++j)
+        if (mask & (1u << j)) P.push_back(j);
+      Candidate c = try_support(W, b, P);
+      if (c.valid && (!best.valid || c.F.norm() < best.F.norm())) best = std::move(c);
+    }
+  } else {
+    // greedy: add the contact accelerating most into its gap, drop the ones that pull
+    std::vector<int> P;
+    for (int it = 0; it < 4 * k && !best.valid; ++it) {
+      Candidate c = try_support(W, b, P);
+      if (c.valid) {
+        best = std::move(c);
+        break;
+      }
+      int worst = -1;
+      for (int j : P)
+        if (c.F[j] < 0 && (worst < 0 || c.F[j] < c.F[worst])) worst = j;
+      if (worst >= 0) {
+        P.erase(std::find(P.begin(), P.end(), worst));
+        continue;
+      }
+      int add = -1;
+      for (int j = 0; j < k; ++j)
+        if (std::find(P.begin(), P.end(), j) == P.end() && (add < 0 || c.w[j] < c.w[add])) add = j;
+      if (add < 0) break;
+      P.push_back(add);
+    }
+  }
+  r.ok = best.valid;
+  r.F = best.valid ? best.F : Eigen::VectorXd::Zero(k);
+  r.w = best.valid ? best.w : Eigen::VectorXd(W * r.F + b);
+  return r;
+}
+
+}  // namespace detail
+}  // namespace camdyn
