@@ -46,25 +46,13 @@ class EventDriven final : public RunContext {
   // "holonomic" is the contact phase alone, reporting where the reaction turns tensile.
   double reaction_rigid(double t) const { return phase_.reaction(cam_at(t), nullptr, nullptr, nullptr); }
   // Work of the closed-form rigid reaction, ∫ F Ẋ_C dt over [a, b] by adaptive Simpson
-  // (Richardson-corrected), to 0.1·rtol of ∫|F Ẋ_C| dt; pa, pb: the power at a and b.
+  // (Richardson-corrected, at most 20 halvings), to 0.1·rtol of ∫|F Ẋ_C| dt; pa, pb: the power at a and b.
   double contact_work_rigid(double a, double b, double pa, double pb) const {
     auto power = [&](double t) { return reaction_rigid(t) * cam_at(t).Xdot; };
     const double m = 0.5 * (a + b), pm = power(m);
     const double abs_est = (b - a) / 6.0 * (std::abs(pa) + 4.0 * std::abs(pm) + std::abs(pb));
     const double tol = 0.1 * sc_.solver.rtol * abs_est;
-    return simpson_refine(a, b, pa, pm, pb, (b - a) / 6.0 * (pa + 4.0 * pm + pb), tol, 40, power);
-  }
-  template <class P>
-  static double simpson_refine(double a, double b, double pa, double pm, double pb, double whole,
-                               double tol, int depth, const P& power) {
-    const double m = 0.5 * (a + b), l = 0.5 * (a + m), r = 0.5 * (m + b);
-    const double pl = power(l), pr = power(r);
-    const double left = (m - a) / 6.0 * (pa + 4.0 * pl + pm), right = (b - m) / 6.0 * (pm + 4.0 * pr + pb);
-    const double diff = left + right - whole;
-    if (depth <= 0 || std::abs(diff) <= 15.0 * tol || b - a <= 1e-14 * std::max(1.0, std::abs(b)))
-      return left + right + diff / 15.0;
-    return simpson_refine(a, m, pa, pl, pm, left, 0.5 * tol, depth - 1, power) +
-           simpson_refine(m, b, pm, pr, pb, right, 0.5 * tol, depth - 1, power);
+    return adaptive_simpson(power, a, b, pa, pm, pb, (b - a) / 6.0 * (pa + 4.0 * pm + pb), tol, 20);
   }
   double reaction_held(double t, const double* yr) {
     const FollowerModel& h = *phase_.free_part();
