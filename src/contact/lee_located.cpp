@@ -220,7 +220,7 @@ class LeeLocated final : public RunContext {
     if (h <= 0) return 0.0;
     const double ga = s.F0 * cam_at(ta).Xdot, gb = g(tb), gm = g(0.5 * (ta + tb));
     const double S = h / 6.0 * (ga + 4.0 * gm + gb);
-    const double tol = 1e-8 * (std::abs(S) + h * std::max(std::abs(ga), std::abs(gb)));
+    const double tol = std::min(1e-8, 0.1 * sc_.solver.rtol) * (std::abs(S) + h * std::max(std::abs(ga), std::abs(gb)));
     return adaptive_simpson(g, ta, tb, ga, gm, gb, S, tol, 12);
   }
   // One interpolated output row at τ inside the accepted step s. The work column is
