@@ -43,6 +43,22 @@ const KeyDoc kDocs[] = {
                                   "linear between entries and constant after the last."},
     {"cam.speed_table_rev_s", "rev/s", "Speeds of the speed table, as many as `cam.speed_table_t`."},
     {"cam.theta0_deg", "deg", "Cam angle at t = 0."},
+    {"cam.law", "—", "law: the motion-law segments, `KIND D H [...]` separated by `;` (dwell, ramp, harmonic, "
+                     "cycloidal, poly345, poly4567, poly, modtrap, modsine, polydyne); spans sum to 360 deg and the "
+                     "lift closes (docs/cam_laws.md)."},
+    {"cam.nose_radius", "length", "arc: nose-circle radius r_n."},
+    {"cam.nose_distance", "length", "arc: distance d of the nose-circle centre from the cam centre."},
+    {"cam.flank_radius", "length", "arc: radius R_f of the two flank arcs, tangent to base and nose circles."},
+    {"cam.follower_face", "—", "Follower face: `flat` (translating flat face), `knife_edge`, `roller` or `point` "
+                               "(lift imposed, no base radius needed)."},
+    {"cam.follower_offset", "length", "Offset ε of the translating follower's axis (knife edge, roller)."},
+    {"cam.roller_radius", "length", "Roller radius r_r (follower_face = roller)."},
+    {"cam.land_on_breaks", "—", "Steps land on the law's joints and the arc cam's tangency points (stop times)."},
+    {"cam.width", "length", "Cam width of the line contact; > 0 turns on the Hertz stress results."},
+    {"cam.youngs_modulus", "force/length²", "Cam material's Young's modulus E₁ (Hertz stress)."},
+    {"cam.poisson_ratio", "—", "Cam material's Poisson ratio ν₁ (Hertz stress)."},
+    {"cam.follower_youngs_modulus", "force/length²", "Follower face's (or roller's) Young's modulus E₂ (Hertz stress)."},
+    {"cam.follower_poisson_ratio", "—", "Follower face's (or roller's) Poisson ratio ν₂ (Hertz stress)."},
     // [follower]
     {"follower.kind", "—", "`rigid` (one mass), `elastic_bar` (axial bar of N linear elements) or `network` "
                            "(nodes, elements and contacts of [[nodes]], [[elements]], [[contacts]])."},

@@ -62,7 +62,9 @@ u_cpp = np.array([float(x[rows[0].index("u_q1")]) for x in rows[1:]])
 u_py = runs[25.0].history["u_q1"]
 diff = np.max(np.abs(u_cpp - u_py))
 print(f"C++ and Python followers, valve lift: max difference {diff:.2e} m over {len(u_py)} rows")
-assert len(u_cpp) == len(u_py) and diff <= 1e-9 * np.max(np.abs(u_cpp)), "C++ and Python runs differ"
+# Two integrations of the same equations that meet the same tolerance (solver.rtol = 1e-7)
+# agree to it, not bit for bit: their step sequences differ by round-off.
+assert len(u_cpp) == len(u_py) and diff <= 1e-7 * np.max(np.abs(u_cpp)), "C++ and Python runs differ"
 
 fig, (ax_u, ax_f) = plt.subplots(2, 1, sharex=True, figsize=(7.0, 5.6))
 for speed, r in runs.items():

@@ -185,6 +185,27 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
     }
     y_.head(n_) -= MTs * Wss.completeOrthogonalDecomposition().solve(g);
   }
+  // The contacts held before the impact are held at the velocity level too (ġ = 0): the
+  // impact's root lies inside a step, where the interpolated state carries the step's
+  // error in ġ (≈ rtol·|v|), and the complementarity solve below would read that drift as
+  // a held contact moving apart and release it — a spurious separation and re-impact
+  // nanoseconds later (the two-mass train on arkode-erk at rtol 1e-6).
+  {
+    std::vector<int> A;
+    for (int j : active_list())
+      if (!is_closing[j]) A.push_back(j);
+    if (!A.empty()) {
+      const int k = int(A.size());
+      Eigen::MatrixXd Waa(k, k), MTa(n_, k);
+      Eigen::VectorXd gda(k);
+      for (int i = 0; i < k; ++i) {
+        gda[i] = gap_rate(A[i], y_, cm);
+        MTa.col(i) = mk_.MinvTt().col(A[i]);
+        for (int l = 0; l < k; ++l) Waa(i, l) = mk_.W()(A[i], A[l]);
+      }
+      y_.tail(n_) -= MTa * Waa.completeOrthogonalDecomposition().solve(gda);
+    }
+  }
   const double T_before = mk_.kinetic_energy(y_.data() + n_);
   Eigen::VectorXd gd(m_);
   for (int j = 0; j < m_; ++j) gd[j] = gap_rate(j, y_, cm);

@@ -38,8 +38,16 @@ def report(d, *args):
     return (d / "report.html").read_text(encoding="utf-8")
 
 
-def test_falls_back_to_the_files_without_per_contact_results(ohc_run):
-    page = report(ohc_run)
+def test_falls_back_to_the_files_without_per_contact_results(ohc_run, tmp_path):
+    # a run directory whose summary.json has no per-contact results (written before issue 28)
+    d = tmp_path / "old_run"
+    shutil.copytree(ohc_run, d)
+    s = json.loads((d / "summary.json").read_text())
+    s.pop("contacts", None)
+    s.pop("verdict", None)
+    (d / "summary.json").write_text(json.dumps(s))
+    page = report(d)
+    ohc_run = d
     assert "Verdict" not in page
     assert "<h2>Results per contact</h2>" in page
     # the two contacts of the scene, and the seat closing once (events.csv: 1 seat impact)
