@@ -79,7 +79,7 @@ class MotionLaw {
   /// polydyne parameters out of range, a lift that does not close over the revolution.
   explicit MotionLaw(std::vector<MotionSegment> segments, const std::string& key = "cam.law");
   /// Parses the cam.law string (grammar in docs/cam_laws.md) and builds the law.
-  /// @throws SceneError("<cam>", key) on a syntax error, naming the segment and token.
+  /// @throws SceneError (file "<cam>", the key) on a syntax error, naming the segment and token.
   static MotionLaw parse(const std::string& text, const std::string& key = "cam.law");
 
   /// L and derivatives at cam angle θ [rad] (any real θ; periodic).

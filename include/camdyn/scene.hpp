@@ -333,7 +333,7 @@ bool is_network_key(std::string_view key);
 /// Resolve a network key against scene.network (the entry must exist and the key be one of
 /// the keys its type takes).
 /// @pre is_network_key(key)
-/// @throws SceneError(file, 0, key, value, rule) when the key is not ARRAY.NAME.KEY or
+/// @throws SceneError (naming the key, value and rule) when the key is not ARRAY.NAME.KEY or
 ///   ARRAY[INDEX].KEY, no entry has that name (the rule lists the names there are), the index
 ///   is out of range (the rule gives the count and the names), or the key is not one of the
 ///   entry's type (the rule lists that type's keys, as the file loader does).
