@@ -172,19 +172,23 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
     S.push_back(j);
     is_closing[j] = 1;
   }
-  // Gaps of the contacts taking part: closed exactly (the roots are located to the
-  // engine's accuracy); q moves by the smallest M-weighted correction.
-  {
-    const int k = int(S.size());
+  // The smallest M-weighted correction of q (level 0) or v (level 1) that zeroes the gaps
+  // (gap rates) of the contacts `set`: Δ = −M⁻¹T_sᵀ W_ss⁺ g_s (minimal norm on a singular W_ss).
+  auto close_exactly = [&](const std::vector<int>& set, int level) {
+    if (set.empty()) return;
+    const int k = int(set.size());
     Eigen::MatrixXd Wss(k, k), MTs(n_, k);
     Eigen::VectorXd g(k);
     for (int i = 0; i < k; ++i) {
-      g[i] = gap(S[i], y_, cm);
-      MTs.col(i) = mk_.MinvTt().col(S[i]);
-      for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(S[i], S[l]);
+      g[i] = level == 0 ? gap(set[i], y_, cm) : gap_rate(set[i], y_, cm);
+      MTs.col(i) = mk_.MinvTt().col(set[i]);
+      for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(set[i], set[l]);
     }
-    y_.head(n_) -= MTs * Wss.completeOrthogonalDecomposition().solve(g);
-  }
+    y_.segment(level * n_, n_) -= MTs * Wss.completeOrthogonalDecomposition().solve(g);
+  };
+  // Gaps of the contacts taking part: closed exactly (the roots are located to the
+  // engine's accuracy).
+  close_exactly(S, 0);
   // The contacts held before the impact are held at the velocity level too (ġ = 0): the
   // impact's root lies inside a step, where the interpolated state carries the step's
   // error in ġ (≈ rtol·|v|), and the complementarity solve below would read that drift as
@@ -194,17 +198,7 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
     std::vector<int> A;
     for (int j : active_list())
       if (!is_closing[j]) A.push_back(j);
-    if (!A.empty()) {
-      const int k = int(A.size());
-      Eigen::MatrixXd Waa(k, k), MTa(n_, k);
-      Eigen::VectorXd gda(k);
-      for (int i = 0; i < k; ++i) {
-        gda[i] = gap_rate(A[i], y_, cm);
-        MTa.col(i) = mk_.MinvTt().col(A[i]);
-        for (int l = 0; l < k; ++l) Waa(i, l) = mk_.W()(A[i], A[l]);
-      }
-      y_.tail(n_) -= MTa * Waa.completeOrthogonalDecomposition().solve(gda);
-    }
+    close_exactly(A, 1);
   }
   const double T_before = mk_.kinetic_energy(y_.data() + n_);
   Eigen::VectorXd gd(m_);
