@@ -551,14 +551,19 @@ std::unique_ptr<NetworkRun> make_network_penalty(const Scene&, std::shared_ptr<c
                                                  Observer*, const std::atomic<bool>*);
 std::unique_ptr<NetworkRun> make_network_event(const Scene&, std::shared_ptr<const MechanicalSystem>,
                                                Observer*, const std::atomic<bool>*);
+std::unique_ptr<NetworkRun> make_network_lee_cvode(const Scene&, std::shared_ptr<const MechanicalSystem>,
+                                                   Observer*, const std::atomic<bool>*);
 
 // The network methods: Lee's located step (lee; holonomic = Lee with contacts that never
-// release), the penalty baseline, the event-driven method.
+// release; on cvode-bdf Lee's levels inside CVODE's own step, network_lee_cvode.cpp), the
+// penalty baseline, the event-driven method.
 std::unique_ptr<NetworkRun> make_network_method(const Scene& scene, std::shared_ptr<const MechanicalSystem> mech,
                                                 Observer* obs, const std::atomic<bool>* stop) {
   switch (scene.contact.model) {
     case ContactModel::Lee:
     case ContactModel::Holonomic:
+      if (scene.solver.integrator == Integrator::CvodeBdf && scene.contact.lee_step == LeeStepKind::Located)
+        return make_network_lee_cvode(scene, std::move(mech), obs, stop);
       return make_network_lee(scene, std::move(mech), obs, stop);
     case ContactModel::Penalty:
       return make_network_penalty(scene, std::move(mech), obs, stop);

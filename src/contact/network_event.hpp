@@ -1,0 +1,70 @@
+// camdyn (private) — the held-contact machinery of the network methods that integrate
+// natively (network_event.cpp): the active contacts' acceleration level as the contact
+// force inside the right-hand side, their displacement and velocity levels by the engine's
+// projection (CVODE: CVodeSetProjFn), rootfinding for separations (the force reaching zero)
+// and impacts (an open gap reaching zero), the Newton impact law (network_run.cpp).
+//
+// Two methods run on it:
+//   * contact.model = "event" on any engine (NetworkEvent itself): steps land on the output
+//     times;
+//   * contact.model = "lee" on cvode-bdf (network_lee_cvode.cpp: Lee inside CVODE's own
+//     step): steps do not land on the output times (rows from CVODE's interpolant).
+#pragma once
+
+#include <Eigen/Dense>
+#include <Eigen/QR>
+#include <memory>
+#include <vector>
+
+#include "network_run.hpp"
+
+namespace camdyn {
+namespace detail {
+
+class NetworkEvent : public NetworkRun {
+ public:
+  NetworkEvent(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
+               const std::atomic<bool>* stop);
+
+ protected:
+  void run_method() override;
+  /// The time the next step may not pass (the event method: the next output time or cam
+  /// breakpoint).
+  virtual double step_target() { return next_stop_time(); }
+  /// Called once per step just after the engine returned (t_, y_ the step's end or root,
+  /// the engine's interpolant valid over [t_prev, t_]), before any switch is applied.
+  /// P_prev: the dissipated power at t_prev.
+  virtual void after_advance(double /*t_prev*/, double /*P_prev*/) {}
+  /// The cam's work over [ta, tb] ⊂ the last step (the held forces on the interpolant).
+  double held_work(double ta, double tb);
+  /// corr = P(y) − y: y put on the active set's g = 0, ġ = 0, M-orthogonally.
+  void project(double t, const double* y, double* corr);
+
+  OdeEngine* eng_;
+  std::vector<int> set_;  // the active set the right-hand side uses
+
+ private:
+  void restart();
+
+  Eigen::VectorXd yv_, yg_;
+  double gap_thr_ = 1e-3 * sc_.contact.tol_u;
+  // A contact released where its force reaches zero leaves at zero gap, speed and
+  // (nearly) acceleration: for a while its gap is the integration error of the steps after the
+  // release, of order rtol·|q| + atol — above gap_thr_ at tight tol_u (a user follower on
+  // cvode-bdf at rtol 1e-10, tol_u 1e-11: 20 "impacts" of ~1e-11 m/s 3e-10 s apart). Its
+  // root sits at −fresh_thr_ until its gap has once exceeded fresh_thr_ (the sign of its
+  // root function does not change at the switch).
+  double fresh_thr_ = 10.0 * (sc_.solver.rtol * std::max(cam_.lift(), mk_.q0().cwiseAbs().maxCoeff()) +
+                              sc_.solver.atol);
+  std::vector<char> fresh_ = std::vector<char>(std::size_t(m_), 0);
+  double open_thr(int j) const { return fresh_[std::size_t(j)] ? std::max(gap_thr_, fresh_thr_) : gap_thr_; }
+
+  // The projection onto the active set's g = 0, ġ = 0 (see the top): M⁻¹T_Aᵀ and the
+  // factorisation of W_AA, made once per active set.
+  Eigen::MatrixXd MTa_;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> Waa_;
+  Eigen::VectorXd pg_, pgd_;
+};
+
+}  // namespace detail
+}  // namespace camdyn
