@@ -23,7 +23,7 @@ namespace camdyn {
 namespace detail {
 
 NetworkEvent::NetworkEvent(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
-                           const std::atomic<bool>* stop)
+                           const std::atomic<bool>* stop, int max_order)
     : NetworkRun(sc, std::move(mech), obs, stop) {
   OdeSystem sys = contact_system([this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& F) {
     F = held_forces(t, y, cam_at(t), set_);
@@ -34,10 +34,11 @@ NetworkEvent::NetworkEvent(const Scene& sc, std::shared_ptr<const MechanicalSyst
   if (auto sn = sparse_newton()) {
     sn->held = &set_;
     sys.newton = sn;
-}
-engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
-eng_ = engines_.back().get();
-eng_->set_projection([this](double t, const double* y, double* corr) { project(t, y, corr); });
+  }
+  sys.max_order = max_order;
+  engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
+  eng_ = engines_.back().get();
+  eng_->set_projection([this](double t, const double* y, double* corr) { project(t, y, corr); });
 }
 
 void NetworkEvent::restart() {

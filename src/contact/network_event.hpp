@@ -23,8 +23,9 @@ namespace detail {
 
 class NetworkEvent : public NetworkRun {
  public:
+  /// max_order: cvode-bdf's largest BDF order (0: CVODE's default 5).
   NetworkEvent(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
-               const std::atomic<bool>* stop);
+               const std::atomic<bool>* stop, int max_order = 0);
 
  protected:
   void run_method() override;
