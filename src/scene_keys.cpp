@@ -80,7 +80,7 @@ const KeyDoc kDocs[] = {
     {"contact.error_variant", "—", "Lee classic step only: eqs. 12–13 (`eq12`) or 17–18 (`eq17`)."},
     {"contact.lee_step", "—", "Lee's step: `located` (one consistent trajectory, switches located, dense output) "
                               "or `classic` (the round-1 step). On cvode-bdf with an elastic follower the located "
-                              "step runs inside CVODE's step."},
+                              "step runs inside CVODE's step; so does a network (either step)."},
     {"contact.tol_u", "length", "Displacement-level tolerance; 0 = the paper default, 1e-8 rigid, 1e-7 elastic_bar "
                                 "and network (filled in by `camdyn scene --resolved`)."},
     {"contact.tol_v", "length/time", "Velocity-level tolerance; 0 = tol_u/Δt per step."},

@@ -8,9 +8,9 @@
 //   responses D of the (time-invariant) mechanism to a unit shape on contact j, computed
 //   from rest without preload once per step size and contact. The displacement and
 //   velocity levels, g_j(t + h) = 0 and ġ_j(t + h) = 0 for every active j, are 2k linear
-//   equations in the 2k shape parameters, solved together (for CVODE, whose step map is
-//   not exactly affine: iterated with Lee's constants, ∂g/∂F₁ = W h²/6, ∂ġ/∂F₁ = W h/2,
-//   ∂g/∂F_c = W h²/3, ∂ġ/∂F_c = 2W h/3, W = T M⁻¹ Tᵀ). The acceleration level gives the
+//   equations in the 2k shape parameters, solved together (a user's nonlinear follower,
+//   whose step map is not affine: iterated with Lee's constants, ∂g/∂F₁ = W h²/6,
+//   ∂ġ/∂F₁ = W h/2, ∂g/∂F_c = W h²/3, ∂ġ/∂F_c = 2W h/3, W = T M⁻¹ Tᵀ). The acceleration level gives the
 //   forces the equation of motion demands at t + h, W_AA F̃ = Ẍ_C,A − T_A a_free, which
 //   start the next step; |F̃ − F₁| is in the error test against
 //   rtol·|F| + 2 tol_u/(W_jj h²).
@@ -18,10 +18,13 @@
 //   held force (acceleration level on the cubic Hermite state) falls to zero separates; an
 //   inactive contact whose gap (quintic Hermite from g, ġ, g̈ at both ends) reaches zero
 //   impacts, resolved by the Newton law on all contacts taking part (network_run.cpp).
+//   The one-step engines only: on cvode-bdf the three levels are solved inside CVODE's own
+//   step (network_lee_cvode.cpp).
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <stdexcept>
 
 #include "lee_step_tools.hpp"
 #include "network_run.hpp"
@@ -142,17 +145,10 @@ class NetworkLee final : public NetworkRun {
         };
     }
     sys.linear = mk_.linear() && (sys.jacobian || sys.newton);
-    sys.max_order = 2;  // cvode-bdf: A-stable BDF on the undamped stiff chain (as elastic bars)
+    if (sc.solver.integrator == Integrator::CvodeBdf)
+      throw std::logic_error("network Lee on cvode-bdf runs in network_lee_cvode.cpp");
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, true));
     eng_ = engines_.back().get();
-    resp_eng_ = eng_;
-    if (!eng_->estimates_error() && sys.linear) {
-      // CVODE: the responses (the iteration's matrix) from the one-step implicit engine,
-      // whose step map is affine (CVODE from rest under a unit shape of 1/(W h²) failed
-      // its error test at the first step)
-      engines_.push_back(OdeEngine::make(Integrator::ArkodeDirk, sc.solver, sys, true));
-      resp_eng_ = engines_.back().get();
-    }
     F0_ = F1_ = Fc_ = Eigen::VectorXd::Zero(m_);
     slope_ = Eigen::VectorXd::Zero(m_);
     fs_.resize(m_);
@@ -160,7 +156,6 @@ class NetworkLee final : public NetworkRun {
 
  private:
   OdeEngine* eng_;
-  OdeEngine* resp_eng_;  // the engine of the unit-shape responses (eng_, or DIRK for CVODE)
   // the force shape of the step being integrated
   double s_t0_ = 0, s_h_ = 1;
   bool homogeneous_ = false;
@@ -215,14 +210,14 @@ class NetworkLee final : public NetworkRun {
       F1_.setZero();
       Fc_.setZero();
       F1_[j] = amp;
-      integrate_on(*resp_eng_, 0.0, zero, hs, r->D1[j]);
+      integrate_on(*eng_, 0.0, zero, hs, r->D1[j]);
       r->D1[j] /= amp;
-      r->E1[j] = resp_eng_->local_error() / amp;
+      r->E1[j] = eng_->local_error() / amp;
       F1_[j] = 0.0;
       Fc_[j] = amp;
-      integrate_on(*resp_eng_, 0.0, zero, hs, r->Dc[j]);
+      integrate_on(*eng_, 0.0, zero, hs, r->Dc[j]);
       r->Dc[j] /= amp;
-      r->Ec[j] = resp_eng_->local_error() / amp;
+      r->Ec[j] = eng_->local_error() / amp;
       homogeneous_ = false;
       r->have[j] = 1;
       sum_.contact_iterations += 2;
@@ -305,12 +300,9 @@ class NetworkLee final : public NetworkRun {
     double err = integrate(t_, y_, hs, y1);
     const int k = int(set.size());
     if (k == 0) return err;
-    // affine step map: a one-step engine on a linear system. CVODE's map is affine only to
-    // its Newton tolerance: iterated, with the same responses as the iteration's matrix (a
-    // user's nonlinear follower: Lee's constants, which see only the contacts' inverse
-    // mass W — on the OHC train, whose cam and seat contacts the stiff valve joins, the
-    // iteration with them diverged and the step failed at any size).
-    const bool affine = eng_->estimates_error() && mk_.linear();
+    // affine step map: a one-step engine on a linear system; a user's nonlinear follower:
+    // iterated with Lee's constants, which see only the contacts' inverse mass W.
+    const bool affine = mk_.linear();
     Eigen::VectorXd le = eng_->local_error();
     Eigen::MatrixXd J(2 * k, 2 * k);
     Responses* R = mk_.linear() ? &responses(hs, set) : nullptr;
@@ -403,7 +395,7 @@ class NetworkLee final : public NetworkRun {
         h = 0.5 * hs;
         continue;
       } catch (const SundialsError&) {
-        // a trial the integrator cannot complete (CVODE's error test inside [t, t + h]
+        // a trial the integrator cannot complete (a user's right-hand side that throws
         // under a trial force): the step is rejected and retried at half the size
         ++sum_.rejected_steps;
         ++sum_.iteration_failures;
@@ -415,23 +407,11 @@ class NetworkLee final : public NetworkRun {
       Eigen::VectorXd margin_a;
       const Eigen::VectorXd Fa = held_forces(t1, y1, cm1, set, &margin_a);
       double err_c = 0.0, pc = 5.0;
-      // (CVODE only: a one-step engine on a user's nonlinear follower iterates too; with the
-      // allowance there, the user-follower separation test on ERK ended in a step size
-      // underflow at 1.5 ms — not studied further)
-      const bool iterated = !eng_->estimates_error();
-      const CamMotion cm_start = cam_at(t_);
       for (int j : set) {
         ++sum_.level_a.total;
         const double Fscale = std::max(std::abs(F_[j]), std::abs(Fa[j]));
         const double Wh2 = mk_.W()(j, j) * hs * hs;
-        // CVODE's iterated levels leave the step's start a residual (δu, δv) within
-        // (tol_u, tol_v), which F₁ closes over the step with (12δu + 6hδv)/(W h²) (Lee's
-        // constants) that the acceleration level cannot match: not the shape's error.
-        // Without it every size failed once δu ≈ 0.8 tol_u (OHC, OHV trains at 12 rev/s).
-        const double start = iterated ? (12.0 * std::abs(gap(j, y_, cm_start)) +
-                                         6.0 * hs * std::abs(gap_rate(j, y_, cm_start))) / Wh2
-                                      : 0.0;
-        const double tolF = rtol * Fscale + 2.0 * tol_u / Wh2 + start;
+        const double tolF = rtol * Fscale + 2.0 * tol_u / Wh2;
         const double e = std::abs(Fa[j] - F1_[j]) / tolF;
         if (e > err_c) {
           err_c = e;

@@ -562,7 +562,7 @@ std::unique_ptr<NetworkRun> make_network_method(const Scene& scene, std::shared_
   switch (scene.contact.model) {
     case ContactModel::Lee:
     case ContactModel::Holonomic:
-      if (scene.solver.integrator == Integrator::CvodeBdf && scene.contact.lee_step == LeeStepKind::Located)
+      if (scene.solver.integrator == Integrator::CvodeBdf)
         return make_network_lee_cvode(scene, std::move(mech), obs, stop);
       return make_network_lee(scene, std::move(mech), obs, stop);
     case ContactModel::Penalty:
