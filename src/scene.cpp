@@ -491,8 +491,13 @@ std::string allowed_top() {
 
 std::string allowed_in(std::string_view table) {
   std::vector<std::string> k;
-  for (const auto& f : fields())
-    if (table == f.table) k.emplace_back(f.key);
+  for (const auto& f : fields()) {
+    if (table != f.table) continue;
+    k.emplace_back(f.key);
+    // The input-only keys in a designer's units (scene_units.cpp), after the key they replace.
+    if (f.path() == "cam.speed_rev_s") k.insert(k.end(), {"speed_rpm", "rpm_of"});
+    if (f.path() == "run.t_end") k.emplace_back("revolutions");
+  }
   return "allowed keys in [" + std::string(table) + "]: " + join(k, ", ");
 }
 
@@ -564,6 +569,8 @@ Scene from_table(const toml::table& root, const std::string& file, bool use_line
   Scene s;
   s.source = file;
   LineMap lines;
+  // cam.speed_rpm, run.revolutions: checked here, applied after the keys (scene_units.cpp)
+  const DesignerUnits units = read_designer_units(root, file, use_lines);
   for (const auto& [k, node] : sorted_entries(root)) {
     const int line = use_lines ? line_of(*node) : 0;
     if (const Field* f = find_field("", k)) {
@@ -582,12 +589,14 @@ Scene from_table(const toml::table& root, const std::string& file, bool use_line
     lines[k] = line;
     for (const auto& [kk, nn] : sorted_entries(*t)) {
       const Field* f = find_field(k, kk);
+      if (!f && is_designer_unit_key(k + "." + kk)) continue;
       if (!f)
         fail(file, use_lines ? line_of(*nn) : 0, k + "." + kk, fmt_node(*nn),
              std::string(nn->is_table() ? "unknown table; " : "unknown key; ") + allowed_in(k));
       read_field(*f, *nn, s, file, use_lines, lines);
     }
   }
+  apply_designer_units(units, s, file, lines);
   resolve_defaults(s);
   validate_impl(s, file, lines);
   return s;
@@ -1218,13 +1227,16 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
   toml::table root = to_table(scene);
   bool sets_tol_u = false;
   std::map<std::string, std::string> spelled;  // "contacts[1].restitution" → "contacts.seat.restitution"
+  std::vector<std::string> keys_set;
   for (const auto& a : assignments) {
     const std::string key = insert_override(root, scene, a);
+    keys_set.push_back(key);
     sets_tol_u |= key == "contact.tol_u";
     const std::string given = trim(std::string_view(a).substr(0, a.find('=')));
     if (given != key) spelled[key] = given;
   }
   if (tol_u_auto && !sets_tol_u) root.get_as<toml::table>("contact")->insert_or_assign("tol_u", 0.0);
+  drop_replaced_by_designer_units(root, keys_set);  // cam.speed_rpm replaces cam.speed_rev_s, …
 
   // One parse and one validation of the result: the order of the overrides does not matter.
   // A bad value of a network key is reported under the key as the user wrote it.
@@ -1271,7 +1283,15 @@ std::vector<KeyTableRow> key_table() {
       case FK::Arr: r.type = "array of reals"; r.rule = "must be an array of finite numbers"; break;
       case FK::Enum: r.type = "enum"; r.rule = one_of(f.allowed); r.allowed = f.allowed; break;
     }
+    const std::string key = r.key;
     rows.push_back(std::move(r));
+    // The input-only keys in a designer's units, after the key each one replaces.
+    if (key == "cam.speed_rev_s") {
+      rows.push_back({"cam.speed_rpm", "real", "must be finite; needs cam.rpm_of; not with cam.speed_rev_s", {}, {}});
+      rows.push_back({"cam.rpm_of", "enum", one_of({"camshaft", "engine"}), {"camshaft", "engine"}, {}});
+    }
+    if (key == "run.t_end")
+      rows.push_back({"run.revolutions", "real", "must be > 0; not with run.t_end", {}, {}});
   }
   for (const auto& k : node_keys()) rows.push_back({"nodes." + k, k == "name" ? "string" : "real", "", {}, {}});
   auto typed = [&](const char* array, const std::vector<std::string>& all, const std::vector<std::string>& types,

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -113,6 +114,30 @@ using LineMap = std::map<std::string, int>;
 long long toml_integer(const toml::node& n, const std::string& file, int line, const std::string& key);
 /// A table's entries in file order (by line).
 std::vector<std::pair<std::string, const toml::node*>> sorted_entries(const toml::table& t);
+
+// ---------------------------------------------------------------- designer units (scene_units.cpp)
+
+/// The input-only keys in a designer's units: "cam.speed_rpm", "cam.rpm_of", "run.revolutions".
+const std::vector<std::string>& designer_unit_keys();
+bool is_designer_unit_key(std::string_view key);
+/// The designer-unit keys of a scene's tables, checked: the camshaft speed of cam.speed_rpm
+/// + cam.rpm_of (rev/s) and run.revolutions.
+struct DesignerUnits {
+  std::optional<double> speed_rev_s, revolutions;
+  std::string revolutions_text;
+  int speed_line = 0, revolutions_line = 0;
+};
+/// @throws SceneError (file, line when use_lines) naming the key, both keys when one
+/// quantity is given twice, a missing or bad cam.rpm_of, a bad number.
+DesignerUnits read_designer_units(const toml::table& root, const std::string& file, bool use_lines);
+/// Set cam.speed_rev_s and run.t_end = revolutions / |cam.speed_rev_s| in `s` (its keys
+/// read): the scene in rev/s and seconds. @throws SceneError for revolutions with a speed
+/// table or a speed of 0.
+void apply_designer_units(const DesignerUnits& u, Scene& s, const std::string& file, LineMap& lines);
+/// --set: the overrides `keys_set` give cam.speed_rpm (run.revolutions) and not
+/// cam.speed_rev_s (run.t_end): drop the scene's own cam.speed_rev_s (run.t_end) from
+/// `root`, which the override replaces.
+void drop_replaced_by_designer_units(toml::table& root, const std::vector<std::string>& keys_set);
 
 // ---------------------------------------------------------------- network arrays (scene_network.cpp)
 

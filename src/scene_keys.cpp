@@ -23,6 +23,7 @@ struct KeyDoc {
   const char* type = nullptr;     // network keys: the value's type (the key table has the path only)
   const char* rule = nullptr;     // network keys: the validator's rule
   const char* fixed_default = nullptr;  // when the default is not a value ("(required)", "the [contact] value")
+  bool input_only = false;  // a designer-unit key converted at load (cam.speed_rpm, …): never written
 };
 
 // Units: lengths, masses and times in any consistent units ("length", "mass", "time").
@@ -39,6 +40,13 @@ const KeyDoc kDocs[] = {
     {"cam.radius", "length", "circle: radius R."},
     {"cam.eccentricity", "length", "circle: eccentricity e, 0 ≤ e < R (centre at (e, 0) in the cam frame)."},
     {"cam.speed_rev_s", "rev/s", "Constant cam speed (any sign); ignored when a speed table is given."},
+    {"cam.speed_rpm", "rpm", "Constant cam speed in revolutions per minute, instead of `cam.speed_rev_s` (giving both "
+                             "is an error); needs `cam.rpm_of`. Converted when the scene is loaded (time in seconds): "
+                             "camshaft rpm / 60 or engine rpm / 120 = `cam.speed_rev_s`, which `--resolved` writes. "
+                             "Input only.", nullptr, nullptr, "(none)", true},
+    {"cam.rpm_of", "—", "Whose rpm `cam.speed_rpm` is: `camshaft`, or `engine` — the crankshaft of a four-stroke "
+                        "engine, which turns twice per camshaft revolution (camshaft rpm = engine rpm / 2). Required "
+                        "with `cam.speed_rpm`, refused without it. Input only.", nullptr, nullptr, "(none)", true},
     {"cam.speed_table_t", "time", "Optional speed table: times, strictly increasing, first = 0; ω(t) piecewise "
                                   "linear between entries and constant after the last."},
     {"cam.speed_table_rev_s", "rev/s", "Speeds of the speed table, as many as `cam.speed_table_t`."},
@@ -106,6 +114,10 @@ const KeyDoc kDocs[] = {
     {"solver.initial_step", "time", "First step; 0 = automatic."},
     // [run]
     {"run.t_end", "time", "Final time."},
+    {"run.revolutions", "rev", "Length of the run in camshaft revolutions, instead of `run.t_end` (giving both is an "
+                               "error): run.t_end = revolutions / |cam speed|, set when the scene is loaded (a later "
+                               "`--set cam.speed_rev_s` keeps that t_end unless run.revolutions is set again). Needs a "
+                               "constant cam speed other than 0. Input only.", nullptr, nullptr, "(none)", true},
     {"run.output_dt", "time", "Output spacing of history.csv; 0 = one row per accepted step."},
     {"run.land_on_output", "—", "true: steps land on the output times instead of dense output (Lee located)."},
     {"run.max_steps", "—", "Safety bound on accepted + rejected steps."},
@@ -243,6 +255,7 @@ std::vector<SceneKeyInfo> scene_keys() {
     k.rule = d.rule ? d.rule : row.rule;
     k.description = d.text;
     k.applies_to = row.applies_to;
+    k.input_only = d.input_only;
     if (d.fixed_default) {
       k.default_value = d.fixed_default;
     } else {

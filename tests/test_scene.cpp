@@ -38,7 +38,7 @@ std::string override_error(Scene s, const std::string& assignment) {
 }
 
 const std::string kCamKeys =
-    "profile, angles_deg, radii, base_radius, lift_angles_deg, lift, radius, eccentricity, speed_rev_s, "
+    "profile, angles_deg, radii, base_radius, lift_angles_deg, lift, radius, eccentricity, speed_rev_s, speed_rpm, rpm_of, "
     "speed_table_t, speed_table_rev_s, theta0_deg, law, nose_radius, nose_distance, flank_radius, "
     "follower_face, follower_offset, roller_radius, land_on_breaks, width, youngs_modulus, poisson_ratio, "
     "follower_youngs_modulus, follower_poisson_ratio";

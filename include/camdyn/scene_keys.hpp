@@ -19,6 +19,9 @@ struct SceneKeyInfo {
   std::string rule;         ///< the key's own rule as the loader words it (rules between keys: in `description`)
   std::string description;  ///< what the key means, and the rules it shares with other keys
   std::vector<std::string> applies_to;  ///< network keys: the element / contact types that take it
+  /// An input-only key in a designer's units (cam.speed_rpm, cam.rpm_of, run.revolutions):
+  /// converted to the SI key it replaces when the scene is loaded, never written back.
+  bool input_only = false;
 };
 
 /// Every key of the scene's key table (top-level tables in file order), then the keys of
