@@ -45,13 +45,7 @@ void NetworkEvent::restart() {
   set_ = active_list();
   for (int j : set_) fresh_[std::size_t(j)] = 0;
   const int k = int(set_.size());
-  MTa_.resize(n_, k);
-  Eigen::MatrixXd Waa(k, k);
-  for (int i = 0; i < k; ++i) {
-    MTa_.col(i) = mk_.MinvTt().col(set_[i]);
-    for (int l = 0; l < k; ++l) Waa(i, l) = mk_.W()(set_[i], set_[l]);
-  }
-  if (k) Waa_.compute(Waa);
+  set_metric();
   // the state the engine starts from is on the active set's manifold too
   if (k) {
     Eigen::VectorXd corr(2 * n_);
@@ -59,6 +53,37 @@ void NetworkEvent::restart() {
     y_ += corr;
   }
   eng_->reinit(t_, y_);
+}
+
+void NetworkEvent::set_metric() {
+  const int k = int(set_.size());
+  MTa_.resize(n_, k);
+  Eigen::MatrixXd Waa(k, k);
+  if (gamma_p_ > 0) {  // S⁻¹T_Aᵀ, T_A S⁻¹ T_Aᵀ
+    for (int i = 0; i < k; ++i) MTa_.col(i) = S_ldlt_.solve(Eigen::VectorXd(mk_.contacts()[set_[i]].t.transpose()));
+    for (int i = 0; i < k; ++i)
+      for (int l = 0; l < k; ++l) Waa(i, l) = mk_.contacts()[set_[i]].t.dot(MTa_.col(l));
+  } else {  // M⁻¹T_Aᵀ, W_AA
+    for (int i = 0; i < k; ++i) {
+      MTa_.col(i) = mk_.MinvTt().col(set_[i]);
+      for (int l = 0; l < k; ++l) Waa(i, l) = mk_.W()(set_[i], set_[l]);
+    }
+  }
+  if (k) Waa_.compute(Waa);
+}
+
+void NetworkEvent::stiff_metric(double h) {
+  if (!stiff_metric_ || !(h > 0)) return;
+  const double g = std::exp2(std::round(std::log2(h)));  // on the grid 2^k: few factorisations
+  if (g == gamma_p_) return;
+  const auto& mech = static_cast<const Mechanism&>(mk_);
+  SparseMatrix S = mech.M() + (g * g) * mech.K();
+  if (mech.damped()) S += g * mech.C();
+  if (gamma_p_ == 0) S_ldlt_.analyzePattern(S);
+  S_ldlt_.factorize(S);
+  if (S_ldlt_.info() != Eigen::Success) return;  // keep the metric in use
+  gamma_p_ = g;
+  set_metric();
 }
 
 void NetworkEvent::project(double t, const double* y, double* corr) {
@@ -122,6 +147,7 @@ void NetworkEvent::run_method() {
     const double P_prev = dissipation_power(t_, y_);
     const double t1 = eng_->advance(tout, y1);
     const double h = t1 - t_;
+    stiff_metric(h);  // for the next steps' projections
     t_ = t1;
     y_ = y1;
     const CamMotion cm = cam_at(t_);

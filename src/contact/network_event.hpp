@@ -13,6 +13,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/QR>
+#include <Eigen/SparseCholesky>
 #include <memory>
 #include <vector>
 
@@ -46,6 +47,20 @@ class NetworkEvent : public NetworkRun {
 
  private:
   void restart();
+  // The projection's metric for the active set: MTa_ = G⁻¹T_Aᵀ and W_AA = T_A G⁻¹ T_Aᵀ
+  // with G = M, or G = S = M + γC + γ²K once stiff_metric() has a γ.
+  void set_metric();
+  // cvode-bdf on a Mechanism: the metric S with γ the last step size (on the grid 2^k).
+  // The M-orthogonal correction moves the contact node alone (lumped mass): behind it a
+  // finely meshed bar (the OHV pushrod with 1000 elements) whose first element's period
+  // is far below the step has that element strained at every step, and CVODE's history
+  // amplified it (error test failures at 1.7 ms). In S the modes faster than 1/γ — those
+  // BDF treats as quasi-static — follow the correction statically (no strain added in
+  // the stiff elements), the slow ones by their inertia.
+  void stiff_metric(double h);
+  bool stiff_metric_ = sc_.solver.integrator == Integrator::CvodeBdf && dynamic_cast<const Mechanism*>(&mk_);
+  double gamma_p_ = 0.0;  // 0: the metric M
+  Eigen::SimplicialLDLT<SparseMatrix> S_ldlt_;
 
   Eigen::VectorXd yv_, yg_;
   double gap_thr_ = 1e-3 * sc_.contact.tol_u;

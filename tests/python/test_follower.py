@@ -221,8 +221,8 @@ class Raises(CubicSpring):
 
 @pytest.mark.parametrize("model,integrator,where", [
     ("lee", "arkode-erk", "force"), ("event", "arkode-erk", "force"),
-    ("penalty", "arkode-erk", "force"), ("lee", "cvode-bdf", "jacobian"),
-    ("event", "cvode-bdf", "force")])
+    ("penalty", "arkode-erk", "force"), ("lee", "arkode-dirk", "jacobian"),
+    ("lee", "cvode-bdf", "force"), ("event", "cvode-bdf", "force")])
 def test_exception_in_a_callback_ends_the_run(model, integrator, where):
     fol = Raises(where, 0.05)
     r = camdyn.run(scene(5.0, model, integrator, t_end=0.2), follower=fol)
