@@ -136,20 +136,17 @@ class NetworkEvent final : public NetworkRun {
       const CamMotion cm = cam_at(t_);
       F_ = held_forces(t_, y_, cm, set_);
       if (m_) F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
-      // the cam's work over the step: 3-point Gauss–Legendre on the engine's own dense
-      // output (the trapezoid on step ends was 3e-4 of the work off on a rigid follower
-      // that CVODE/ERK step across in 150 steps per revolution)
-      double dW = 0.0;
-      if (!set_.empty() && h > 0) {
-        static const double xg[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
-        static const double wg[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
-        for (int g = 0; g < 3; ++g) {
-          const double tau = t_ - h + 0.5 * h * (1.0 + xg[g]);
-          eng_->dense(tau, yg_);
-          const CamMotion cg = cam_at(tau);
-          dW += 0.5 * h * wg[g] * cam_power(held_forces(tau, yg_, cg, set_), cg);
-        }
-      }
+      // the cam's work and the dissipated energy over the step: 3-point Gauss–Legendre on
+      // the engine's own dense output (the trapezoid on step ends was 3e-4 of the work off
+      // on a rigid follower that CVODE/ERK step across in 150 steps per revolution)
+      const StepEnergy dE = step_energy(
+          t_ - h, t_, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
+          [this](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
+            if (set_.empty())
+              F.setZero(m_);
+            else
+              F = held_forces(tau, y, c, set_);
+          });
       const double P_end = dissipation_power(t_, y_);
       for (int j = 0; j < m_; ++j)  // a released contact that has opened: the normal root
         if (fresh_[std::size_t(j)] && !active_[j] && gap(j, y_, cm) > fresh_thr_) fresh_[std::size_t(j)] = 0;
@@ -205,7 +202,7 @@ class NetworkEvent final : public NetworkRun {
         y_ += corr;
         F_ = held_forces(t_, y_, cm, set_);
       }
-      after_step(h, dW, P_prev, changed ? P_end : NAN);
+      after_step(h, dE.work, P_prev, changed ? P_end : NAN, dE.dissipated);
     }
   }
 };
