@@ -218,3 +218,83 @@ INSTANTIATE_TEST_SUITE_P(Long, ToleranceMatrix, ::testing::ValuesIn(combos(true)
 
 }  // namespace
 }  // namespace camdyn
+
+namespace camdyn {
+namespace {
+
+// The 1 ms contact impulses ∫F dt over [k ms, (k+1) ms] (trapezoid over the 0.1 ms rows).
+std::vector<double> impulses_1ms(const RunResult& r) {
+  std::vector<double> I;
+  for (size_t i = 1; i < r.rows.size(); ++i) {
+    const HistoryRow &a = r.rows[i - 1], &b = r.rows[i];
+    const size_t k = size_t(std::floor(0.5 * (a.t + b.t) * 1e3));
+    if (I.size() <= k) I.resize(k + 1, 0.0);
+    I[k] += 0.5 * (b.t - a.t) * (a.contact_force + b.contact_force);
+  }
+  return I;
+}
+
+// Regression of the DIRK fix (issue 25): the event method on arkode-dirk reused its Newton
+// matrix until γ moved by 20 % and on the stiff bar (B2 with E = 5e8, 200 elements) its
+// 1 ms impulses were 2.0e-3 of the peak off after 0.05 s (against the event method on
+// cvode-bdf at rtol 1e-10). Refactored at 1 % of γ: within 1e-4 (5.9e-6 measured). 12 s
+// CPU: label "long".
+TEST(ToleranceLong, EventOnDirkStiffBarImpulsesWithin1e4OfPeak) {
+  Scene s = paper_case("B2");
+  apply_overrides(s, {"follower.youngs_modulus=5e8", "follower.elements=200", "run.t_end=0.05",
+                      "run.output_dt=1e-4", "contact.model=event"});
+  Scene ref_scene = s;
+  ref_scene.solver.integrator = Integrator::CvodeBdf;
+  ref_scene.solver.rtol = 1e-10;
+  const RunResult ref = simulate(ref_scene);
+  ASSERT_TRUE(ref.summary.finished) << ref.summary.message;
+  s.solver.integrator = Integrator::ArkodeDirk;
+  const RunResult r = simulate(s);
+  ASSERT_TRUE(r.summary.finished) << r.summary.message;
+  const std::vector<double> I = impulses_1ms(r), J = impulses_1ms(ref);
+  ASSERT_EQ(I.size(), J.size());
+  double peak = 0, err = 0;
+  for (size_t k = 0; k < J.size(); ++k) {
+    peak = std::max(peak, std::abs(J[k]));
+    err = std::max(err, std::abs(I[k] - J[k]));
+  }
+  std::printf("event on arkode-dirk, stiff bar, 0.05 s: 1 ms impulses %.3g of the peak off (%ld steps)\n",
+              err / peak, r.summary.steps);
+  EXPECT_LT(err / peak, 1e-4);
+}
+
+}  // namespace
+}  // namespace camdyn
+
+namespace camdyn {
+namespace {
+
+// What penalty converges to as rtol falls (ToleranceMatrix measures it against its own
+// solution at rtol 1e-12): the k_p-regularised solution. On case A (always in contact) its
+// penetration max |gap| is the law's F/k_p at the peak force (within 20 %; the displacement
+// tends to the rigid one as 1/k_p), and its force comes closer to the rigid closed form as
+// k_p grows, though slowly: the contact rings (0.22 of the peak force off at k_p = 1e6,
+// 0.046 at 1e8, rtol 1e-10).
+TEST(PenaltyLimit, RegularisedSolutionApproachesTheRigidOneAsKpGrows) {
+  std::vector<double> ferr;
+  for (double kp : {1e6, 1e8}) {
+    Scene s = at_tolerance(make_scene("A"), ContactModel::Penalty, Integrator::ArkodeErk, 1e-10);
+    s.contact.penalty_stiffness = kp;
+    const Outcome r = run(s);
+    ASSERT_TRUE(r.sum.finished) << r.sum.message;
+    const RunResult rr = simulate(s);
+    double pen = 0, Fmax = 0;
+    for (const HistoryRow& row : rr.rows) {
+      pen = std::max(pen, -row.gap);
+      Fmax = std::max(Fmax, row.contact_force);
+    }
+    std::printf("penalty k_p %g: force %.3g of the peak off the rigid closed form, penetration %.4g (F_max/k_p %.4g)\n",
+                kp, r.force_error, pen, Fmax / kp);
+    EXPECT_NEAR(pen, Fmax / kp, 0.2 * Fmax / kp) << kp;
+    ferr.push_back(r.force_error);
+  }
+  EXPECT_LT(ferr[1], 0.5 * ferr[0]);
+}
+
+}  // namespace
+}  // namespace camdyn
