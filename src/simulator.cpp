@@ -94,6 +94,15 @@ void check_tolerances(const Scene& sc) {
       throw SceneError(sc.source, 0, c.speed_table_t.empty() ? "cam.speed_rev_s" : "cam.speed_table_rev_s", v, b);
     }
   }
+  // One history row per output time: run.output_dt = 1e-14 over 2 ms asked for 2e11 rows
+  // (a hang even with no history kept; found by tests/test_fuzz_runs.cpp).
+  if (sc.run.output_dt > 0.0 && sc.run.t_end / sc.run.output_dt > 1e8) {
+    char v[64], b[200];
+    std::snprintf(v, sizeof v, "%g", sc.run.output_dt);
+    std::snprintf(b, sizeof b, "gives run.t_end / run.output_dt = %.3g rows, more than 1e8 (use a larger output_dt)",
+                  sc.run.t_end / sc.run.output_dt);
+    throw SceneError(sc.source, 0, "run.output_dt", v, b);
+  }
   if (sc.follower.kind == FollowerKind::Network || sc.contact.model != ContactModel::Lee) return;
   const double floor = 1000.0 * std::numeric_limits<double>::epsilon() * cam_scale(sc.cam);
   if (sc.contact.tol_u < floor) {

@@ -25,6 +25,21 @@ struct NetRun {
   }
 };
 
+// The two-mass valve train of the tests (issue 23): the OHC example without the valve
+// spring's coil masses (tappet 45 g, stem 5e7 N/m, valve 50 g, valve spring 35 N/mm with
+// 250 N preload, 0.2 mm lash at the cam, seat), event method, one camshaft revolution.
+inline camdyn::Scene two_mass_train() {
+  camdyn::Scene s = camdyn::load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_bucket_tappet.toml");
+  for (camdyn::ElementSpec& e : s.network.elements)
+    if (e.name == "valve_spring") {
+      e.masses = 0;
+      e.mass = 0.0;
+    }
+  s.contact.model = camdyn::ContactModel::Event;
+  s.run.t_end = 0.04;  // one camshaft revolution at 25 rev/s
+  return s;
+}
+
 inline NetRun run_keeping_rows(const camdyn::Scene& s) {
   struct Keep : camdyn::Observer {
     std::vector<camdyn::HistoryRow>* rows;

@@ -23,18 +23,7 @@
 namespace camdyn {
 namespace {
 
-Scene two_mass_train() {
-  Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_bucket_tappet.toml");
-  for (ElementSpec& e : s.network.elements)
-    if (e.name == "valve_spring") {
-      e.masses = 0;
-      e.mass = 0.0;
-    }
-  s.contact.model = ContactModel::Event;
-  s.run.t_end = 0.04;  // one camshaft revolution at 25 rev/s
-  return s;
-}
-
+using camdyn_test::two_mass_train;
 using Outcome = camdyn_test::NetRun;
 Outcome simulate_train(const Scene& s) { return camdyn_test::run_keeping_rows(s); }
 

@@ -187,47 +187,8 @@ TEST(ToleranceContract, FuzzedOverridesRunAFewStepsWithoutFlagNumbers) {
   EXPECT_GT(refused, 5);
 }
 
-// Case A (rigid follower, never separates at 1.75 rev/s): the contact force has the closed
-// form F = m Ẍ_C + k (δ₀ + X_C − X_C(0)). Per method × engine, at rtol (= tol_u) 1e-4,
-// 1e-7, 1e-10: every run finishes, its force error is within 100·rtol of the peak force
-// (or a round-off floor of 1e-9 of it), and it does not grow as rtol falls.
-class CaseAContract : public ::testing::TestWithParam<std::tuple<ContactModel, Integrator>> {};
-
-TEST_P(CaseAContract, ForceErrorWithinToleranceAndFalling) {
-  const auto [model, engine] = GetParam();
-  Cam cam(paper_case("A").cam);
-  double prev = INFINITY;
-  for (double tol : {1e-4, 1e-7, 1e-10}) {
-    Scene s = paper_case("A");
-    s.run.t_end = 0.3;
-    s.run.output_dt = 1e-3;
-    s.contact.model = model;
-    s.solver.integrator = engine;
-    s.solver.rtol = tol;
-    s.contact.tol_u = tol;
-    const RunResult r = simulate(s);
-    ASSERT_TRUE(r.summary.finished) << tol << ": " << r.summary.message;
-    CamDrive d(s.cam);
-    const double X0 = cam.evaluate(d.theta(0)).X_C;
-    double err = 0, Fmax = 0;
-    for (const HistoryRow& row : r.rows) {
-      const CamMotion m = cam.motion(d.theta(row.t), d.omega(row.t), d.omega_dot(row.t));
-      const double F = s.follower.mass * m.Xddot + s.spring.stiffness * (s.spring.precompression + m.X - X0);
-      Fmax = std::max(Fmax, std::abs(F));
-      err = std::max(err, std::abs(row.contact_force - F));
-    }
-    const double rel = err / Fmax;
-    std::printf("%s on %s, rtol %g: force error %.3g of the peak\n", to_string(model), to_string(engine), tol, rel);
-    EXPECT_LT(rel, std::max(100.0 * tol, 1e-9)) << tol;
-    EXPECT_LT(rel, std::max(2.0 * prev, 1e-9)) << tol;
-    prev = rel;
-  }
-}
-
-INSTANTIATE_TEST_SUITE_P(MethodsEngines, CaseAContract,
-                         ::testing::Combine(::testing::Values(ContactModel::Lee, ContactModel::Event),
-                                            ::testing::Values(Integrator::ArkodeErk, Integrator::ArkodeDirk,
-                                                              Integrator::CvodeBdf)));
+// Case A per method × engine at rtol 1e-4/1e-7/1e-10 against the closed-form force: in
+// tests/test_tolerance_matrix.cpp (ToleranceMatrix, A_*).
 
 }  // namespace
 }  // namespace camdyn

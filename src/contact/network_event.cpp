@@ -153,7 +153,16 @@ void NetworkEvent::run_method() {
     const CamMotion cm = cam_at(t_);
     F_ = held_forces(t_, y_, cm, set_);
     if (m_) F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
-    const double dW = set_.empty() ? 0.0 : held_work(t_ - h, t_);
+    // the cam's work and the dissipated energy over the step: 3-point Gauss–Legendre on
+    // the engine's own dense output (issue 25: each step's own quadrature)
+    const StepEnergy dE = step_energy(
+        t_ - h, t_, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
+        [this](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
+          if (set_.empty())
+            F.setZero(m_);
+          else
+            F = held_forces(tau, y, c, set_);
+        });
     after_advance(t_ - h, P_prev);
     const double P_end = dissipation_power(t_, y_);
     for (int j = 0; j < m_; ++j)  // a released contact that has opened: the normal root
@@ -209,8 +218,9 @@ void NetworkEvent::run_method() {
       project(t_, y_.data(), corr.data());
       y_ += corr;
       F_ = held_forces(t_, y_, cm, set_);
+      if (m_) F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
     }
-    after_step(h, dW, P_prev, changed ? P_end : NAN);
+    after_step(h, dE.work, P_prev, changed ? P_end : NAN, dE.dissipated);
   }
 }
 

@@ -247,23 +247,31 @@ class NetworkLee final : public NetworkRun {
     y.head(n_) = h00 * s.y0.head(n_) + h10 * s.y0.tail(n_) + h01 * s.y1.head(n_) + h11 * s.y1.tail(n_);
     y.tail(n_) = h00 * s.y0.tail(n_) + h10 * s.a0 + h01 * s.y1.tail(n_) + h11 * s.a1;
   }
-  // ∫ Σ_cam F_shape Ẋ_C over [s.t0, tb] (5-point Gauss–Legendre on the applied shape).
-  double shape_work(const StepData& s, double tb) const {
+  // ∫ Σ_cam F_shape Ẋ_C (the cam's work on the applied shape) and ∫ dissipated power (on
+  // the step's Hermite state) over [s.t0, tb], 5-point Gauss–Legendre: each step's own
+  // quadrature (the trapezoid on the ends left the valve train's stem damping 6e-8 of the
+  // cam's work off at rtol 1e-8).
+  StepEnergy shape_energy(const StepData& s, double tb) {
     static const double xg[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
                                  0.9061798459386640};
     static const double wg[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
                                  0.4786286704993665, 0.2369268850561891};
     const double h = s.t1 - s.t0, len = tb - s.t0;
-    if (len <= 0 || s.set.empty()) return 0.0;
-    double W = 0.0;
+    StepEnergy e;
+    if (len <= 0) return e;
     Eigen::VectorXd F(m_);
     for (int i = 0; i < 5; ++i) {
       const double tau = s.t0 + 0.5 * len * (1.0 + xg[i]), x = (tau - s.t0) / h;
-      F = s.s0 + (s.s1 - s.s0) * x + s.sc * (4.0 * x * (1.0 - x));
-      W += wg[i] * cam_power(F, cam_at(tau));
+      if (!s.set.empty()) {
+        F = s.s0 + (s.s1 - s.s0) * x + s.sc * (4.0 * x * (1.0 - x));
+        e.work += 0.5 * len * wg[i] * cam_power(F, cam_at(tau));
+      }
+      interpolate(s, tau, yq_);
+      e.dissipated += 0.5 * len * wg[i] * dissipation_power(tau, yq_);
     }
-    return 0.5 * len * W;
+    return e;
   }
+  Eigen::VectorXd yq_;
   StepData* dense_ = nullptr;
   bool dense_row_at(double to) override {
     if (!dense_ || !(to > dense_->t0)) return false;
@@ -274,9 +282,8 @@ class NetworkLee final : public NetworkRun {
     for (int j : s.set) F[j] = unilateral_ ? std::max(F[j], 0.0) : F[j];
     std::vector<char> act(m_, 0);
     for (int j : s.set) act[j] = 1;
-    const double P = dissipation_power(to, yi_);
-    const double D = s.D0 + 0.5 * (to - s.t0) * (s.P0 + P);
-    emit_row_at(to, yi_, F, act, s.W0 + shape_work(s, to), D);
+    const StepEnergy e = shape_energy(s, to);
+    emit_row_at(to, yi_, F, act, s.W0 + e.work, s.D0 + e.dissipated);
     return true;
   }
 
@@ -533,7 +540,7 @@ class NetworkLee final : public NetworkRun {
       s.W0 = work_;
       s.D0 = dissipated_;
       s.P0 = P_prev;
-      const double dW = shape_work(s, t1);
+      const StepEnergy dE = shape_energy(s, t1);
       for (int j : set) slope_[j] = (Fa[j] - F_[j]) / hs;
       y_ = y1;
       t_ = t1;
@@ -569,7 +576,7 @@ class NetworkLee final : public NetworkRun {
       }
       if (changed) slope_.setZero();
       dense_ = land ? nullptr : &sd_;
-      after_step(hs, dW, P_prev, closing.empty() ? NAN : P_end);
+      after_step(hs, dE.work, P_prev, closing.empty() ? NAN : P_end, dE.dissipated);
       dense_ = nullptr;
       if (!relocating) h = steps_.propose(hs, fac);
     }

@@ -145,13 +145,17 @@ class NetworkPenalty final : public NetworkRun {
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       const double tout = next_stop_time();
       Fprev = F_;
-      const double Pw_prev = cam_power(F_, cam_at(t_));
       const double P_prev = dissipation_power(t_, y_);
       const double t1 = eng_->advance(tout, y1);
       const double h = t1 - t_;
       t_ = t1;
       y_ = y1;
       forces(t_, y_, F_);
+      // the cam's work and the dissipated energy: each step's own quadrature on the engine's
+      // dense output (before a restart; the step ends on the law's kink: a root; smooth inside)
+      const StepEnergy dE = step_energy(
+          t_ - h, t_, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
+          [this](double tau, const Eigen::VectorXd& y, const CamMotion&, Eigen::VectorXd& F) { forces(tau, y, F); });
       const CamMotion cm = cam_at(t_);
       for (int j = 0; j < m_; ++j) {
         const bool now = F_[j] > 0.0 || (eng_->hit_root() && eng_->root_info()[j] < 0);
@@ -165,7 +169,7 @@ class NetworkPenalty final : public NetworkRun {
         active_[j] = now;
       }
       if (eng_->hit_root()) eng_->reinit(t_, y_);  // the law's kink: restart the history
-      after_step(h, 0.5 * h * (Pw_prev + cam_power(F_, cm)), P_prev);
+      after_step(h, dE.work, P_prev, NAN, dE.dissipated);
     }
   }
 };

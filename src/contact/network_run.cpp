@@ -421,12 +421,32 @@ void NetworkRun::sample_contact(int j, double F, double theta_deg) {
   }
 }
 
-void NetworkRun::after_step(double h, double dW, double P_prev, double P_end) {
+NetworkRun::StepEnergy NetworkRun::step_energy(
+    double t0, double t1, const std::function<void(double, Eigen::VectorXd&)>& state,
+    const std::function<void(double, const Eigen::VectorXd&, const CamMotion&, Eigen::VectorXd&)>& forces) const {
+  static const double xg[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+  static const double wg[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  StepEnergy e;
+  const double h = t1 - t0;
+  if (!(h > 0)) return e;
+  Eigen::VectorXd y(2 * n_), F(m_);
+  for (int g = 0; g < 3; ++g) {
+    const double tau = t0 + 0.5 * h * (1.0 + xg[g]);
+    state(tau, y);
+    const CamMotion cm = cam_at(tau);
+    forces(tau, y, cm, F);
+    e.work += 0.5 * h * wg[g] * cam_power(F, cm);
+    e.dissipated += 0.5 * h * wg[g] * dissipation_power(tau, y);
+  }
+  return e;
+}
+
+void NetworkRun::after_step(double h, double dW, double P_prev, double P_end, double dD) {
   ++sum_.steps;
   const CamMotion cm = cam_at(t_);
   const double P = std::isnan(P_end) ? dissipation_power(t_, y_) : P_end;
   work_ += dW;
-  dissipated_ += 0.5 * h * (P_prev + P);
+  dissipated_ += std::isnan(dD) ? 0.5 * h * (P_prev + P) : dD;
   for (int j = 0; j < m_; ++j) {
     const double g = gap(j, y_, cm);
     sum_.min_gap = std::min(sum_.min_gap, g);

@@ -3,7 +3,8 @@
 #
 #   tests/fuzz/build_and_run.sh [SECONDS] [extra libFuzzer flags...]
 #
-# SECONDS defaults to 60. Work files go to $FUZZ_DIR (default build-fuzz/ in the source
+# SECONDS defaults to 60. CAMDYN_LIB=path/to/libcamdyn.a: also run each loaded scene for a
+# few steps (see below). Work files go to $FUZZ_DIR (default build-fuzz/ in the source
 # tree): the binary, the corpus (seeded from examples/*.toml and tests/hard/*.toml) and
 # any crash-*/leak-*/timeout-* inputs (artifacts/). Exit status is libFuzzer's: 0 when
 # nothing was found.
@@ -46,13 +47,23 @@ fi
 # TOML_IMPLEMENTATION), not in every source that includes it: the same instrumented parser,
 # half the compile time of header-only mode with two scene sources.
 printf '#define TOML_IMPLEMENTATION\n#include <toml++/toml.h>\n' > "$OUT/toml_impl.cpp"
+# With CAMDYN_LIB (the built libcamdyn.a, as ctest passes it) every scene that loads is also
+# run for a few steps (fuzz_run.hpp). The loader's sources above stay instrumented and take
+# precedence; the rest of the simulation (engines, contact methods) comes uninstrumented
+# from the library, with its SUNDIALS/KLU libraries. Without it: the loader alone.
+RUN_FLAGS=()
+if [ -n "${CAMDYN_LIB:-}" ]; then
+  RUN_FLAGS=(-DCAMDYN_FUZZ_RUN=1 "$CAMDYN_LIB" -lsundials_arkode -lsundials_cvode -lsundials_ida
+             -lsundials_nvecserial -lsundials_sunlinsoldense -lsundials_sunmatrixdense -lsundials_sunlinsolklu
+             -lsundials_sunmatrixsparse -lklu -lamd -lcolamd -lbtf -lsuitesparseconfig)
+fi
 "$CXX" -std=c++17 -O1 -g -fno-omit-frame-pointer \
   -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
   -DTOML_HEADER_ONLY=0 \
-  "${TOML_INC[@]}" -I"$SRC/include" -I"$SRC/src" \
+  "${TOML_INC[@]}" -I"$SRC/include" -I"$SRC/src" -isystem /usr/include/eigen3 \
   "$SRC/tests/fuzz/fuzz_scene.cpp" "$SRC/src/scene.cpp" "$SRC/src/scene_network.cpp" "$SRC/src/cam.cpp" \
   "$SRC/src/follower_geometry.cpp" "$SRC/src/motion_law.cpp" "$SRC/src/motion_law_parse.cpp" \
-  "$OUT/toml_impl.cpp" -o "$OUT/fuzz_scene"
+  "$OUT/toml_impl.cpp" "${RUN_FLAGS[@]}" -o "$OUT/fuzz_scene"
 
 for f in "$SRC"/examples/*.toml "$SRC"/tests/hard/*.toml; do
   [ -f "$f" ] && cp "$f" "$OUT/corpus/seed_$(basename "$f")"

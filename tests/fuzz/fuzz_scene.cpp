@@ -7,6 +7,12 @@
 // camdyn::SceneError is the one accepted way to reject input: any other exception,
 // crash, sanitizer report, timeout or a failed round trip is a finding.
 //
+// Built with CAMDYN_FUZZ_RUN (build_and_run.sh does, given the built library as
+// CAMDYN_LIB), a scene that loads, and the scene with the --set override applied, are also
+// run for a few steps (fuzz_run.hpp: t_end ≤ 2 ms, ≤ 2000 steps, 2 s wall budget, no
+// history): no crash, no hang, and no SUNDIALS flag number ("flag -3") in the refusal's
+// message, the run's message or its full report.
+//
 // Build and run: tests/fuzz/build_and_run.sh [SECONDS]
 #include <cstddef>
 #include <cstdint>
@@ -17,6 +23,19 @@
 
 #include "camdyn/cam.hpp"
 #include "camdyn/scene.hpp"
+#ifdef CAMDYN_FUZZ_RUN
+#include "fuzz_run.hpp"
+
+static void run_a_few_steps(const camdyn::Scene& scene) {
+  const camdyn_fuzz::FewSteps r = camdyn_fuzz::run_few_steps(scene);
+  if (camdyn_fuzz::has_flag_number(r.message) || camdyn_fuzz::has_flag_number(r.report)) {
+    std::fprintf(stderr, "SUNDIALS flag number in a message:\n%s\n%s\n", r.message.c_str(), r.report.c_str());
+    std::abort();
+  }
+}
+#else
+static void run_a_few_steps(const camdyn::Scene&) {}
+#endif
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string_view text(reinterpret_cast<const char*>(data), size);
@@ -45,6 +64,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     camdyn::Scene changed = scene;
     try {
       camdyn::apply_override(changed, std::string(first.substr(first.rfind('#', 0) == 0 ? 1 : 0)));
+      run_a_few_steps(changed);
     } catch (const camdyn::SceneError&) {
     }
   }
@@ -57,5 +77,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     (void)drive.theta(0.5);
   } catch (const camdyn::SceneError&) {
   }
+  run_a_few_steps(scene);
   return 0;
 }
