@@ -51,7 +51,7 @@ printf '#define TOML_IMPLEMENTATION\n#include <toml++/toml.h>\n' > "$OUT/toml_im
   -DTOML_HEADER_ONLY=0 \
   "${TOML_INC[@]}" -I"$SRC/include" -I"$SRC/src" \
   "$SRC/tests/fuzz/fuzz_scene.cpp" "$SRC/src/scene.cpp" "$SRC/src/scene_network.cpp" "$SRC/src/cam.cpp" \
-  "$SRC/src/follower_geometry.cpp" "$SRC/src/motion_law.cpp" "$SRC/src/motion_law_parse.cpp" \
+  "$SRC/src/follower_geometry.cpp" "$SRC/src/follower_oscillating.cpp" "$SRC/src/motion_law.cpp" "$SRC/src/motion_law_parse.cpp" \
   "$OUT/toml_impl.cpp" -o "$OUT/fuzz_scene"
 
 for f in "$SRC"/examples/*.toml "$SRC"/tests/hard/*.toml; do
