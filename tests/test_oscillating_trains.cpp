@@ -81,6 +81,10 @@ TEST(OscillatingTrains, OhcRollerFingerExampleRunsAndLiftsTheValveByTheLaw) {
   EXPECT_GT(v.base_rows, 100);
   EXPECT_LT(v.base_max_abs_u, 1e-9);  // on the seat
   EXPECT_LT(v.base_max_abs_v, 1e-9);
+  // Quasi-static cam force on X (the valve end) at the peak: the valve spring and the
+  // finger's lash-adjuster spring, F = (230 + 35000 y) + (8 + 500·lift); the normal force
+  // at the roller is F·ℓ_v/a (a: the moment arm there).
+  EXPECT_NEAR(sum.max_contact_force, 230.0 + 35000.0 * (lift - lash) + 8.0 + 500.0 * lift, 1e-3);
   // The roller's lift at the cam: the arm ratio maps it. Roller-centre displacement along
   // its arc ℓ ψ = (ℓ/ℓ_v) X: peak ψ = lift/ℓ_v.
   const Cam cam(s.cam);
@@ -109,4 +113,28 @@ TEST(OscillatingTrains, OhvRollerLifterExampleRunsAndLiftsTheValveByTheRockerRat
   EXPECT_NEAR(v.peak, y, 2e-6) << "rigid-pushrod value " << r * L - c;
   EXPECT_LT(v.base_max_abs_u, 1e-9);
   EXPECT_LT(v.base_max_abs_v, 1e-9);
+}
+
+TEST(OscillatingTrains, SceneKeysValidateWithFileKeyValueAndRule) {
+  const std::string base = std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_roller_finger.toml";
+  Scene s = load_scene_file(base);
+  EXPECT_EQ(s.cam.follower_motion, FollowerMotion::Oscillating);
+  EXPECT_EQ(s.cam.valve_arm, 0.048);
+  s.cam.arm_length = 0.001;  // the roller cannot reach the cam
+  try {
+    validate(s);
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key(), "cam.arm_length");
+    EXPECT_EQ(e.value(), "0.001");
+    EXPECT_NE(std::string(e.what()).find("ohc_roller_finger.toml"), std::string::npos) << e.what();
+    EXPECT_NE(e.rule().find("the roller cannot reach the cam"), std::string::npos) << e.rule();
+  }
+  try {
+    parse_scene("[cam]\nfollower_motion = \"rotating\"\n", "<t>");
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key(), "cam.follower_motion");
+    EXPECT_NE(e.rule().find("oscillating"), std::string::npos) << e.rule();
+  }
 }
