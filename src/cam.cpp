@@ -502,20 +502,26 @@ void Cam::Impl::build_lift(const CamSpec& spec) {
 }
 
 // ---- evaluation -----------------------------------------------------------------------
+namespace {
+/// CamPoint from the follower geometry's state (translating or oscillating).
+void fill_point(CamPoint& p, const detail::FollowerState& f) {
+  p.X_C = f.s;
+  p.dX_dtheta = f.s1;
+  p.d2X_dtheta2 = f.s2;
+  p.d3X_dtheta3 = f.s3;
+  p.rho = f.rho;
+  p.pressure_angle = f.phi;
+  p.beta = std::atan2(f.cy, f.cx);
+  p.r = std::hypot(f.cx, f.cy);
+}
+}  // namespace
+
 CamPoint Cam::Impl::evaluate(double theta) const {
   CamPoint p;
   p.theta = theta;
   if (osc) {
     const detail::OscillatingState o = osc->eval(theta);
-    const detail::FollowerState& f = o.f;
-    p.X_C = f.s;
-    p.dX_dtheta = f.s1;
-    p.d2X_dtheta2 = f.s2;
-    p.d3X_dtheta3 = f.s3;
-    p.rho = f.rho;
-    p.pressure_angle = f.phi;
-    p.beta = std::atan2(f.cy, f.cx);
-    p.r = std::hypot(f.cx, f.cy);
+    fill_point(p, o.f);
     p.psi = o.psi;
     p.dpsi_dtheta = o.psi1;
     p.d2psi_dtheta2 = o.psi2;
@@ -525,14 +531,7 @@ CamPoint Cam::Impl::evaluate(double theta) const {
   }
   if (geo) {
     const detail::FollowerState f = geo->eval(theta);
-    p.X_C = f.s;
-    p.dX_dtheta = f.s1;
-    p.d2X_dtheta2 = f.s2;
-    p.d3X_dtheta3 = f.s3;
-    p.rho = f.rho;
-    p.pressure_angle = f.phi;
-    p.beta = std::atan2(f.cy, f.cx);
-    p.r = std::hypot(f.cx, f.cy);
+    fill_point(p, f);
     p.normal_force_ratio = 1.0 / std::cos(f.phi);
     return p;
   }

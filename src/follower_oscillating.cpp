@@ -19,9 +19,7 @@ constexpr double kTwoPi = 2.0 * kPi;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kScan = 7200;
 
-struct V2 {
-  double x = 0, y = 0;
-};
+using V2 = OscVec;
 V2 operator+(V2 a, V2 b) { return {a.x + b.x, a.y + b.y}; }
 V2 operator-(V2 a, V2 b) { return {a.x - b.x, a.y - b.y}; }
 V2 operator*(double s, V2 a) { return {s * a.x, s * a.y}; }
@@ -247,20 +245,15 @@ OscillatingState OscillatingGeometry::eval_arc(double theta) const {
   s.psi1 = sigma_ * a1;
   s.psi2 = sigma_ * a2;
   s.psi3 = sigma_ * a3;
-  V2 nh, Q;
+  V2 nh;
   if (face_ == FollowerFace::Roller) {
     nh = (1.0 / (arc.R + rr_)) * (P + arm_ * u - K);
   } else {
     nh = double(sigma_) * J(u);
   }
-  Q = K + arc.R * nh;
   s.f.rho = arc.R;
   s.f.arc = i;
-  s.f.cx = Q.x;
-  s.f.cy = Q.y;
-  s.nx = nh.x;
-  s.ny = nh.y;
-  finish(s);
+  finish(s, K + arc.R * nh, nh);
   return s;
 }
 
@@ -293,22 +286,22 @@ OscillatingState OscillatingGeometry::eval_law(double theta) const {
     Q = h * nh - (sigma_ * hn) * u;
     s.f.rho = h + hnn;
   }
+  finish(s, Q, nh);
+  return s;
+}
+
+void OscillatingGeometry::finish(OscillatingState& s, V2 Q, V2 nh) const {
   s.f.cx = Q.x;
   s.f.cy = Q.y;
   s.nx = nh.x;
   s.ny = nh.y;
-  finish(s);
-  return s;
-}
-
-void OscillatingGeometry::finish(OscillatingState& s) const {
   s.psi = sigma_ * (s.alpha - alpha_ref_);
   if (kind_ != CamProfileKind::Law) s.psi = reduce(s.psi, -kPi);
   s.f.s = lv_ * s.psi;
   s.f.s1 = lv_ * s.psi1;
   s.f.s2 = lv_ * s.psi2;
   s.f.s3 = lv_ * s.psi3;
-  const V2 P{px_, py_}, QP = V2{s.f.cx, s.f.cy} - P, nh{s.nx, s.ny};
+  const V2 P{px_, py_}, QP = Q - P;
   s.moment_arm = sigma_ * cross(QP, nh);
   // Direction of motion (lifting) of the follower's point on the line of action: the
   // roller centre C = Q + r_r n̂ (the roller's pressure angle), the pad's point at Q.
@@ -369,21 +362,7 @@ void OscillatingGeometry::check_arcs(const CamSpec&) {
     fail("cam.pivot_x", px_,
          "the contact force cannot turn the arm (moment arm ≤ 0: toggle position) at cam angles " + bad +
              " — move the pivot");
-  int prev = select_arc(0.0);
-  for (int k = 1; k <= kScan && arcs_.size() > 1; ++k) {
-    const double th = kTwoPi * k / kScan;
-    const int cur = select_arc(th);
-    if (cur != prev) {
-      double lo = kTwoPi * (k - 1) / kScan, hi = th;
-      for (int it = 0; it < 60; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        (select_arc(mid) == prev ? lo : hi) = mid;
-      }
-      breaks_.push_back(std::fmod(0.5 * (lo + hi), kTwoPi));
-    }
-    prev = cur;
-  }
-  std::sort(breaks_.begin(), breaks_.end());
+  if (arcs_.size() > 1) breaks_ = arc_switches([this](double th) { return select_arc(th); }, kScan);
 }
 
 OscillatingState OscillatingGeometry::eval(double theta) const {
@@ -396,12 +375,7 @@ std::array<double, 2> OscillatingGeometry::profile_point(double a) const {
     const V2 q = rot({s.f.cx, s.f.cy}, -a);
     return {q.x, q.y};
   }
-  for (const Arc& arc : arcs_) {
-    const double t = reduce(a, arc.n0);
-    if (t <= arc.n1) return {arc.cx + arc.R * std::cos(t), arc.cy + arc.R * std::sin(t)};
-  }
-  const Arc& arc = arcs_.front();
-  return {arc.cx + arc.R * std::cos(a), arc.cy + arc.R * std::sin(a)};
+  return arc_profile_point(arcs_, a);
 }
 
 }  // namespace detail

@@ -59,6 +59,11 @@ struct OscillatingState {
   double nx = 0, ny = 0;    ///< contact normal n̂ (cam → follower), fixed frame
 };
 
+/// A plane vector of the fixed frame.
+struct OscVec {
+  double x = 0, y = 0;
+};
+
 class OscillatingGeometry {
  public:
   /// @throws SceneError naming key, value and rule: bad pivot/arm/roller/pad dimensions,
@@ -90,7 +95,8 @@ class OscillatingGeometry {
   int select_arc(double theta) const;
   OscillatingState eval_arc(double theta) const;
   OscillatingState eval_law(double theta) const;
-  void finish(OscillatingState& s) const;
+  /// Contact point Q, normal n̂ → X, ψ scaled, moment arm, pressure angle.
+  void finish(OscillatingState& s, OscVec Q, OscVec nh) const;
   void check_law_profile(const CamSpec& spec);
   void check_arcs(const CamSpec& spec);
 };

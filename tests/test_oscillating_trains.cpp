@@ -59,6 +59,13 @@ Valve run_valve(Scene s, double lo, double hi, Summary* sum_out) {
   }
   return v;
 }
+// One revolution at 1 rev/s: the inertia forces are negligible (quasi-static).
+Scene slow(Scene s) {
+  s.cam.speed_rev_s = 1.0;
+  s.run.t_end = 1.0;
+  s.run.output_dt = 2e-4;
+  return s;
+}
 }  // namespace
 
 TEST(OscillatingTrains, OhcRollerFingerExampleRunsAndLiftsTheValveByTheLaw) {
@@ -70,11 +77,8 @@ TEST(OscillatingTrains, OhcRollerFingerExampleRunsAndLiftsTheValveByTheLaw) {
     EXPECT_TRUE(std::isfinite(sum.max_hertz_stress));
   }
   // Low speed: one revolution at 1 rev/s.
-  s.cam.speed_rev_s = 1.0;
-  s.run.t_end = 1.0;
-  s.run.output_dt = 2e-4;
   Summary sum;
-  const Valve v = run_valve(s, 95.0, 265.0, &sum);
+  const Valve v = run_valve(slow(s), 95.0, 265.0, &sum);
   ASSERT_TRUE(sum.finished) << sum.message;
   const double lash = 0.1e-3, lift = 0.009;  // the law's valve-end lift
   EXPECT_NEAR(v.peak, lift - lash, 2e-6);
@@ -100,11 +104,8 @@ TEST(OscillatingTrains, OhvRollerLifterExampleRunsAndLiftsTheValveByTheRockerRat
     run_valve(s, 95.0, 265.0, &sum);
     ASSERT_TRUE(sum.finished) << sum.message;
   }
-  s.cam.speed_rev_s = 1.0;
-  s.run.t_end = 1.0;
-  s.run.output_dt = 2e-4;
   Summary sum;
-  const Valve v = run_valve(s, 95.0, 265.0, &sum);
+  const Valve v = run_valve(slow(s), 95.0, 265.0, &sum);
   ASSERT_TRUE(sum.finished) << sum.message;
   // Quasi-static: valve lift y = r (L − F_p/k_p) − c with the pushrod force F_p = r·F_v
   // (lever), F_v = preload + k_v y (valve spring), k_p = EA/ℓ (pushrod).
