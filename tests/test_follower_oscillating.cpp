@@ -290,3 +290,42 @@ TEST(OscillatingFollower, BadInputNamesKeyAndRule) {
   EXPECT_TRUE(m.find("undercut") != std::string::npos || m.find("moment arm") != std::string::npos) << m;
   EXPECT_NE(m.find("cam angles"), std::string::npos) << m;
 }
+
+TEST(OscillatingFollower, ArcCamRollerIsSmoothAcrossTheTangencyPoints) {
+  // Base, flank and nose arcs are tangent: the pitch curve is C1, so ψ and ψ′ are
+  // continuous at the arc switches (ψ″ jumps); inside each arc ψ′ and ψ″ match
+  // differences of ψ itself.
+  CamSpec c;
+  c.profile = CamProfileKind::Arc;
+  c.base_radius = 16.0;
+  c.nose_radius = 6.0;
+  c.nose_distance = 14.0;
+  c.flank_radius = 40.0;
+  c.follower_motion = FollowerMotion::Oscillating;
+  c.follower_face = FollowerFace::Roller;
+  c.pivot_x = 40.0;
+  c.pivot_y = 18.0;
+  c.arm_length = 30.0;
+  c.roller_radius = 8.0;
+  c.valve_arm = 45.0;
+  const Cam cam(c);
+  ASSERT_EQ(cam.breakpoints().size(), 4u);
+  const double e = 1e-7;
+  for (double b : cam.breakpoints()) {
+    const CamPoint lo = cam.evaluate(b - e), hi = cam.evaluate(b + e);
+    EXPECT_NEAR(lo.psi + e * lo.dpsi_dtheta, hi.psi - e * hi.dpsi_dtheta, 1e-12) << b;  // ψ at b from both sides
+    EXPECT_NEAR(lo.dpsi_dtheta, hi.dpsi_dtheta, 1e-5) << b;
+    EXPECT_NE(lo.rho, hi.rho) << b;  // a different arc on each side
+  }
+  auto psi = [&](double th) { return cam.evaluate(th).psi; };
+  for (int i = 0; i < 90; ++i) {
+    const double th = 2 * kPi * i / 90 + 0.007;
+    bool near_break = false;
+    for (double b : cam.breakpoints()) near_break |= std::fabs(std::remainder(th - b, 2 * kPi)) < 0.02;
+    if (near_break) continue;
+    const CamPoint p = cam.evaluate(th);
+    EXPECT_NEAR(p.dpsi_dtheta, d1(psi, th, 2e-3), 1e-9) << th;
+    EXPECT_NEAR(p.d2psi_dtheta2, d2(psi, th, 2e-3), 1e-7) << th;
+  }
+  EXPECT_NEAR(cam.min_radius_of_curvature(), c.nose_radius, 1e-12);
+}
