@@ -502,36 +502,16 @@ void Cam::Impl::build_lift(const CamSpec& spec) {
 }
 
 // ---- evaluation -----------------------------------------------------------------------
-namespace {
-/// CamPoint from the follower geometry's state (translating or oscillating).
-void fill_point(CamPoint& p, const detail::FollowerState& f) {
-  p.X_C = f.s;
-  p.dX_dtheta = f.s1;
-  p.d2X_dtheta2 = f.s2;
-  p.d3X_dtheta3 = f.s3;
-  p.rho = f.rho;
-  p.pressure_angle = f.phi;
-  p.beta = std::atan2(f.cy, f.cx);
-  p.r = std::hypot(f.cx, f.cy);
-}
-}  // namespace
-
 CamPoint Cam::Impl::evaluate(double theta) const {
   CamPoint p;
   p.theta = theta;
   if (osc) {
-    const detail::OscillatingState o = osc->eval(theta);
-    fill_point(p, o.f);
-    p.psi = o.psi;
-    p.dpsi_dtheta = o.psi1;
-    p.d2psi_dtheta2 = o.psi2;
-    p.moment_arm = o.moment_arm;
-    p.normal_force_ratio = osc->valve_arm() / o.moment_arm;
+    osc->fill(p, theta);
     return p;
   }
   if (geo) {
     const detail::FollowerState f = geo->eval(theta);
-    fill_point(p, f);
+    detail::fill_cam_point(p, f);
     p.normal_force_ratio = 1.0 / std::cos(f.phi);
     return p;
   }

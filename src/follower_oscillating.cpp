@@ -365,6 +365,27 @@ void OscillatingGeometry::check_arcs(const CamSpec&) {
   if (arcs_.size() > 1) breaks_ = arc_switches([this](double th) { return select_arc(th); }, kScan);
 }
 
+void fill_cam_point(CamPoint& p, const FollowerState& f) {
+  p.X_C = f.s;
+  p.dX_dtheta = f.s1;
+  p.d2X_dtheta2 = f.s2;
+  p.d3X_dtheta3 = f.s3;
+  p.rho = f.rho;
+  p.pressure_angle = f.phi;
+  p.beta = std::atan2(f.cy, f.cx);
+  p.r = std::hypot(f.cx, f.cy);
+}
+
+void OscillatingGeometry::fill(CamPoint& p, double theta) const {
+  const OscillatingState o = eval(theta);
+  fill_cam_point(p, o.f);
+  p.psi = o.psi;
+  p.dpsi_dtheta = o.psi1;
+  p.d2psi_dtheta2 = o.psi2;
+  p.moment_arm = o.moment_arm;
+  p.normal_force_ratio = lv_ / o.moment_arm;
+}
+
 OscillatingState OscillatingGeometry::eval(double theta) const {
   return kind_ == CamProfileKind::Law ? eval_law(theta) : eval_arc(theta);
 }

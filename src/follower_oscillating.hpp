@@ -42,6 +42,7 @@
 #include <memory>
 #include <vector>
 
+#include "camdyn/cam.hpp"
 #include "camdyn/motion_law.hpp"
 #include "camdyn/scene.hpp"
 #include "follower_geometry.hpp"
@@ -59,6 +60,9 @@ struct OscillatingState {
   double nx = 0, ny = 0;    ///< contact normal n̂ (cam → follower), fixed frame
 };
 
+/// CamPoint's X_C and derivatives, ρ, pressure angle and contact point (β, r) from f.
+void fill_cam_point(CamPoint& p, const FollowerState& f);
+
 /// A plane vector of the fixed frame.
 struct OscVec {
   double x = 0, y = 0;
@@ -71,6 +75,8 @@ class OscillatingGeometry {
   /// an undercut or concave synthesised profile (cam angles named).
   explicit OscillatingGeometry(const CamSpec& spec);
   OscillatingState eval(double theta) const;
+  /// The Cam's view at cam angle θ: X = ℓ_v ψ and its derivatives, ψ, moment arm, N/F.
+  void fill(CamPoint& p, double theta) const;
   const std::vector<double>& breaks() const { return breaks_; }
   double lift() const { return xmax_ - xmin_; }
   double min_rho() const { return min_rho_; }
