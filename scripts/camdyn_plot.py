@@ -246,7 +246,13 @@ def plot_cam(d, speed=None):
             label="circle r = %.4g" % rmin)
     # The follower at θ = 0 (cam and fixed frames coincide): face, knife edge or roller.
     face = str(info.get("follower_face") or "flat")
-    if face != "point" and np.all(np.isfinite(h[:1])):
+    if str(info.get("follower_motion") or "") == "oscillating":
+        # Oscillating follower: the pivot and the arm to the contact point at θ = 0.
+        px, py = float(info.get("pivot_x") or 0.0), float(info.get("pivot_y") or 0.0)
+        qx, qy = float(r[0] * np.cos(beta[0])), float(r[0] * np.sin(beta[0]))
+        ax.plot([px], [py], "o", color="C3", label="pivot")
+        ax.plot([px, qx], [py, qy], "-", lw=2.0, color="C3", label="arm to the contact (θ = 0)")
+    elif face != "point" and np.all(np.isfinite(h[:1])):
         eps = float(info.get("follower_offset") or 0.0)
         rr = float(info.get("roller_radius") or 0.0)
         x0 = float(h[0])

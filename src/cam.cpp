@@ -24,6 +24,7 @@
 
 #include "cam_format.hpp"
 #include "follower_geometry.hpp"
+#include "follower_oscillating.hpp"
 #include "spline.hpp"
 
 namespace camdyn {
@@ -162,6 +163,7 @@ struct Cam::Impl {
   double rb = 0;
   // law, arc, and non-flat followers (follower_geometry.hpp)
   std::shared_ptr<const detail::TranslatingGeometry> geo;
+  std::shared_ptr<const detail::OscillatingGeometry> osc;  // follower_oscillating.hpp
   std::vector<double> breaks;
   // derived
   double lift = 0, min_rho = 0;
@@ -503,16 +505,14 @@ void Cam::Impl::build_lift(const CamSpec& spec) {
 CamPoint Cam::Impl::evaluate(double theta) const {
   CamPoint p;
   p.theta = theta;
+  if (osc) {
+    osc->fill(p, theta);
+    return p;
+  }
   if (geo) {
     const detail::FollowerState f = geo->eval(theta);
-    p.X_C = f.s;
-    p.dX_dtheta = f.s1;
-    p.d2X_dtheta2 = f.s2;
-    p.d3X_dtheta3 = f.s3;
-    p.rho = f.rho;
-    p.pressure_angle = f.phi;
-    p.beta = std::atan2(f.cy, f.cx);
-    p.r = std::hypot(f.cx, f.cy);
+    detail::fill_cam_point(p, f);
+    p.normal_force_ratio = 1.0 / std::cos(f.phi);
     return p;
   }
   const double ct = std::cos(theta), st = std::sin(theta);
@@ -564,6 +564,15 @@ CamPoint Cam::Impl::evaluate(double theta) const {
 // =====================================================================================
 Cam::Cam(const CamSpec& spec) : impl_(std::make_unique<Impl>()) {
   impl_->kind = spec.profile;
+  if (spec.follower_motion == FollowerMotion::Oscillating) {
+    if (spec.profile == CamProfileKind::Circle) impl_->build_circle(spec);  // its checks
+    auto g = std::make_shared<detail::OscillatingGeometry>(spec);
+    impl_->lift = g->lift();
+    impl_->min_rho = g->min_rho();
+    impl_->breaks = g->breaks();
+    impl_->osc = std::move(g);
+    return;
+  }
   const bool geo = spec.profile == CamProfileKind::Law || spec.profile == CamProfileKind::Arc ||
                    spec.follower_face != FollowerFace::Flat;
   if (geo && spec.profile == CamProfileKind::Circle) impl_->build_circle(spec);  // its checks
@@ -584,7 +593,10 @@ Cam::Cam(const CamSpec& spec) : impl_(std::make_unique<Impl>()) {
   }
 }
 const std::vector<double>& Cam::breakpoints() const { return impl_->breaks; }
-const MotionLaw* Cam::law() const { return impl_->geo ? impl_->geo->law() : nullptr; }
+const MotionLaw* Cam::law() const {
+  if (impl_->osc) return impl_->osc->law();
+  return impl_->geo ? impl_->geo->law() : nullptr;
+}
 Cam::Cam(const Cam& o) : impl_(std::make_unique<Impl>(*o.impl_)) {}
 Cam& Cam::operator=(const Cam& o) {
   if (this != &o) impl_ = std::make_unique<Impl>(*o.impl_);
@@ -607,7 +619,7 @@ CamMotion Cam::motion(double theta, double omega, double omega_dot) const {
 
 CamMotion Cam::motion_paper(double theta, double omega, double omega_dot) const {
   const Impl& I = *impl_;
-  if (I.geo) return motion(theta, omega, omega_dot);  // no paper form for these followers
+  if (I.geo || I.osc) return motion(theta, omega, omega_dot);  // no paper form for these followers
   const double ct = std::cos(theta), st = std::sin(theta);
   // Rotate a cam-frame vector into the momentarily coincident fixed frame.
   auto rotX = [&](double x, double y) { return x * ct - y * st; };
@@ -651,6 +663,7 @@ double Cam::min_radius_of_curvature() const { return impl_->min_rho; }
 
 std::array<double, 2> Cam::profile_point(double a) const {
   const Impl& I = *impl_;
+  if (I.osc) return I.osc->profile_point(a);
   if (I.geo) return I.geo->profile_point(a);
   switch (I.kind) {
     case CamProfileKind::Circle: return {I.e + I.R * std::cos(a), I.R * std::sin(a)};

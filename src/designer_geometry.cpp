@@ -32,13 +32,15 @@ void DesignerStats::geometry_sample(double t, double theta, double F) {
   if (!(F > 0.0)) F = 0.0;
   const CamPoint p = cam_->evaluate(theta);
   const double T = F * p.dX_dtheta, P = T * drive_.omega(t);
-  const double side = F * std::fabs(std::tan(p.pressure_angle));
-  if (std::isnan(max_side_) || side > max_side_) max_side_ = side;
+  if (std::isnan(p.moment_arm)) {  // translating: the guide's side load (oscillating: the pivot takes it)
+    const double side = F * std::fabs(std::tan(p.pressure_angle));
+    if (std::isnan(max_side_) || side > max_side_) max_side_ = side;
+  }
   if (std::isnan(T_peak_) || std::fabs(T) > std::fabs(T_peak_)) T_peak_ = T;
   if (std::isnan(P_peak_) || std::fabs(P) > std::fabs(P_peak_)) P_peak_ = P;
   if (E_star_ > 0 && std::isfinite(p.rho)) {
     const double Rf = face_ == FollowerFace::Roller ? roller_ : INFINITY;
-    const double N = F / std::cos(p.pressure_angle);
+    const double N = F * p.normal_force_ratio;
     if ((std::isinf(Rf) ? 0.0 : 1.0 / Rf) + 1.0 / p.rho > 0) {
       const double p0 = hertz_line(N, width_, p.rho, Rf, E_star_).max_pressure;
       if (std::isnan(max_hertz_) || p0 > max_hertz_) {

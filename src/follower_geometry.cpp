@@ -164,22 +164,7 @@ TranslatingGeometry::TranslatingGeometry(const CamSpec& spec)
         fail("cam.follower_offset", fmt_num(eps_),
              "must be smaller in magnitude than the smallest pitch radius " + fmt_num(rmin + rr_));
     }
-    // Arc switches: bisect the selected arc's changes on a scan.
-    int prev = select_arc(0.0);
-    for (int k = 1; k <= kScan && arcs_.size() > 1; ++k) {
-      const double th = kTwoPi * k / kScan;
-      const int cur = select_arc(th);
-      if (cur != prev) {
-        double lo = kTwoPi * (k - 1) / kScan, hi = th;
-        for (int it = 0; it < 60; ++it) {
-          const double mid = 0.5 * (lo + hi);
-          (select_arc(mid) == prev ? lo : hi) = mid;
-        }
-        breaks_.push_back(std::fmod(0.5 * (lo + hi), kTwoPi));
-      }
-      prev = cur;
-    }
-    std::sort(breaks_.begin(), breaks_.end());
+    if (arcs_.size() > 1) breaks_ = arc_switches([this](double th) { return select_arc(th); }, kScan);
   } else {
     fail("cam.follower_face", to_string(face_),
          std::string("cam.profile = \"") + to_string(kind_) +
@@ -340,12 +325,36 @@ std::array<double, 2> TranslatingGeometry::profile_point(double a) const {
     const double c = std::cos(a), s = std::sin(a);  // fixed → cam frame: rotate by −a
     return {f.cx * c + f.cy * s, -f.cx * s + f.cy * c};
   }
-  for (const Arc& arc : arcs_) {
+  return arc_profile_point(arcs_, a);
+}
+
+std::array<double, 2> arc_profile_point(const std::vector<Arc>& arcs, double a) {
+  for (const Arc& arc : arcs) {
     const double t = reduce(a, arc.n0);
     if (t <= arc.n1) return {arc.cx + arc.R * std::cos(t), arc.cy + arc.R * std::sin(t)};
   }
-  const Arc& arc = arcs_.front();
+  const Arc& arc = arcs.front();
   return {arc.cx + arc.R * std::cos(a), arc.cy + arc.R * std::sin(a)};
+}
+
+std::vector<double> arc_switches(const std::function<int(double)>& select, int n) {
+  std::vector<double> out;
+  int prev = select(0.0);
+  for (int k = 1; k <= n; ++k) {
+    const double th = kTwoPi * k / n;
+    const int cur = select(th);
+    if (cur != prev) {
+      double lo = kTwoPi * (k - 1) / n, hi = th;
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (select(mid) == prev ? lo : hi) = mid;
+      }
+      out.push_back(std::fmod(0.5 * (lo + hi), kTwoPi));
+    }
+    prev = cur;
+  }
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 }  // namespace detail

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -79,6 +80,11 @@ class TranslatingGeometry {
 /// The arcs of an arc cam (base, upper flank, nose, lower flank; nose centre on +x) or of
 /// a circle cam (one arc). @throws SceneError on dimensions that do not close tangently.
 std::vector<Arc> make_arcs(const CamSpec& spec);
+/// The cam-frame point of a chain of arcs with outward normal angle a [rad].
+std::array<double, 2> arc_profile_point(const std::vector<Arc>& arcs, double a);
+/// Sorted cam angles in [0, 2π) where select(θ) (the arc in contact) changes: found on an
+/// n-point scan, each bisected to round-off.
+std::vector<double> arc_switches(const std::function<int(double)>& select, int n);
 
 }  // namespace detail
 }  // namespace camdyn

@@ -34,6 +34,7 @@ using namespace scene_detail;  // enum names, formatting helpers, network arrays
 
 const char* to_string(CamProfileKind v) { return enum_to_string(kProfileNames, v); }
 const char* to_string(FollowerFace v) { return enum_to_string(kFaceNames, v); }
+const char* to_string(FollowerMotion v) { return enum_to_string(kMotionNames, v); }
 const char* to_string(FollowerKind v) { return enum_to_string(kFollowerNames, v); }
 const char* to_string(MassMatrixKind v) { return enum_to_string(kMassNames, v); }
 const char* to_string(ContactModel v) { return enum_to_string(kContactNames, v); }
@@ -49,6 +50,7 @@ const char* to_string(BarMass v) { return enum_to_string(kBarMassNames, v); }
 
 bool parse_enum(std::string_view s, CamProfileKind* out) { return enum_parse(kProfileNames, s, out); }
 bool parse_enum(std::string_view s, FollowerFace* out) { return enum_parse(kFaceNames, s, out); }
+bool parse_enum(std::string_view s, FollowerMotion* out) { return enum_parse(kMotionNames, s, out); }
 bool parse_enum(std::string_view s, FollowerKind* out) { return enum_parse(kFollowerNames, s, out); }
 bool parse_enum(std::string_view s, MassMatrixKind* out) { return enum_parse(kMassNames, s, out); }
 bool parse_enum(std::string_view s, ContactModel* out) { return enum_parse(kContactNames, s, out); }
@@ -368,6 +370,12 @@ const std::vector<Field>& fields() {
     v.push_back(F_ENUM(cam, follower_face, kFaceNames));
     v.push_back(F_REAL(cam, follower_offset));
     v.push_back(ruled(F_REAL(cam, roller_radius), Rule::Ge, 0));
+    v.push_back(F_ENUM(cam, follower_motion, kMotionNames));
+    v.push_back(F_REAL(cam, pivot_x));
+    v.push_back(F_REAL(cam, pivot_y));
+    v.push_back(ruled(F_REAL(cam, arm_length), Rule::Ge, 0));
+    v.push_back(F_REAL(cam, pad_offset));
+    v.push_back(ruled(F_REAL(cam, valve_arm), Rule::Ge, 0));
     v.push_back(F_BOOL(cam, land_on_breaks));
     v.push_back(ruled(F_REAL(cam, width), Rule::Ge, 0));
     v.push_back(ruled(F_REAL(cam, youngs_modulus), Rule::Gt, 0));
@@ -797,7 +805,7 @@ class Validator {
     // Motion laws, arc cams and the follower faces (issue 24): their rules live with the
     // geometry (cam.cpp, follower_geometry.cpp); reported here with the scene's file.
     if (c.profile == CamProfileKind::Law || c.profile == CamProfileKind::Arc ||
-        c.follower_face != FollowerFace::Flat) {
+        c.follower_face != FollowerFace::Flat || c.follower_motion != FollowerMotion::Translating) {
       try {
         Cam check(c);
       } catch (const SceneError& e) {

@@ -32,6 +32,8 @@ inline constexpr EnumName<FollowerFace> kFaceNames[] = {{FollowerFace::Flat, "fl
                                                         {FollowerFace::KnifeEdge, "knife_edge"},
                                                         {FollowerFace::Roller, "roller"},
                                                         {FollowerFace::Point, "point"}};
+inline constexpr EnumName<FollowerMotion> kMotionNames[] = {{FollowerMotion::Translating, "translating"},
+                                                            {FollowerMotion::Oscillating, "oscillating"}};
 inline constexpr EnumName<FollowerKind> kFollowerNames[] = {{FollowerKind::Rigid, "rigid"},
                                                      {FollowerKind::ElasticBar, "elastic_bar"},
                                                      {FollowerKind::Network, "network"}};

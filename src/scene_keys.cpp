@@ -61,6 +61,14 @@ const KeyDoc kDocs[] = {
                                "(lift imposed, no base radius needed)."},
     {"cam.follower_offset", "length", "Offset ε of the translating follower's axis (knife edge, roller)."},
     {"cam.roller_radius", "length", "Roller radius r_r (follower_face = roller)."},
+    {"cam.follower_motion", "—", "`translating` (default) or `oscillating`: a finger follower or rocker turning about "
+                                 "a pivot, flat pad or roller; profile law, circle or arc (docs/cam_laws.md)."},
+    {"cam.pivot_x", "length", "oscillating: X of the pivot relative to the cam centre (fixed frame)."},
+    {"cam.pivot_y", "length", "oscillating: Y of the pivot relative to the cam centre (fixed frame)."},
+    {"cam.arm_length", "length", "oscillating roller: distance from the pivot to the roller centre, > 0."},
+    {"cam.pad_offset", "length", "oscillating flat: signed distance of the pad line from the pivot."},
+    {"cam.valve_arm", "length", "oscillating: distance ℓ_v from the pivot to the valve end, > 0; the follower "
+                                "coordinate is X = ℓ_v ψ and a law gives X (the valve-end lift)."},
     {"cam.land_on_breaks", "—", "Steps land on the law's joints and the arc cam's tangency points (stop times)."},
     {"cam.width", "length", "Cam width of the line contact; > 0 turns on the Hertz stress results."},
     {"cam.youngs_modulus", "force/length²", "Cam material's Young's modulus E₁ (Hertz stress)."},

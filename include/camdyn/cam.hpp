@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -34,6 +35,17 @@ struct CamPoint {
   double d3X_dtheta3 = 0;  ///< h‴(θ) [length/rad³] (NaN for a points spline: not exact)
   double pressure_angle = 0;  ///< angle from the follower axis to the contact normal [rad]
                               ///< (0 for a flat face; knife edge, roller: docs/cam_laws.md)
+  /// Oscillating follower (cam.follower_motion = "oscillating"; NaN otherwise): the arm's
+  /// rotation ψ [rad] (X_C = valve_arm·ψ), its θ-derivatives, and the moment arm of the
+  /// contact normal about the pivot [length]. The contact's normal force is
+  /// N = F·valve_arm/moment_arm for the force F on X (virtual work).
+  double psi = std::numeric_limits<double>::quiet_NaN();
+  double dpsi_dtheta = std::numeric_limits<double>::quiet_NaN();
+  double d2psi_dtheta2 = std::numeric_limits<double>::quiet_NaN();
+  double moment_arm = std::numeric_limits<double>::quiet_NaN();
+  /// Normal contact force per unit force on X: 1/cos(pressure_angle) for a translating
+  /// follower, valve_arm/moment_arm for an oscillating one.
+  double normal_force_ratio = 1.0;
 };
 
 /// Position, velocity and acceleration of C along X. X is absolute (the face's distance

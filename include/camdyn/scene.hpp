@@ -21,6 +21,7 @@ namespace camdyn {
 // ---- extra code. parse_enum returns false on an unknown spelling.
 enum class CamProfileKind { Points, Lift, Circle, Law, Arc };
 enum class FollowerFace { Flat, KnifeEdge, Roller, Point };
+enum class FollowerMotion { Translating, Oscillating };
 enum class FollowerKind { Rigid, ElasticBar, Network };
 enum class MassMatrixKind { Consistent, Lumped };
 enum class ContactModel { Lee, Penalty, Holonomic, Event };
@@ -32,6 +33,7 @@ enum class LinearSolverKind { Auto, Dense, Klu };
 
 const char* to_string(CamProfileKind v);    // "points" | "lift" | "circle" | "law" | "arc"
 const char* to_string(FollowerFace v);      // "flat" | "knife_edge" | "roller" | "point"
+const char* to_string(FollowerMotion v);    // "translating" | "oscillating"
 const char* to_string(FollowerKind v);      // "rigid" | "elastic_bar" | "network"
 const char* to_string(MassMatrixKind v);    // "consistent" | "lumped"
 const char* to_string(ContactModel v);      // "lee" | "penalty" | "holonomic" | "event"
@@ -43,6 +45,7 @@ const char* to_string(LinearSolverKind v);  // "auto" | "dense" | "klu"
 
 bool parse_enum(std::string_view s, CamProfileKind* out);
 bool parse_enum(std::string_view s, FollowerFace* out);
+bool parse_enum(std::string_view s, FollowerMotion* out);
 bool parse_enum(std::string_view s, FollowerKind* out);
 bool parse_enum(std::string_view s, MassMatrixKind* out);
 bool parse_enum(std::string_view s, ContactModel* out);
@@ -96,6 +99,20 @@ struct CamSpec {
   double follower_offset = 0.0;
   /// roller: roller radius R_r [length], > 0.
   double roller_radius = 0.0;
+  /// translating (the default) or oscillating: a finger follower or rocker turning about a
+  /// pivot, with a flat pad or a roller (follower_face "flat" or "roller"; profile law,
+  /// circle or arc). docs/cam_laws.md "Oscillating followers".
+  FollowerMotion follower_motion = FollowerMotion::Translating;
+  /// oscillating: the pivot's position relative to the cam centre, fixed frame [length].
+  double pivot_x = 0.0;
+  double pivot_y = 0.0;
+  /// oscillating roller: distance from the pivot to the roller centre [length], > 0.
+  double arm_length = 0.0;
+  /// oscillating flat: signed distance of the pad line from the pivot [length].
+  double pad_offset = 0.0;
+  /// oscillating: distance ℓ_v from the pivot to the valve end [length], > 0; the follower
+  /// coordinate is X = ℓ_v ψ (ψ: the arm's rotation), and a law gives X.
+  double valve_arm = 0.0;
   /// Hand the cam's breakpoints (law joints, arc tangency points) to the integrator as
   /// stop times, so that steps land on them.
   bool land_on_breaks = true;

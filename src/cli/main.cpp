@@ -697,6 +697,9 @@ int cmd_cam(const CamOpts& o) {
                           ",\n  \"follower_face\": " + json_string(to_string(sc.cam.follower_face)) +
                           ",\n  \"follower_offset\": " + json_number(sc.cam.follower_offset) +
                           ",\n  \"roller_radius\": " + json_number(sc.cam.roller_radius) +
+                          ",\n  \"follower_motion\": " + json_string(to_string(sc.cam.follower_motion)) +
+                          ",\n  \"pivot_x\": " + json_number(sc.cam.pivot_x) +
+                          ",\n  \"pivot_y\": " + json_number(sc.cam.pivot_y) +
                           ",\n  \"continuity\": " + json_string(cam.law() ? cam.law()->continuity_report() : "") +
                           "\n}\n");
   } catch (const std::exception& e) {
