@@ -161,12 +161,20 @@ void JumpOptions::validate() const {
                      "must be < hi_rev_s = " + num(hi_rev_s));
 }
 
-JumpResult jump_speed(const Scene& scene_in, const JumpOptions& o) {
+namespace {
+// The scene of a jump-speed search, resolved and checked (options too).
+Scene jump_scene(const Scene& scene_in, const JumpOptions& o) {
   o.validate();
   Scene scene = scene_in;
   resolve_defaults(scene);
   validate(scene);
   require_constant_speed(scene);
+  return scene;
+}
+}  // namespace
+
+JumpResult jump_speed(const Scene& scene_in, const JumpOptions& o) {
+  const Scene scene = jump_scene(scene_in, o);
   const double dir = scene.cam.speed_rev_s < 0 ? -1.0 : 1.0;
   if (scene.follower.kind == FollowerKind::Rigid && !o.force_simulation)
     return jump_closed_form(scene, o, dir);
@@ -187,11 +195,7 @@ JumpResult jump_speed(const Scene& scene_in, std::shared_ptr<const FollowerSyste
   if (!follower)
     throw SceneError("jump_speed", 0, "follower", "null",
                      "no follower given (for the scene's own follower call jump_speed(scene, options))");
-  o.validate();
-  Scene scene = scene_in;
-  resolve_defaults(scene);
-  validate(scene);
-  require_constant_speed(scene);
+  const Scene scene = jump_scene(scene_in, o);
   const double dir = scene.cam.speed_rev_s < 0 ? -1.0 : 1.0;
   // A user follower has no rigid-body estimate: the bracket starts around the scene's speed.
   return jump_by_simulation(scene, o, dir, std::abs(scene.cam.speed_rev_s), follower);
