@@ -124,6 +124,16 @@ TEST(SceneWarnings, CliPrintsThemAndKeepsThemInSummaryJson) {
   ASSERT_EQ(run("", "plain"), 0);
   EXPECT_EQ(camdyn_test::slurp(dir / "plain.err"), "");
   EXPECT_NE(camdyn_test::slurp(dir / "plain" / "summary.json").find("\"warnings\": []"), std::string::npos);
+  // designer units on the command line (tests/test_scene_units.cpp): the speed in engine rpm
+  // replaces the file's rev/s; both forms of one quantity is bad input (exit 2)
+  ASSERT_EQ(run("--set cam.speed_rpm=3000 --set cam.rpm_of=engine", "rpm"), 0);
+  const std::string hist = camdyn_test::slurp(dir / "plain" / "history.csv");
+  EXPECT_GT(hist.size(), 1000u);
+  EXPECT_EQ(camdyn_test::slurp(dir / "rpm" / "history.csv"), hist);  // 3000 engine rpm = 25 rev/s
+  EXPECT_EQ(run("--set cam.speed_rev_s=25 --set cam.speed_rpm=1500 --set cam.rpm_of=camshaft", "both"), 2);
+  EXPECT_EQ(camdyn_test::slurp(dir / "both.err"),
+            "camdyn: --set: key 'cam.speed_rpm' = 1500: cannot be given with cam.speed_rev_s (= 25): give the cam "
+            "speed once, in rpm or in rev/s\n");
   fs::remove_all(dir);
 }
 

@@ -50,7 +50,7 @@ printf '#define TOML_IMPLEMENTATION\n#include <toml++/toml.h>\n' > "$OUT/toml_im
   -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
   -DTOML_HEADER_ONLY=0 \
   "${TOML_INC[@]}" -I"$SRC/include" -I"$SRC/src" \
-  "$SRC/tests/fuzz/fuzz_scene.cpp" "$SRC/src/scene.cpp" "$SRC/src/scene_network.cpp" "$SRC/src/cam.cpp" \
+  "$SRC/tests/fuzz/fuzz_scene.cpp" "$SRC/src/scene.cpp" "$SRC/src/scene_network.cpp" "$SRC/src/scene_units.cpp" "$SRC/src/cam.cpp" \
   "$SRC/src/follower_geometry.cpp" "$SRC/src/motion_law.cpp" "$SRC/src/motion_law_parse.cpp" \
   "$OUT/toml_impl.cpp" -o "$OUT/fuzz_scene"
 
