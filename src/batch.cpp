@@ -4,9 +4,11 @@
 
 #include <time.h>
 
+#include <memory>
 #include <mutex>
 #include <utility>
 
+#include "camdyn/follower_system.hpp"
 #include "thread_pool.hpp"
 
 namespace camdyn {
@@ -25,14 +27,23 @@ struct Collector : Observer {
 };
 
 // One run of the batch: never throws (a scene that fails to build becomes its Summary).
-Summary run_one(const Scene& scene, std::vector<HistoryRow>* rows, const std::atomic<bool>* stop) {
+// With a follower factory, the run uses the follower it returns (never the scene's).
+Summary run_one(const Scene& scene, std::vector<HistoryRow>* rows, const std::atomic<bool>* stop,
+                const FollowerFactory* follower = nullptr) {
   Summary s;
   const double c0 = thread_cpu_seconds();
   Collector c;
   c.rows = rows;
   try {
-    Simulator sim(scene);
-    s = sim.run(rows ? &c : nullptr, stop);
+    std::unique_ptr<Simulator> sim;
+    if (follower) {
+      std::shared_ptr<const FollowerSystem> f = (*follower)();
+      if (!f) throw SceneError("run_batch", 0, "follower", "null", "the follower factory returned no follower");
+      sim = std::make_unique<Simulator>(scene, std::move(f));
+    } else {
+      sim = std::make_unique<Simulator>(scene);
+    }
+    s = sim->run(rows ? &c : nullptr, stop);
   } catch (const std::exception& e) {
     s = Summary{};
     s.scene = scene.title;
@@ -44,37 +55,63 @@ Summary run_one(const Scene& scene, std::vector<HistoryRow>* rows, const std::at
   return s;
 }
 
-}  // namespace
-
-std::vector<Summary> run_batch(const std::vector<Scene>& scenes, int threads,
-                               const std::function<void(std::size_t, const Summary&)>& on_done,
-                               const std::atomic<bool>* stop) {
-  std::vector<Summary> out(scenes.size());
-  std::mutex mu;
-  detail::parallel_for(scenes.size(), threads, stop, [&](std::size_t i) {
-    Summary s = run_one(scenes[i], nullptr, stop);
-    std::lock_guard<std::mutex> lock(mu);
-    out[i] = std::move(s);
-    if (on_done) on_done(i, out[i]);
-    return true;
-  });
-  return out;
+void require_factory(const FollowerFactory& follower) {
+  if (!follower)
+    throw SceneError("run_batch", 0, "follower", "{}",
+                     "the follower factory is empty (for the scenes' own followers call run_batch without one)");
 }
 
-std::vector<RunResult> simulate_batch(const std::vector<Scene>& scenes, int threads,
-                                      const std::function<void(std::size_t, const RunResult&)>& on_done,
-                                      const std::atomic<bool>* stop) {
-  std::vector<RunResult> out(scenes.size());
+template <class Result, class Run>
+std::vector<Result> batch(std::size_t n, int threads, const std::function<void(std::size_t, const Result&)>& on_done,
+                          const std::atomic<bool>* stop, const Run& run) {
+  std::vector<Result> out(n);
   std::mutex mu;
-  detail::parallel_for(scenes.size(), threads, stop, [&](std::size_t i) {
-    RunResult r;
-    r.summary = run_one(scenes[i], &r.rows, stop);
+  detail::parallel_for(n, threads, stop, [&](std::size_t i) {
+    Result r = run(i);
     std::lock_guard<std::mutex> lock(mu);
     out[i] = std::move(r);
     if (on_done) on_done(i, out[i]);
     return true;
   });
   return out;
+}
+
+}  // namespace
+
+std::vector<Summary> run_batch(const std::vector<Scene>& scenes, const FollowerFactory& follower, int threads,
+                               const std::function<void(std::size_t, const Summary&)>& on_done,
+                               const std::atomic<bool>* stop) {
+  require_factory(follower);
+  return batch<Summary>(scenes.size(), threads, on_done, stop,
+                        [&](std::size_t i) { return run_one(scenes[i], nullptr, stop, &follower); });
+}
+
+std::vector<RunResult> simulate_batch(const std::vector<Scene>& scenes, const FollowerFactory& follower,
+                                      int threads, const std::function<void(std::size_t, const RunResult&)>& on_done,
+                                      const std::atomic<bool>* stop) {
+  require_factory(follower);
+  return batch<RunResult>(scenes.size(), threads, on_done, stop, [&](std::size_t i) {
+    RunResult r;
+    r.summary = run_one(scenes[i], &r.rows, stop, &follower);
+    return r;
+  });
+}
+
+std::vector<Summary> run_batch(const std::vector<Scene>& scenes, int threads,
+                               const std::function<void(std::size_t, const Summary&)>& on_done,
+                               const std::atomic<bool>* stop) {
+  return batch<Summary>(scenes.size(), threads, on_done, stop,
+                        [&](std::size_t i) { return run_one(scenes[i], nullptr, stop); });
+}
+
+std::vector<RunResult> simulate_batch(const std::vector<Scene>& scenes, int threads,
+                                      const std::function<void(std::size_t, const RunResult&)>& on_done,
+                                      const std::atomic<bool>* stop) {
+  return batch<RunResult>(scenes.size(), threads, on_done, stop, [&](std::size_t i) {
+    RunResult r;
+    r.summary = run_one(scenes[i], &r.rows, stop);
+    return r;
+  });
 }
 
 }  // namespace camdyn

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "camdyn/cam.hpp"
+#include "camdyn/follower_system.hpp"
 #include "camdyn/output.hpp"
 #include "designer_stats.hpp"
 
@@ -112,21 +113,25 @@ JumpResult jump_closed_form(const Scene& s, const JumpOptions& o, double dir) {
   return res;
 }
 
-bool separates(const Scene& base, double speed, double* theta_deg) {
+bool separates(const Scene& base, double speed, double* theta_deg,
+               const std::shared_ptr<const FollowerSystem>& follower) {
   Scene s = base;
   s.cam.speed_rev_s = speed;
   // run.output_dt is kept: Lee lands its steps on output times, so it shapes the run.
-  Simulator sim(s);
-  const Summary r = sim.run();
+  const Summary r = follower ? Simulator(s, follower).run() : Simulator(s).run();
   if (!r.finished)
     throw SceneError(base.source, 0, "cam.speed_rev_s", num(speed),
                      "jump speed: the simulation failed there (" + r.message + ")");
   if (theta_deg) *theta_deg = r.first_separation_theta_deg;
   // A network separates every cycle somewhere (the valve leaves its seat, a lash opens):
   // it jumps when its cam contact separates on the lift (the designer's first separation).
-  if (s.follower.kind == FollowerKind::Network) return !std::isnan(r.first_separation_theta_deg);
+  // So does a user follower (issue 28): its first cam contact's first separation.
+  if (follower || s.follower.kind == FollowerKind::Network) return !std::isnan(r.first_separation_theta_deg);
   return r.separations > 0;
 }
+
+JumpResult jump_by_simulation(const Scene& scene, const JumpOptions& o, double dir, double est,
+                              const std::shared_ptr<const FollowerSystem>& follower);
 
 }  // namespace
 
@@ -156,12 +161,20 @@ void JumpOptions::validate() const {
                      "must be < hi_rev_s = " + num(hi_rev_s));
 }
 
-JumpResult jump_speed(const Scene& scene_in, const JumpOptions& o) {
+namespace {
+// The scene of a jump-speed search, resolved and checked (options too).
+Scene jump_scene(const Scene& scene_in, const JumpOptions& o) {
   o.validate();
   Scene scene = scene_in;
   resolve_defaults(scene);
   validate(scene);
   require_constant_speed(scene);
+  return scene;
+}
+}  // namespace
+
+JumpResult jump_speed(const Scene& scene_in, const JumpOptions& o) {
+  const Scene scene = jump_scene(scene_in, o);
   const double dir = scene.cam.speed_rev_s < 0 ? -1.0 : 1.0;
   if (scene.follower.kind == FollowerKind::Rigid && !o.force_simulation)
     return jump_closed_form(scene, o, dir);
@@ -171,16 +184,34 @@ JumpResult jump_speed(const Scene& scene_in, const JumpOptions& o) {
   rigid.follower.kind = FollowerKind::Rigid;
   rigid.follower.damping = 0.0;
   // (a network has no rigid-body estimate: the bracket starts around the scene's speed)
-  double est = scene.follower.kind == FollowerKind::Network
-                   ? std::abs(scene.cam.speed_rev_s)
-                   : std::abs(jump_closed_form(rigid, o, dir).jump_speed_rev_s);
+  const double est = scene.follower.kind == FollowerKind::Network
+                         ? std::abs(scene.cam.speed_rev_s)
+                         : std::abs(jump_closed_form(rigid, o, dir).jump_speed_rev_s);
+  return jump_by_simulation(scene, o, dir, est, nullptr);
+}
+
+JumpResult jump_speed(const Scene& scene_in, std::shared_ptr<const FollowerSystem> follower,
+                      const JumpOptions& o) {
+  if (!follower)
+    throw SceneError("jump_speed", 0, "follower", "null",
+                     "no follower given (for the scene's own follower call jump_speed(scene, options))");
+  const Scene scene = jump_scene(scene_in, o);
+  const double dir = scene.cam.speed_rev_s < 0 ? -1.0 : 1.0;
+  // A user follower has no rigid-body estimate: the bracket starts around the scene's speed.
+  return jump_by_simulation(scene, o, dir, std::abs(scene.cam.speed_rev_s), follower);
+}
+
+namespace {
+
+JumpResult jump_by_simulation(const Scene& scene, const JumpOptions& o, double dir, double est,
+                              const std::shared_ptr<const FollowerSystem>& follower) {
   if (!std::isfinite(est) || est <= 0) est = 1.0;
   double lo = o.lo_rev_s > 0 ? o.lo_rev_s : 0.5 * est;
   double hi = o.hi_rev_s > 0 ? o.hi_rev_s : 1.5 * est;
   JumpResult res;
   res.method = "simulation";
   auto test = [&](double sp, double* th) {
-    const bool sep = separates(scene, dir * sp, th);
+    const bool sep = separates(scene, dir * sp, th, follower);
     ++res.simulations;
     if (o.log) o.log(dir * sp, sep);
     return sep;
@@ -216,5 +247,7 @@ JumpResult jump_speed(const Scene& scene_in, const JumpOptions& o) {
   res.theta_deg = th_hi;
   return res;
 }
+
+}  // namespace
 
 }  // namespace camdyn

@@ -675,6 +675,11 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
   o.num("energy_residual", s.energy_residual);
   o.str("tolerance_meaning", s.tolerance_meaning);
   o.str("tolerance_warning", s.tolerance_warning);
+  {
+    std::string t = "[";
+    for (size_t i = 0; i < s.warnings.size(); ++i) t += (i ? ", " : "") + json_string(s.warnings[i]);
+    o.raw("warnings", t + "]");
+  }
   // designer results (issue 15); NaN → null
   o.num("min_contact_force", s.min_contact_force);
   o.num("min_force_theta_deg", s.min_force_theta_deg);

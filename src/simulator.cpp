@@ -4,6 +4,7 @@
 //   method the scene asks for from the registry (src/contact/registry.cpp; the shared run
 //   machinery is src/run_context.hpp) and runs it.
 #include "camdyn/simulator.hpp"
+#include "camdyn/scene_warnings.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -173,6 +174,7 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
     mech_ = std::make_shared<const Mechanism>(scene_);
     extra_columns_ = detail::NetworkRun::extra_columns(*mech_);
     detail::check_start(scene_, *mech_, false);
+    warnings_ = scene_warnings(scene_);
   } else {
     model_ = build_model(scene_);
     detail::check_start(scene_, *model_);
@@ -187,6 +189,7 @@ Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower
                      "a user-defined follower runs on arkode-erk, arkode-dirk or cvode-bdf (ida: "
                      "single-follower holonomic scenes only)");
   check_tolerances(scene_);
+  warnings_ = scene_warnings(scene_, follower.get());
   mech_ = make_user_system(scene_, std::move(follower));
   extra_columns_ = detail::NetworkRun::extra_columns(*mech_);
   detail::check_start(scene_, *mech_, true);
@@ -205,12 +208,14 @@ Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
     method->set_stop_reason(stop_reason);
     Summary sum = method->run();
     detail::describe_tolerance(scene_, sum);
+    sum.warnings = warnings_;
     return sum;
   }
   auto method = detail::make_contact_method(scene_, model_, observer, stop);
   method->set_stop_reason(stop_reason);
   Summary sum = method->run();
   detail::describe_tolerance(scene_, sum);
+  sum.warnings = warnings_;
   return sum;
 }
 
@@ -283,6 +288,7 @@ std::string Summary::FullReport() const {
     o << "  Hertz stress:       max " << fmt(max_hertz_stress) << " at " << fmt(max_hertz_theta_deg) << " deg\n";
   if (!tolerance_meaning.empty()) o << "  tolerance:          " << tolerance_meaning << "\n";
   if (!tolerance_warning.empty()) o << "  warning:            " << tolerance_warning << "\n";
+  for (const std::string& w : warnings) o << "  warning:            " << w << "\n";
   for (const ContactResult& c : contacts) {
     auto ang = [&](double d) { return std::isnan(d) ? std::string("-") : fmt(d) + " deg"; };
     o << "  contact '" << c.name << "': min force " << (std::isnan(c.min_force) ? std::string("-") : fmt(c.min_force))

@@ -19,10 +19,12 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <sstream>
 
 #include "camdyn/designer.hpp"
+#include "camdyn/follower_system.hpp"
 #include "camdyn/output.hpp"
 #include "thread_pool.hpp"
 
@@ -216,6 +218,19 @@ SweepPlan plan_sweep(const Scene& base, const SweepOptions& o) {
   const auto& cols = sweep_result_columns();
   for (std::size_t i = 0; i < cols.size(); ++i) h += cols[i] + (i + 1 < cols.size() ? "," : "\n");
   p.header = h;
+  if (o.follower) {
+    // The user follower replaces follower.*, [spring] and the network: those keys would
+    // change nothing. Its name enters the fingerprint (a resumed sweep is the same one).
+    for (const auto& a : p.axes)
+      if (a.key.compare(0, 9, "follower.") == 0 || a.key.compare(0, 7, "spring.") == 0 || is_network_key(a.key))
+        throw SceneError("--key", 0, "key", a.key,
+                         "is replaced by the user follower (follower.*, [spring] and the network tables are not "
+                         "used): sweeping it would change nothing");
+    const std::shared_ptr<const FollowerSystem> f = o.follower();
+    if (!f) throw SceneError("run_sweep", 0, "follower", "null", "the follower factory returned no follower");
+    fp += "\n#follower " + f->name();
+    p.follower = o.follower;
+  }
   p.fingerprint = fnv1a(fp);
   return p;
 }
@@ -233,8 +248,15 @@ std::string run_sweep_point(const SweepPlan& plan, long index, bool timing, doub
   try {
     Scene sc = plan.base;
     for (std::size_t a = 0; a < vals.size(); ++a) apply_override(sc, plan.axes[a].key + "=" + num(vals[a]));
-    Simulator sim(sc);
-    s = sim.run(&watch, &watch.flag);
+    std::unique_ptr<Simulator> sim;
+    if (plan.follower) {
+      std::shared_ptr<const FollowerSystem> f = plan.follower();
+      if (!f) throw SceneError("run_sweep", 0, "follower", "null", "the follower factory returned no follower");
+      sim = std::make_unique<Simulator>(sc, std::move(f));
+    } else {
+      sim = std::make_unique<Simulator>(sc);
+    }
+    s = sim->run(&watch, &watch.flag);
   } catch (const std::exception& e) {
     s = Summary{};
     s.finished = false;

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "camdyn/scene.hpp"
@@ -49,6 +50,27 @@ std::vector<Summary> run_batch(const std::vector<Scene>& scenes, int threads = 0
 ///       failed before running has no rows.
 std::vector<RunResult> simulate_batch(
     const std::vector<Scene>& scenes, int threads = 0,
+    const std::function<void(std::size_t, const RunResult&)>& on_done = {},
+    const std::atomic<bool>* stop = nullptr);
+
+/// A user follower (camdyn/follower_system.hpp) for many runs (issue 28): called once per
+/// run, on the thread that makes the run, it returns the follower of that run. Return a new
+/// object per call unless the follower's const methods may be called from several threads
+/// at once (then one shared object is fine). A null result is an invalid run
+/// (termination = InvalidScene).
+using FollowerFactory = std::function<std::shared_ptr<const FollowerSystem>()>;
+
+/// As run_batch, every run with a user follower from `follower` instead of the scene's
+/// (Simulator(scene, follower): follower.*, [spring] and the network tables are not used).
+/// @throws SceneError (file "run_batch", key "follower") if `follower` is empty — the
+///       scene's follower is never used silently; std::system_error as run_batch.
+std::vector<Summary> run_batch(const std::vector<Scene>& scenes, const FollowerFactory& follower,
+                               int threads = 0,
+                               const std::function<void(std::size_t, const Summary&)>& on_done = {},
+                               const std::atomic<bool>* stop = nullptr);
+/// As simulate_batch, with a user follower (as the run_batch overload above).
+std::vector<RunResult> simulate_batch(
+    const std::vector<Scene>& scenes, const FollowerFactory& follower, int threads = 0,
     const std::function<void(std::size_t, const RunResult&)>& on_done = {},
     const std::atomic<bool>* stop = nullptr);
 

@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,16 @@ struct JumpResult {
 /// @throws SceneError on bad input (speed table given, bad options, no bracket found).
 JumpResult jump_speed(const Scene& scene, const JumpOptions& options = JumpOptions{});
 
+/// The jump speed of `scene` with a user follower instead of the scene's (issue 28;
+/// camdyn/follower_system.hpp): bisection over cam.speed_rev_s on whether a run
+/// Simulator(scene, follower) to run.t_end separates its first cam contact (its first
+/// separation outside the lash take-up, as for a network), the bracket starting at 0.5×
+/// and 1.5× |cam.speed_rev_s| unless options give it; method "simulation". The runs are
+/// made one after the other on the calling thread.
+/// @throws SceneError as above, and (file "jump_speed", key "follower") for a null follower.
+JumpResult jump_speed(const Scene& scene, std::shared_ptr<const FollowerSystem> follower,
+                      const JumpOptions& options = JumpOptions{});
+
 // Batch runs (run_batch, simulate_batch, thread_cpu_seconds): camdyn/batch.hpp, included
 // above for the callers that found them here.
 
@@ -111,6 +122,11 @@ struct SweepOptions {
   const std::atomic<bool>* stop = nullptr;
   /// Progress after every finished point: (done, total, failed, elapsed wall seconds).
   std::function<void(long, long, long, double)> progress;
+  /// A user follower for every point (issue 28; batch.hpp): called once per point on the
+  /// worker's thread. Empty: the scene's follower. With a follower, keys of follower.*,
+  /// [spring] and the network tables cannot be swept (the follower replaces them:
+  /// SceneError "--key"), and sweep.meta.json's fingerprint includes the follower's name().
+  FollowerFactory follower;
   /// @throws SceneError naming field, value and rule (no axis, > 2 axes, > 10⁶ points).
   void validate() const;
 };
@@ -123,6 +139,7 @@ struct SweepPlan {
   long total = 0;                  ///< number of points
   std::string header;              ///< sweep.csv header line (with '\n')
   std::string fingerprint;         ///< hash of the resolved scene TOML, keys and values
+  FollowerFactory follower;        ///< SweepOptions::follower (empty: the scene's follower)
   /// The key values of point i (grid: first axis slowest).
   std::vector<double> values(long index) const;
 };

@@ -157,6 +157,10 @@ struct Summary {
   /// than on the one-step engines (cvode-bdf on an elastic follower: BDF orders ≤ 2 damp
   /// the modes the step resolves). FullReport prints it as a warning line.
   std::string tolerance_warning;
+  /// Plausibility warnings of the scene as a valve train (issue 28; scene_warnings(): a
+  /// lash larger than the lift, masses or stiffnesses far outside valve-train ranges, …):
+  /// the run goes on. summary.json "warnings"; the CLI prints each on stderr.
+  std::vector<std::string> warnings;
   // ---- designer results (issue 15). Angles are cam angles in degrees in [0, 360);
   // ---- NaN (null in summary.json) when the thing did not happen.
   /// Smallest contact force while in contact (the margin; 0 if the follower separated:
@@ -273,12 +277,16 @@ class Simulator {
   /// Names of HistoryRow::extra, in order: network scenes F_<c>, gap_<c>, in_<c> per
   /// contact c, then u_<n>, v_<n> per named node n; empty for the other follower kinds.
   const std::vector<std::string>& extra_columns() const { return extra_columns_; }
+  /// The scene's plausibility warnings (scene_warnings(), camdyn/scene_warnings.hpp), known
+  /// before the run; run() copies them into Summary::warnings.
+  const std::vector<std::string>& warnings() const { return warnings_; }
 
  private:
   Scene scene_;
   std::shared_ptr<const FollowerModel> model_;      // rigid, elastic_bar
   std::shared_ptr<const class MechanicalSystem> mech_;  // network or a user's follower
   std::vector<std::string> extra_columns_;
+  std::vector<std::string> warnings_;
 };
 
 /// Convenience: run and collect all rows in memory.

@@ -531,19 +531,29 @@ def resolved_scene(scene: Any = None, **overrides: Any) -> str:
 
 
 def jump_speed(scene: Any = None, options: Optional[Mapping[str, Any]] = None,
-               **overrides: Any) -> Dict[str, Any]:
+               follower: Any = None, **overrides: Any) -> Dict[str, Any]:
     """The jump (separation) speed at constant cam speed (``camdyn jump``).
 
     Closed form for a rigid follower, bisection over simulations for an elastic one.
     ``options`` may hold ``scan_points``, ``rel_tol``, ``lo_rev_s``, ``hi_rev_s``,
     ``force_simulation`` (designer.hpp, JumpOptions).
 
+    ``follower``: a user-defined follower as for :func:`run` (a Python object or a C++
+    ``FollowerSystem``); it replaces the scene's (never ignored): bisection over
+    simulations on whether its first cam contact separates, the bracket from 0.5× and 1.5×
+    the scene's speed unless ``options`` give it; the runs are made one after the other.
+    A mapping is the ``follower.*`` override, as for :func:`run`.
+
     Returns:
         dict with ``jump_speed_rev_s`` (+inf if it never separates), ``method``
         ("closed-form" | "simulation"), ``theta_deg``, ``lo_rev_s``, ``hi_rev_s``,
         ``simulations``.
     """
-    return _camdyn.jump_speed(*_scene_spec(scene, overrides), dict(options or {}))
+    if isinstance(follower, Mapping):
+        overrides = {**overrides, "follower": follower}
+        follower = None
+    spec = None if follower is None else _follower_spec(follower)
+    return _camdyn.jump_speed(*_scene_spec(scene, overrides), dict(options or {}), spec)
 
 
 def cam_motion(scene: Any, t: Any, lift: bool = False, **overrides: Any) -> Tuple[Any, Any, Any]:
@@ -582,7 +592,17 @@ def initial_state_on_cam(scene: Any, follower: Any, **overrides: Any) -> Tuple[A
     return np.asarray(q), np.asarray(v)
 
 
-def run_batch(scenes: Iterable[Any], threads: int = 0) -> List[Dict[str, Any]]:
+def _batch_items(scenes: Iterable[Any]) -> List[Tuple[Any, Mapping[str, Any]]]:
+    items = []
+    for item in scenes:
+        if isinstance(item, tuple) and len(item) == 2 and isinstance(item[1], Mapping):
+            items.append(item)
+        else:
+            items.append((item, {}))
+    return items
+
+
+def run_batch(scenes: Iterable[Any], threads: int = 0, follower: Any = None) -> List[Dict[str, Any]]:
     """Run several scenes in C++ threads (``threads`` at a time; 0: all cores) and return
     their summaries (dicts with the summary.json keys), in order.
 
@@ -590,15 +610,22 @@ def run_batch(scenes: Iterable[Any], threads: int = 0) -> List[Dict[str, Any]]:
     with ``overrides`` a dict of dotted keys. Every scene is built and checked before any
     run (bad input raises :class:`SceneError`); results do not depend on ``threads``
     (except the timings). Ctrl-C stops the runs and raises KeyboardInterrupt.
+
+    ``follower``: a user-defined follower as for :func:`run`, used by every run instead of
+    the scenes' own. Its methods are called with the GIL held, so the runs are made one
+    after the other on this thread (``threads`` must be 0 or 1; more raises
+    :class:`SceneError`). A C++ ``FollowerSystem`` runs the same way.
     """
-    specs = []
-    for item in scenes:
-        if isinstance(item, tuple) and len(item) == 2 and isinstance(item[1], Mapping):
-            scene, overrides = item
-        else:
-            scene, overrides = item, {}
-        specs.append(_scene_spec(scene, overrides))
-    return [json.loads(t) for t in _camdyn.run_batch(specs, int(threads))]
+    items = _batch_items(scenes)
+    specs = [_scene_spec(scene, overrides) for scene, overrides in items]
+    if follower is None:
+        return [json.loads(t) for t in _camdyn.run_batch(specs, int(threads))]
+    if int(threads) not in (0, 1):
+        raise SceneError(f"camdyn.run_batch: key 'threads' = {int(threads)}: a user follower runs on one "
+                         "thread (its methods are called with the GIL held): must be 0 or 1")
+    for spec in specs:  # every scene checked before any run
+        _camdyn.resolved_scene(*spec)
+    return [run(scene, follower=follower, **overrides).summary for scene, overrides in items]
 
 
 #: Summary entries that :func:`sweep` returns as arrays (the numeric ones of sweep.csv).
@@ -608,17 +635,26 @@ SWEEP_COLUMNS = ("finished", "separations", "impacts", "max_contact_force", "min
 
 
 def sweep(scene: Any, key: str, values: Iterable[float], threads: int = 0,
-          **overrides: Any) -> Dict[str, Any]:
+          follower: Any = None, **overrides: Any) -> Dict[str, Any]:
     """Run ``scene`` once per value of the dotted ``key`` (like ``camdyn sweep``), in C++
     threads. A network entry's key by name works too: ``"elements.valve_spring.preload"``.
+
+    ``follower``: a user-defined follower for every run (:func:`run_batch`: one thread);
+    keys of ``follower.*``, ``[spring]`` and the network tables are then refused.
 
     Returns:
         dict: ``key`` → the values (float64 array), each name of :data:`SWEEP_COLUMNS` →
         a float64 array (``finished`` as 0/1, null as NaN), and ``"summaries"`` → the list
         of summary dicts.
     """
+    if isinstance(follower, Mapping):
+        overrides = {**overrides, "follower": follower}
+        follower = None
+    if follower is not None and (key.startswith(("follower.", "spring.", "nodes", "elements", "contacts"))):
+        raise SceneError(f"--key: key 'key' = {key}: is replaced by the user follower (follower.*, [spring] "
+                         "and the network tables are not used): sweeping it would change nothing")
     vals = np.asarray(list(values), dtype=np.float64)
-    sums = run_batch([(scene, {**overrides, key: float(v)}) for v in vals], threads)
+    sums = run_batch([(scene, {**overrides, key: float(v)}) for v in vals], threads, follower)
     out: Dict[str, Any] = {key: vals}
     for c in SWEEP_COLUMNS:
         out[c] = np.array([np.nan if s.get(c) is None else float(s[c]) for s in sums],

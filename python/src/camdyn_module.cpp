@@ -559,8 +559,19 @@ py::tuple run_scene(const std::string& kind, const std::string& text, const std:
 }
 
 py::dict jump(const std::string& kind, const std::string& text, const std::string& source,
-              const std::vector<std::string>& overrides, const py::dict& options) {
+              const std::vector<std::string>& overrides, const py::dict& options, const py::object& follower) {
   const Scene sc = build_scene(kind, text, source, overrides);
+  // A user follower (issue 28): a C++ FollowerSystem, or a Python one's spec dict.
+  std::shared_ptr<const FollowerSystem> fs;
+  std::shared_ptr<PyFollower> pyf;
+  if (!follower.is_none()) {
+    if (py::isinstance<FollowerSystem>(follower)) {
+      fs = follower.cast<std::shared_ptr<FollowerSystem>>();
+    } else {
+      pyf = std::make_shared<PyFollower>(follower.cast<py::dict>());
+      fs = pyf;
+    }
+  }
   JumpOptions jo;
   for (const auto& item : options) {
     const std::string k = py::str(item.first);
@@ -576,9 +587,14 @@ py::dict jump(const std::string& kind, const std::string& text, const std::strin
   }
   jo.validate();
   JumpResult r;
-  {
+  try {
     py::gil_scoped_release nogil;
-    r = jump_speed(sc, jo);
+    r = fs ? jump_speed(sc, fs, jo) : jump_speed(sc, jo);
+  } catch (const std::exception&) {
+    // a Python callback raised: raise its exception, not its consequence
+    if (pyf && pyf->has_pending()) pyf->rethrow();
+    if (pyf && pyf->failed()) throw SceneError("<follower>", 0, "follower", fs->name(), pyf->error());
+    throw;
   }
   py::dict d;
   d["jump_speed_rev_s"] = r.jump_speed_rev_s;
@@ -707,7 +723,7 @@ PYBIND11_MODULE(_camdyn, m) {
       .def(py::init<double, double, double, double>(), py::arg("m"), py::arg("k"), py::arg("k3"),
            py::arg("P"));
   m.def("jump_speed", &jump, py::arg("kind"), py::arg("text"), py::arg("source"),
-        py::arg("overrides"), py::arg("options"));
+        py::arg("overrides"), py::arg("options"), py::arg("follower") = py::none());
   m.def("run_batch", &batch, py::arg("specs"), py::arg("threads"));
   m.def("cam_motion", &cam_motion, py::arg("kind"), py::arg("text"), py::arg("source"),
         py::arg("overrides"), py::arg("t"), py::arg("lift") = false);

@@ -569,6 +569,8 @@ int cmd_run(const RunOpts& o) {
     throw SceneError(sc.source, 0, "scene", sc.title, std::string("cannot build the model: ") +
                                                           e.what());
   }
+  // Implausible as a valve train (issue 28): said, not refused (also in summary.json).
+  for (const std::string& w : sim->warnings()) std::fprintf(stderr, "camdyn: warning: %s\n", w.c_str());
 
   // Run stage.
   const bool progress = !o.quiet && ::isatty(STDERR_FILENO);
