@@ -576,8 +576,8 @@ TEST(SceneOverride, EveryKeyWithItsOwnValueIsANoOp) {
     }
     // 47 + contact.lee_step, run.land_on_output, run.poincare_angle_deg,
     // run.settle_revolutions, run.period_tol; + 13 cam keys of issue 24 (law, arc,
-    // follower face, breakpoints, Hertz)
-    EXPECT_EQ(n, 65);
+    // follower face, breakpoints, Hertz), run.designer_columns
+    EXPECT_EQ(n, 66);
   }
 }
 
