@@ -609,11 +609,24 @@ Cam::~Cam() = default;
 CamPoint Cam::evaluate(double theta) const { return impl_->evaluate(theta); }
 
 CamMotion Cam::motion(double theta, double omega, double omega_dot) const {
-  const CamPoint p = impl_->evaluate(theta);
+  // X_C and its θ-derivatives only: the law/arc geometry and the lift spline directly,
+  // without the contact point's polar angle and radius (atan2, hypot) of evaluate().
+  const Impl& I = *impl_;
+  double X, X1, X2;
+  if (I.geo) {
+    const detail::FollowerState f = I.geo->eval(theta);
+    X = f.s, X1 = f.s1, X2 = f.s2;
+  } else if (I.kind == CamProfileKind::Lift) {
+    I.Ls.eval(theta, &X, &X1, &X2);
+    X += I.rb;
+  } else {
+    const CamPoint p = I.evaluate(theta);
+    X = p.X_C, X1 = p.dX_dtheta, X2 = p.d2X_dtheta2;
+  }
   CamMotion m;
-  m.X = p.X_C;
-  m.Xdot = p.dX_dtheta * omega;
-  m.Xddot = p.d2X_dtheta2 * omega * omega + p.dX_dtheta * omega_dot;
+  m.X = X;
+  m.Xdot = X1 * omega;
+  m.Xddot = X2 * omega * omega + X1 * omega_dot;
   return m;
 }
 

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "camdyn/hertz.hpp"
 #include "designer_stats.hpp"
 
 namespace camdyn {
@@ -16,12 +15,7 @@ constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 void DesignerStats::geometry_init(const Scene& scene, const Cam& cam) {
   cam_ = std::make_shared<const Cam>(cam);  // a copy: the run's Cam outlives no guarantee here
-  face_ = scene.cam.follower_face;
-  roller_ = scene.cam.roller_radius;
-  width_ = scene.cam.width;
-  if (width_ > 0 && (face_ == FollowerFace::Flat || face_ == FollowerFace::Roller))
-    E_star_ = contact_modulus(scene.cam.youngs_modulus, scene.cam.poisson_ratio,
-                              scene.cam.follower_youngs_modulus, scene.cam.follower_poisson_ratio);
+  cols_ = std::make_shared<const DesignerColumns>(scene);
   double phi = 0;
   for (int k = 0; k < 3600; ++k) phi = std::max(phi, std::fabs(cam.evaluate(kTwoPi * k / 3600).pressure_angle));
   geo_max_phi_ = phi * 360.0 / kTwoPi;
@@ -30,24 +24,14 @@ void DesignerStats::geometry_init(const Scene& scene, const Cam& cam) {
 
 void DesignerStats::geometry_sample(double t, double theta, double F) {
   if (!(F > 0.0)) F = 0.0;
-  const CamPoint p = cam_->evaluate(theta);
-  const double T = F * p.dX_dtheta, P = T * drive_.omega(t);
-  if (std::isnan(p.moment_arm)) {  // translating: the guide's side load (oscillating: the pivot takes it)
-    const double side = F * std::fabs(std::tan(p.pressure_angle));
-    if (std::isnan(max_side_) || side > max_side_) max_side_ = side;
-  }
+  const ContactDesign d = cols_->eval(cam_->evaluate(theta), F, drive_.omega(t));
+  const double T = d.torque, P = d.power, side = std::fabs(d.side);
+  if (!std::isnan(side) && (std::isnan(max_side_) || side > max_side_)) max_side_ = side;
   if (std::isnan(T_peak_) || std::fabs(T) > std::fabs(T_peak_)) T_peak_ = T;
   if (std::isnan(P_peak_) || std::fabs(P) > std::fabs(P_peak_)) P_peak_ = P;
-  if (E_star_ > 0 && std::isfinite(p.rho)) {
-    const double Rf = face_ == FollowerFace::Roller ? roller_ : INFINITY;
-    const double N = F * p.normal_force_ratio;
-    if ((std::isinf(Rf) ? 0.0 : 1.0 / Rf) + 1.0 / p.rho > 0) {
-      const double p0 = hertz_line(N, width_, p.rho, Rf, E_star_).max_pressure;
-      if (std::isnan(max_hertz_) || p0 > max_hertz_) {
-        max_hertz_ = p0;
-        max_hertz_theta_ = angle_deg_mod360(theta);
-      }
-    }
+  if (!std::isnan(d.stress) && (std::isnan(max_hertz_) || d.stress > max_hertz_)) {
+    max_hertz_ = d.stress;
+    max_hertz_theta_ = angle_deg_mod360(theta);
   }
   if (t == pend_t1_) {  // the current step end: its value for the time averages
     pend_T1_ = T;

@@ -16,6 +16,7 @@
 #include "camdyn/cam.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/simulator.hpp"
+#include "designer_columns.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -64,8 +65,7 @@ class DesignerStats {
   std::vector<PoincareSample> poincare_;
   // cam geometry (issue 24; designer_geometry.cpp)
   std::shared_ptr<const Cam> cam_;
-  double E_star_ = 0, width_ = 0, roller_ = 0;
-  FollowerFace face_ = FollowerFace::Flat;
+  std::shared_ptr<const DesignerColumns> cols_;
   double geo_max_phi_ = NAN, geo_min_rho_ = NAN;
   double max_side_ = NAN, max_hertz_ = NAN, max_hertz_theta_ = NAN;
   double T_peak_ = NAN, P_peak_ = NAN, T_int_ = 0, P_int_ = 0, t_first_ = NAN;

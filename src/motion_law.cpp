@@ -21,6 +21,34 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kTwoPi = 2.0 * kPi;
 constexpr double kDeg = kPi / 180.0;
 
+// sin and cos of a phase a of a law (|a| ≤ 10; the laws' phases lie in [−π/2, 2π]), as
+// one call: quadrant reduction r = a − k π/2 in two parts (k·pio2_1 exact for |k| < 2²⁰)
+// and fdlibm's polynomial kernels on [−π/4, π/4] (k_sin.c, k_cos.c: error < 1 ulp there).
+// std::sin and std::cos serve any argument (and the libm call cannot be inlined); this is
+// the cost of a law's evaluation that a spline does not have (issue 24: bench_cam).
+inline void sincos_phase(double a, double* s, double* c) {
+  constexpr double invpio2 = 6.36619772367581382433e-01, pio2_1 = 1.57079632673412561417e+00,
+                   pio2_1t = 6.07710050650619224932e-11;
+  constexpr double S1 = -1.66666666666666324348e-01, S2 = 8.33333333332248946124e-03,
+                   S3 = -1.98412698298579493134e-04, S4 = 2.75573137070700676789e-06,
+                   S5 = -2.50507602534068634195e-08, S6 = 1.58969099521155010221e-10;
+  constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-03,
+                   C3 = 2.48015872894767294178e-05, C4 = -2.75573143513906633035e-07,
+                   C5 = 2.08757232129817482790e-09, C6 = -1.13596475577881948265e-11;
+  const double k = std::floor(a * invpio2 + 0.5);
+  const double r = (a - k * pio2_1) - k * pio2_1t;
+  const double z = r * r;
+  const double sr = r + z * r * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
+  const double rc = z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6))))), hz = 0.5 * z, w = 1.0 - hz;
+  const double cr = w + (((1.0 - w) - hz) + z * rc);
+  switch (static_cast<long>(k) & 3) {
+    case 0: *s = sr; *c = cr; break;
+    case 1: *s = cr; *c = -sr; break;
+    case 2: *s = -sr; *c = -cr; break;
+    default: *s = -cr; *c = sr; break;
+  }
+}
+
 struct AccPiece {
   double x0, x1, c, A, w, ph;
   double v0 = 0, y0 = 0;  // velocity, displacement at x0 (filled by build)
@@ -48,10 +76,12 @@ struct AccLaw {
     const double u = x - q.x0;
     double y = q.y0 + q.v0 * u + 0.5 * q.c * u * u, v = q.v0 + q.c * u, a = q.c, j = 0;
     if (q.A != 0) {
-      const double s = std::sin(q.w * u + q.ph), c = std::cos(q.w * u + q.ph);
+      double s, c;
+      sincos_phase(q.w * u + q.ph, &s, &c);
       const double sp = q.sp, cp = q.cp;
-      v += -(q.A / q.w) * (c - cp);
-      y += -(q.A / q.w) * ((s - sp) / q.w - u * cp);
+      const double iw = 1.0 / q.w;  // one division where there were three
+      v += -(q.A * iw) * (c - cp);
+      y += -(q.A * iw) * ((s - sp) * iw - u * cp);
       a += q.A * s;
       j = q.A * q.w * c;
     }
@@ -133,12 +163,14 @@ std::array<double, 4> MotionLaw::normalised(MotionSegmentKind kind, double x,
     case MotionSegmentKind::Dwell: return {0, 0, 0, 0};
     case MotionSegmentKind::Ramp: return {x, 1, 0, 0};
     case MotionSegmentKind::Harmonic: {
-      const double s = std::sin(kPi * x), c = std::cos(kPi * x);
+      double s, c;
+      sincos_phase(kPi * x, &s, &c);
       return {0.5 * (1 - c), 0.5 * kPi * s, 0.5 * kPi * kPi * c, -0.5 * kPi * kPi * kPi * s};
     }
     case MotionSegmentKind::Cycloidal: {
-      const double s = std::sin(kTwoPi * x), c = std::cos(kTwoPi * x);
-      return {x - s / kTwoPi, 1 - c, kTwoPi * s, kTwoPi * kTwoPi * c};
+      double s, c;
+      sincos_phase(kTwoPi * x, &s, &c);
+      return {x - s * (1.0 / kTwoPi), 1 - c, kTwoPi * s, kTwoPi * kTwoPi * c};
     }
     case MotionSegmentKind::Poly345: return poly_eval<4>(kPoly345, x);
     case MotionSegmentKind::Poly4567: return poly_eval<4>(kPoly4567, x);
@@ -152,8 +184,8 @@ std::array<double, 4> MotionLaw::normalised(MotionSegmentKind kind, double x,
 
 LiftDerivs MotionLaw::eval_segment(std::size_t i, double u) const {
   const MotionSegment& s = segs_[i];
-  const double b = beta_[i];
-  const double x = std::min(1.0, std::max(0.0, u / b));
+  const double b = beta_[i], ib = 1.0 / b;  // one division: x, L′, L″, L‴ multiply by it
+  const double x = std::min(1.0, std::max(0.0, u * ib));
   LiftDerivs d;
   if (s.kind == MotionSegmentKind::Polydyne) {
     const auto p = poly_eval<6>(kPoly56789, x);
@@ -168,9 +200,9 @@ LiftDerivs MotionLaw::eval_segment(std::size_t i, double u) const {
   const auto f = normalised(s.kind, x, s.coefficients);
   const double H = s.rise;
   d.L = L0_[i] + H * f[0];
-  d.L1 = H * f[1] / b;
-  d.L2 = H * f[2] / (b * b);
-  d.L3 = H * f[3] / (b * b * b);
+  d.L1 = H * f[1] * ib;
+  d.L2 = H * f[2] * (ib * ib);
+  d.L3 = H * f[3] * (ib * ib * ib);
   return d;
 }
 
@@ -275,11 +307,15 @@ MotionLaw::MotionLaw(std::vector<MotionSegment> segments, const std::string& key
 }
 
 LiftDerivs MotionLaw::eval(double theta) const {
-  double u = std::fmod(theta, kTwoPi);
+  // θ mod 2π without fmod's exact division loop (a third of the evaluation's cost): the
+  // reduced angle is within an ulp of θ of fmod's, far below the joints' 1e-9 rad windows.
+  double u = theta - kTwoPi * std::floor(theta * (1.0 / kTwoPi));
   if (u < 0) u += kTwoPi;
   if (!(u < kTwoPi)) u = 0.0;
-  const auto it = std::upper_bound(start_.begin(), start_.end() - 1, u);
-  const std::size_t i = static_cast<std::size_t>(it - start_.begin()) - 1;
+  // a law has a handful of segments: a forward scan beats the binary search's branches
+  std::size_t i = 0;
+  const std::size_t last = start_.size() - 2;
+  while (i < last && start_[i + 1] <= u) ++i;
   return eval_segment(i, u - start_[i]);
 }
 

@@ -1,6 +1,8 @@
 // camdyn — output files (see output.hpp).
 #include "camdyn/output.hpp"
 
+#include "designer_columns.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -437,14 +439,14 @@ void HistoryWriter::clear() {
 
 void HistoryWriter::write(const std::string& dir) const {
   write_history_file(join_path(dir, "history.csv"), rows_, extra_);
-  write_file_atomic(join_path(dir, "events.csv"), events_csv(events_, !extra_.empty()));
+  write_file_atomic(join_path(dir, "events.csv"), events_csv(events_, detail::DesignerColumns::has_network_columns(extra_)));
 }
 
 // ---- streaming writer -----------------------------------------------------------------
 
 StreamingHistoryWriter::StreamingHistoryWriter(std::string dir, std::vector<std::string> extra,
                                                std::size_t chunk_bytes)
-    : with_contact_(!extra.empty()), chunk_(chunk_bytes) {
+    : with_contact_(detail::DesignerColumns::has_network_columns(extra)), chunk_(chunk_bytes) {
   const std::string pid = std::to_string(static_cast<long>(::getpid()));
   hist_.path = join_path(dir, "history.csv");
   ev_.path = join_path(dir, "events.csv");
@@ -728,6 +730,8 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
       k.num("first_impact_theta_deg", c.first_impact_theta_deg);
       k.integer("impacts", c.impacts);
       k.integer("separations", c.separations);
+      k.num("max_side_load", c.max_side_load);
+      k.num("max_side_load_theta_deg", c.max_side_load_theta_deg);
       k.close();
       t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
     }

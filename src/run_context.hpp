@@ -24,6 +24,7 @@
 #include "cam_stops.hpp"
 #include "camdyn/simulator.hpp"
 #include "designer_stats.hpp"
+#include "cam_joints.hpp"
 #include "engine.hpp"
 
 namespace camdyn {
@@ -213,6 +214,8 @@ class RunContext {
   // The cam's motion at t; the last two values are kept (a step asks for its ends and its
   // midpoint several times).
   CamMotion cam_at(double t) const {
+    CamMotion j;  // on a C0 joint: before it, or after it once its impact is resolved
+    if (!joints_.empty() && joints_.at(cam_, t, t == joint_t_ ? 1 : -1, &j)) return j;
     for (int i = 0; i < 2; ++i)
       if (cam_cache_t_[i] == t) return cam_cache_[i];
     cam_cache_slot_ ^= 1;
@@ -259,6 +262,7 @@ class RunContext {
     r.potential = V - V0_;
     r.work_cam = W;
     r.dissipated = D;
+    if (sc_.run.designer_columns) design_cols_.append(cam_.evaluate(r.theta), F, drive_.omega(t), r.extra);
     last_row_t_ = t;
     if (obs_ && obs_->on_output(r) == ObserverAction::Stop) observer_stop_ = true;
   }
@@ -333,6 +337,37 @@ class RunContext {
     }
   }
 
+  // A held follower on a C0 joint of the cam (cam_joints.hpp) at t_: the cam's velocity
+  // jumps to Ẋ⁺. Faster (Δ = Ẋ⁺ − u̇₀ > 0, or a bilateral contact): a plastic impact of the
+  // cam on node 0, impulse P = Δ/M* (Δv = M⁻¹e₀P), u̇₀ = Ẋ⁺ after it; the cam's work P·Ẋ⁺
+  // and the loss ½Δ²/M* are booked, the impact recorded, and the contact stays held if
+  // the acceleration level's force is compressive. Slower: the cam leaves the follower (a
+  // separation). Afterwards cam_at(t_) is the motion after the joint. Returns true if the
+  // state changed (a restarting engine must be reinitialised).
+  bool cam_joint_impact() {
+    CamMotion r;
+    if (!contact_ || joints_.empty() || t_ == joint_t_ || !joints_.at(cam_, t_, 1, &r)) return false;
+    joint_t_ = t_;
+    const double Ms = m_.mstar(), dv = r.Xdot - y_[n_];
+    if (!(std::abs(dv) > 1e-12 * (std::abs(r.Xdot) + std::abs(y_[n_])))) return false;
+    if (dv > 0.0 || bilateral_) {
+      const double P = dv / Ms;
+      y_.tail(n_) += P * m_.contact_column();
+      y_[n_] = r.Xdot;
+      work_ += P * r.Xdot;
+      dissipated_ += 0.5 * dv * dv / Ms;
+      ++sum_.impacts;
+      record_event(EventKind::Impact, dv, P);
+      F_ = (r.Xddot - m_.contact_acceleration(y_.data(), y_.data() + n_, 0.0)) / Ms;
+      if (bilateral_ || F_ > 0.0) return true;
+    }
+    ++sum_.separations;
+    record_event(EventKind::Separation, 0.0);
+    contact_ = false;
+    F_ = 0.0;
+    return true;
+  }
+
   // Designer results (designer_stats.hpp) at an accepted state: the step end, and the
   // contact force while in contact.
   // `X_C`: the cam's X at t_ (the caller has it).
@@ -384,12 +419,15 @@ class RunContext {
   Cam cam_;
   CamDrive drive_;
   CamStops stops_{sc_, cam_};
+  CamJoints joints_{sc_, cam_};
+  double joint_t_ = -INFINITY;  // the time of the last C0 joint resolved (cam_joint_impact)
   Observer* obs_;
   const std::atomic<bool>* stop_;
   std::string stop_reason_ = "stopped by caller";
   int n_;
   std::unique_ptr<Engine> engine_;
   detail::DesignerStats designer_;
+  detail::DesignerColumns design_cols_{sc_};  // run.designer_columns
   Summary sum_;
   bool bilateral_ = false, contact_ = false;
   bool observer_stop_ = false;  // an observer returned ObserverAction::Stop

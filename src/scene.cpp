@@ -427,6 +427,7 @@ const std::vector<Field>& fields() {
     v.push_back(F_REAL(run, poincare_angle_deg));
     v.push_back(F_INT(run, settle_revolutions, 0, 1000000000));
     v.push_back(ruled(F_REAL(run, period_tol), Rule::GtLe, 0, 1));
+    v.push_back(F_BOOL(run, designer_columns));
     return v;
   }();
   return kFields;

@@ -133,6 +133,8 @@ const KeyDoc kDocs[] = {
                                       "relative to cam.theta0_deg."},
     {"run.settle_revolutions", "—", "Revolutions left out of the Poincaré samples and the period detector."},
     {"run.period_tol", "—", "Relative tolerance of the period detector (|Δu_c| ≤ tol·lift, |Δv_c| ≤ tol·lift·|ω|)."},
+    {"run.designer_columns", "—", "true: history.csv gets pressure_angle_deg, radius_of_curvature, contact_stress, "
+                                  "side_load, cam_torque, cam_power per row (docs/cam_laws.md)."},
     // [[nodes]]
     {"nodes.name", "—", "Node name: history columns `u_<name>`, `v_<name>`.", "string",
      "non-empty, unique, not \"ground\", letters, digits, '_' and '-' only", "(required)"},

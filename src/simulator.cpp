@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "contact/network_run.hpp"
+#include "designer_columns.hpp"
 #include "initial_check.hpp"
 #include "mechanism.hpp"
 #include "run_context.hpp"
@@ -179,6 +180,13 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
     model_ = build_model(scene_);
     detail::check_start(scene_, *model_);
   }
+  add_designer_columns();
+}
+
+void Simulator::add_designer_columns() {
+  if (!scene_.run.designer_columns) return;
+  const auto& d = detail::DesignerColumns::names();
+  extra_columns_.insert(extra_columns_.end(), d.begin(), d.end());
 }
 
 Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower) : scene_(std::move(scene)) {
@@ -193,6 +201,7 @@ Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower
   mech_ = make_user_system(scene_, std::move(follower));
   extra_columns_ = detail::NetworkRun::extra_columns(*mech_);
   detail::check_start(scene_, *mech_, true);
+  add_designer_columns();
 }
 
 const ModelDescription& Simulator::description() const {

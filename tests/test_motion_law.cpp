@@ -79,6 +79,23 @@ TEST(MotionLaw, DerivativesMatchFiniteDifferences) {
     }
 }
 
+TEST(MotionLaw, TrigonometricLawsAgainstLibm) {
+  // The laws' own sin/cos kernel (motion_law.cpp) against std::sin/std::cos: cycloidal
+  // f = x − sin 2πx / 2π (phases over [0, 2π]: all four quadrants), harmonic
+  // f = (1 − cos πx)/2, to a few ulps.
+  for (int i = 0; i <= 20000; ++i) {
+    const double x = i / 20000.0, a = 2 * kPi * x;
+    const auto c = MotionLaw::normalised(MotionSegmentKind::Cycloidal, x);
+    EXPECT_NEAR(c[0], x - std::sin(a) / (2 * kPi), 4e-16);
+    EXPECT_NEAR(c[1], 1 - std::cos(a), 8e-16);
+    EXPECT_NEAR(c[2], 2 * kPi * std::sin(a), 8e-15);
+    EXPECT_NEAR(c[3], 4 * kPi * kPi * std::cos(a), 4e-14);
+    const auto h = MotionLaw::normalised(MotionSegmentKind::Harmonic, x);
+    EXPECT_NEAR(h[0], 0.5 * (1 - std::cos(kPi * x)), 4e-16);
+    EXPECT_NEAR(h[1], 0.5 * kPi * std::sin(kPi * x), 2e-15);
+  }
+}
+
 TEST(MotionLaw, ContinuityOrderAtJoints) {
   // dwell → cycloidal: acceleration 0 at the ends, jerk 4π²: C2. Harmonic: acceleration
   // π²/2 at the ends: C1. Ramp: velocity jump: C0. 4-5-6-7: jerk 0 at the ends: C3.

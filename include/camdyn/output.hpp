@@ -86,8 +86,9 @@ class HistoryWriter : public Observer {
   const std::vector<HistoryRow>& rows() const { return rows_; }
   const std::vector<ContactEvent>& events() const { return events_; }
   void clear();
-  /// Network scenes: the extra history columns (Simulator::extra_columns()); non-empty
-  /// also adds the `contact` column to events.csv.
+  /// The extra history columns (Simulator::extra_columns()); network columns among them
+  /// (any but the designer columns of run.designer_columns) also add the `contact` column
+  /// to events.csv.
   void set_extra_columns(std::vector<std::string> names) { extra_ = std::move(names); }
 
   /// Write DIR/history.csv and DIR/events.csv atomically. @throws std::runtime_error on an error.
@@ -103,7 +104,8 @@ class HistoryWriter : public Observer {
 /// at most about `chunk_bytes` of text per file in memory (O(1) in the number of rows).
 /// The files are byte-identical to HistoryWriter::write(DIR) for the same run and the same
 /// extra columns (header from history_columns() then `extra_columns`; events.csv gets the
-/// `contact` column when `extra_columns` is not empty, as events_csv(…, true)).
+/// `contact` column when `extra_columns` holds a network's columns (not only the designer
+/// columns of run.designer_columns), as events_csv(…, true)).
 ///
 ///   camdyn::Simulator sim(scene);
 ///   camdyn::StreamingHistoryWriter w("out", sim.extra_columns());

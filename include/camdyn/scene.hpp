@@ -231,6 +231,10 @@ struct RunSpec {
   /// Relative tolerance of the period detector, 0 < tol ≤ 1: samples p revolutions apart
   /// are "equal" when |Δu_c| ≤ tol·lift and |Δv_c| ≤ tol·lift·|ω|.
   double period_tol = 1e-3;
+  /// true: history.csv gets the designer columns after the others (issue 24;
+  /// docs/cam_laws.md): pressure_angle_deg, radius_of_curvature, contact_stress, side_load,
+  /// cam_torque, cam_power, from the row's cam contact force. false: no such columns.
+  bool designer_columns = false;
 };
 
 struct Scene {

@@ -34,7 +34,9 @@ struct HistoryRow {
   double work_cam = 0;       ///< ∫ F v₀ dt, work done by the cam on the follower
   double dissipated = 0;     ///< ∫ vᵀ C v dt + energy lost in impacts
   /// Network scenes: per contact (F_<name>, gap_<name>, in_<name>), then per named node
-  /// (u_<name>, v_<name>), in the order of Simulator::extra_columns(); empty otherwise.
+  /// (u_<name>, v_<name>); then, with run.designer_columns, the six designer columns
+  /// (pressure_angle_deg, radius_of_curvature, contact_stress, side_load, cam_torque,
+  /// cam_power); in the order of Simulator::extra_columns(); empty otherwise.
   std::vector<double> extra;
 };
 
@@ -122,6 +124,11 @@ struct ContactResult {
   double first_separation_theta_deg = NAN;
   double first_impact_theta_deg = NAN;
   long impacts = 0, separations = 0;
+  /// Cam contacts (issue 24): largest side load |F tan φ| on the follower's guide at the
+  /// accepted step ends while closed (F the contact's axial force, φ the pressure angle;
+  /// 0 for a flat face) and its cam angle; NaN for the other contacts and if never closed.
+  double max_side_load = NAN;
+  double max_side_load_theta_deg = NAN;
 };
 
 struct Summary {
@@ -275,7 +282,8 @@ class Simulator {
   /// The model description (any follower kind).
   const ModelDescription& description() const;
   /// Names of HistoryRow::extra, in order: network scenes F_<c>, gap_<c>, in_<c> per
-  /// contact c, then u_<n>, v_<n> per named node n; empty for the other follower kinds.
+  /// contact c, then u_<n>, v_<n> per named node n (none for the other follower kinds);
+  /// then the designer columns when run.designer_columns is true.
   const std::vector<std::string>& extra_columns() const { return extra_columns_; }
   /// The scene's plausibility warnings (scene_warnings(), camdyn/scene_warnings.hpp), known
   /// before the run; run() copies them into Summary::warnings.
@@ -287,6 +295,7 @@ class Simulator {
   std::shared_ptr<const class MechanicalSystem> mech_;  // network or a user's follower
   std::vector<std::string> extra_columns_;
   std::vector<std::string> warnings_;
+  void add_designer_columns();
 };
 
 /// Convenience: run and collect all rows in memory.

@@ -544,6 +544,8 @@ py::tuple run_scene(const std::string& kind, const std::string& text, const std:
     history[py::str(extra[c])] = col;
   }
 
+  // network columns: any extra besides the designer columns (run.designer_columns, last)
+  const bool network_cols = extra.size() > (sim->scene().run.designer_columns ? 6u : 0u);
   py::list events;
   for (const auto& e : summary.events) {
     py::dict d;
@@ -552,7 +554,7 @@ py::tuple run_scene(const std::string& kind, const std::string& text, const std:
     d["impact_velocity"] = e.impact_velocity;
     d["theta"] = e.theta;
     d["impulse"] = e.impulse;
-    if (!extra.empty()) d["contact"] = e.contact;  // network scenes (as events.csv)
+    if (network_cols) d["contact"] = e.contact;  // network scenes (as events.csv)
     events.append(d);
   }
   return py::make_tuple(summary_json(summary, sc), history, events);

@@ -112,6 +112,11 @@ class EventDriven final : public RunContext {
     if (!in_contact) start_free();
     const double dt_scan = std::min(1e-4, sc_.run.t_end / 100.0);
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+      if (in_contact && cam_joint_impact()) {  // held on a C0 joint of the cam: its impact
+        in_contact = contact_;
+        if (!in_contact) start_free();
+        else if (!rigid) held_engine->reinit(t_, held_from_full());
+      }
       const double tout = next_stop_time();
       const double Ft = F_, Xdot_prev = cam_at(t_).Xdot, P_prev = dissipation_power();
       const double t_prev = t_;

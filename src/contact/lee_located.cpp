@@ -369,6 +369,8 @@ class LeeLocated final : public RunContext {
     Eigen::VectorXd y1(2 * n_);
     const double hmin_rel = 1e-14;
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+      // held on a C0 joint of the cam (the steps land there): its impact, at the instant
+      if (cam_joint_impact()) slope_prev_ = 0.0;
       const double t_next = stop_before(land ? next_output_time() : sc_.run.t_end);
       const bool relocating = h_try > 0.0;
       double hs = relocating ? h_try : fit_step(h, t_next);

@@ -368,6 +368,12 @@ void NetworkRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
     r.extra.push_back(u[i]);
     r.extra.push_back(v[i]);
   }
+  if (sc_.run.designer_columns) {
+    double Fc = 0.0;  // the cam's force: Σ over the cam contacts (their axial components)
+    for (int j = 0; j < m_; ++j)
+      if (mk_.contacts()[j].cam) Fc += F[j];
+    design_cols_.append(cam_.evaluate(r.theta), Fc, drive_.omega(t), r.extra);
+  }
   if (!in_take_up(t))
     for (int j = 0; j < m_; ++j)
       if (active[j]) sample_contact(j, F[j], angle_deg_mod360(r.theta));
@@ -404,6 +410,22 @@ void NetworkRun::record_event(EventKind type, int contact, double v, double impu
     }
   }
   if (obs_) obs_->on_event(e);
+}
+
+void NetworkRun::sample_side_loads(double theta) {
+  bool any = false;
+  for (int j = 0; j < m_ && !any; ++j) any = mk_.contacts()[j].cam && active_[j];
+  if (!any) return;
+  const double tan_phi = std::tan(cam_.evaluate(theta).pressure_angle);
+  for (int j = 0; j < m_; ++j) {
+    if (!mk_.contacts()[j].cam || !active_[j]) continue;
+    ContactResult& cr = sum_.contacts[j];
+    const double side = std::abs(F_[j] * tan_phi);
+    if (std::isnan(cr.max_side_load) || side > cr.max_side_load) {
+      cr.max_side_load = side;
+      cr.max_side_load_theta_deg = angle_deg_mod360(theta);
+    }
+  }
 }
 
 bool NetworkRun::in_take_up(double t) const {
@@ -460,6 +482,7 @@ void NetworkRun::after_step(double h, double dW, double P_prev, double P_end, do
   acceleration(t_, y_, F_, a);
   const double th = drive_.theta(t_);
   designer_.step(t_, th, c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.tail(n_)), c.t.dot(a), gap(p, y_, cm));
+  sample_side_loads(th);
   if (active_[p]) designer_.sample_force(t_, th, F_[p]);
   if (out_dt() <= 0.0) {
     emit_row();

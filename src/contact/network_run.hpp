@@ -109,6 +109,9 @@ class NetworkRun {
                    const std::vector<char>& active, double W, double D);
   /// Inside the lash take-up window at t (simulator.hpp ContactResult).
   bool in_take_up(double t) const;
+  /// The side loads |F_j tan φ| of the closed cam contacts at an accepted step end
+  /// (ContactResult::max_side_load).
+  void sample_side_loads(double theta);
   /// A force sample of closed contact j for its ContactResult::min_force.
   void sample_contact(int j, double F, double theta_deg);
   void record_event(EventKind type, int contact, double v, double impulse = 0.0,
@@ -153,6 +156,7 @@ class NetworkRun {
   std::string stop_reason_ = "stopped by caller";
   int n_, m_;
   DesignerStats designer_;
+  DesignerColumns design_cols_{sc_};  // run.designer_columns
   Summary sum_;
   double t_ = 0, work_ = 0, dissipated_ = 0, E0_ = 0, V0_ = 0, last_row_t_ = -1;
   Eigen::VectorXd y_, F_;

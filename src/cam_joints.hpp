@@ -1,0 +1,58 @@
+// camdyn (private) — the C0 joints of a motion law (issue 24): the cam angles where the
+// follower's velocity s′(θ) jumps (a constant-velocity ramp next to a dwell or a rise).
+//
+//   A follower held on the cam is struck there: the cam's velocity Ẋ_C jumps by
+//   Δs′·ω in no time, a velocity-level jump that only an impulse can follow. The methods
+//   land their steps on the joints (cam_stops.hpp) and resolve the jump there as an
+//   impact of the cam on the follower (RunContext::cam_joint_impact): the step that ends
+//   on the joint sees the cam's motion before it (the left limit, in the drive's
+//   direction), the steps after it the motion after it (the right limit). The one-sided
+//   limits are evaluated η = 1e-7 rad inside the segment and corrected to first order
+//   (s′ ± η s″, s″ ± η s‴: an error η² s‴/2, ~1e-14 of the lift per rad²).
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "camdyn/cam.hpp"
+#include "camdyn/scene.hpp"
+
+namespace camdyn {
+namespace detail {
+
+class CamJoints {
+ public:
+  CamJoints(const Scene& sc, const Cam& cam) : drive_(sc.cam) {
+    if (sc.cam.land_on_breaks && cam.law())
+      for (const Breakpoint& b : cam.law()->breakpoints())
+        if (b.order == 0) angles_.push_back(b.theta);
+  }
+  bool empty() const { return angles_.empty(); }
+  /// When θ(t) is on a C0 joint (within 1e-9 rad): true, and `m` the cam's motion at t
+  /// just before (side < 0) or just after (side > 0) the joint in the drive's direction.
+  bool at(const Cam& cam, double t, int side, CamMotion* m) const {
+    constexpr double kTwoPi = 6.283185307179586476925286766559, eta = 1e-7;
+    const double th = drive_.theta(t);
+    for (double a : angles_) {
+      const double d = std::remainder(th - a, kTwoPi);
+      if (!(std::abs(d) <= 1e-9 * std::max(1.0, std::abs(th)))) continue;
+      const double w = drive_.omega(t), wd = drive_.omega_dot(t);
+      const double s = (w >= 0 ? 1.0 : -1.0) * (side > 0 ? 1.0 : -1.0);  // the side in θ
+      const CamPoint p = cam.evaluate(th - d + s * eta);
+      const double X1 = p.dX_dtheta - s * eta * p.d2X_dtheta2;
+      const double X2 = p.d2X_dtheta2 - s * eta * p.d3X_dtheta3;
+      m->X = cam.evaluate(th).X_C;
+      m->Xdot = X1 * w;
+      m->Xddot = X2 * w * w + X1 * wd;
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  CamDrive drive_;
+  std::vector<double> angles_;
+};
+
+}  // namespace detail
+}  // namespace camdyn

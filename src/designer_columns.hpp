@@ -1,0 +1,56 @@
+// camdyn (private) — the designer quantities of one contact state (issue 24): what the
+// summary's cam-geometry results (designer_geometry.cpp) and the history's designer columns
+// (run.designer_columns) are made of.
+//
+//   The follower translates along X in a frictionless guide; the cam's force on it acts
+//   along the contact normal n̂ = (cos φ, sin φ) (φ: pressure angle). The contact force F
+//   of the run (history's contact_force, a network's F_<cam contact>) is its axial
+//   component, the one the follower's axial dynamics see; the normal force is
+//   N = F / cos φ and the side load F tan φ (the Y component of the cam's force on the
+//   follower; the guide carries its opposite). Cam torque T = F s′(θ) (power balance:
+//   T ω = F Ẋ_C), power P = T ω. Hertz line-contact pressure p₀ from N between the cam's
+//   radius of curvature ρ at the contact and the follower face (roller radius, or a plane).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "camdyn/cam.hpp"
+#include "camdyn/scene.hpp"
+
+namespace camdyn {
+namespace detail {
+
+/// The designer quantities at one contact state.
+struct ContactDesign {
+  double pressure_angle_deg = 0;  ///< φ [deg]
+  double rho = 0;                 ///< cam's radius of curvature at the contact (NaN: none)
+  double stress = 0;              ///< Hertz p₀ (NaN: cam.width = 0, knife edge, point, ρ undefined)
+  double side = 0;                ///< F tan φ (signed: + toward +Y)
+  double torque = 0;              ///< F s′(θ)
+  double power = 0;               ///< T ω
+};
+
+class DesignerColumns {
+ public:
+  /// The history columns, in order: pressure_angle_deg, radius_of_curvature,
+  /// contact_stress, side_load, cam_torque, cam_power.
+  static const std::vector<std::string>& names();
+  /// true when `extra` (history columns after the standard ones) holds any column that is
+  /// not a designer column: a network's (events.csv then gets its `contact` column).
+  static bool has_network_columns(const std::vector<std::string>& extra);
+
+  /// Reads cam.width, the moduli and the follower face (Hertz stress when cam.width > 0
+  /// and the face is flat or a roller).
+  explicit DesignerColumns(const Scene& scene);
+  /// @param p the cam point at the row's angle; F the axial contact force; omega [rad/s].
+  ContactDesign eval(const CamPoint& p, double F, double omega) const;
+  /// Appends the six columns of eval() to `out` in the order of names().
+  void append(const CamPoint& p, double F, double omega, std::vector<double>& out) const;
+
+ private:
+  double E_star_ = 0, width_ = 0, Rf_ = 0;  // Rf_: follower face radius (inf: flat)
+};
+
+}  // namespace detail
+}  // namespace camdyn
