@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "contact/network_run.hpp"
+#include "verdict.hpp"
 #include "initial_check.hpp"
 #include "mechanism.hpp"
 #include "run_context.hpp"
@@ -196,12 +197,16 @@ Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
     method->set_stop_reason(stop_reason);
     Summary sum = method->run();
     detail::describe_tolerance(scene_, sum);
+    sum.verdict = detail::make_verdict(scene_, mech_.get(), sum.events);
+    sum.verdict_text = detail::verdict_one_line(sum.verdict);
     return sum;
   }
   auto method = detail::make_contact_method(scene_, model_, observer, stop);
   method->set_stop_reason(stop_reason);
   Summary sum = method->run();
   detail::describe_tolerance(scene_, sum);
+  sum.verdict = detail::make_verdict(scene_, nullptr, sum.events);
+  sum.verdict_text = detail::verdict_one_line(sum.verdict);
   return sum;
 }
 
@@ -228,6 +233,7 @@ std::string Summary::BriefReport() const {
     << " steps (" << rejected_steps << " rejected), " << rhs_evals << " rhs evals, "
     << separations << " separations, " << impacts << " impacts, max force "
     << fmt(max_contact_force) << ", cpu " << fmt(cpu_seconds) << " s";
+  if (!verdict_text.empty()) o << " — " << verdict_text;
   if (!finished) o << " — " << message << " [" << to_string(termination) << "]";
   return o.str();
 }
@@ -282,6 +288,7 @@ std::string Summary::FullReport() const {
       << ang(c.first_impact_theta_deg) << "), " << c.separations << " separations (first at "
       << ang(c.first_separation_theta_deg) << ")\n";
   }
+  if (!verdict_text.empty()) o << "  verdict:            " << verdict_text << "\n";
   o << "  energy residual:    " << fmt(energy_residual) << "\n"
     << "  cpu / wall:         " << fmt(cpu_seconds) << " s / " << fmt(wall_seconds) << " s\n";
   return o.str();
