@@ -2,7 +2,7 @@
 """Figures of a camdyn output directory (numpy + matplotlib, no display needed).
 
     camdyn_plot.py run DIR [--zoom T0 T1]
-        DIR/history.csv -> DIR/displacement.png       u_c(t) and the cam X_C = u_c + gap
+        DIR/history.csv -> DIR/displacement.png       u_c(t) and the cam X_C = u_c − gap
                            DIR/contact_force.png      contact force over the run
                            DIR/contact_force_zoom.png 0.02 s around the largest force
                                                       (or the window T0..T1)
@@ -108,6 +108,12 @@ def cam_info(d):
 # ---- run -----------------------------------------------------------------------------
 
 
+def cam_of_history(c):
+    """The cam's contact point from a history: gap = u_c − X_C (docs/interface.md), so
+    X_C = u_c − gap (networks: u_c and X_C measured from the base circle, X_C the lift)."""
+    return c["u_c"] - c["gap"]
+
+
 def plot_run(d, zoom=None):
     path = os.path.join(d, "history.csv")
     _, c = read_csv(path)
@@ -120,7 +126,7 @@ def plot_run(d, zoom=None):
     # Displacement of the contact face, and the cam's contact point.
     fig, ax = plt.subplots(figsize=(8, 4.5))
     ax.plot(t, u, "-", lw=1.2, label="follower $u_c$")
-    ax.plot(t, u + gap, "--", lw=1.0, label="cam $X_C = u_c + $gap")
+    ax.plot(t, cam_of_history(c), "--", lw=1.0, label="cam $X_C = u_c - $gap")
     ax.set_xlabel("time t")
     ax.set_ylabel("displacement")
     ax.set_title(("Displacement of the contact face\n" + title).strip())
@@ -194,7 +200,7 @@ def cam_curves(c, clearances):
     docs/interface.md) minus the contact's clearance, so that it lies on the node's curve
     while the contact is closed and at −clearance on the base circle.
     Returns [(label, array)]; without known clearances the bare lift."""
-    lift = c["u_c"] - c["gap"]
+    lift = cam_of_history(c)
     if not clearances:
         return [("cam lift $X_C - X_{base}$", lift)]
     return [("cam '%s': lift − clearance %.4g mm" % (n, 1e3 * g), lift - g) for n, g in clearances]

@@ -125,8 +125,9 @@ std::vector<VerdictItem> make_verdict(const Scene& sc, const MechanicalSystem* m
       cs.push_back({c.name, r, c.g0});
     }
   } else {
-    // a single follower rests at X_C(θ₀) + initial_gap (its spring origin)
-    cs.push_back({"cam", RCam, reg.lift_at(drive.theta(0.0)) + sc.contact.initial_gap});
+    // a single follower has no seat: its spring keeps it on the cam, and an initial gap
+    // closes once at the start (an impact), so no lash window
+    cs.push_back({"cam", RCam, 0.0});
   }
   // The chain's lash: a separation of a cam or lash contact with the cam lifted less than
   // this (plus kFloatLift of the lift) is the lash opening by design, not a phenomenon.

@@ -48,7 +48,7 @@ const char* region_kind(CamRegions::Region r);
 const char* kind_words(const std::string& kind);
 
 /// The verdict of a finished (or stopped) run: `mech` null for a single follower (one cam
-/// contact, clearance contact.initial_gap, named "cam").
+/// contact named "cam", no lash window: no seat holds it off the cam).
 std::vector<VerdictItem> make_verdict(const Scene& scene, const MechanicalSystem* mech,
                                       const std::vector<ContactEvent>& events);
 /// The one-liner: the items' texts joined by "; ".

@@ -167,6 +167,28 @@ TEST(Verdict, NoSeparationBelowTheFloatSpeed) {
   EXPECT_TRUE(std::isnan(s.verdict[0].theta_deg));
 }
 
+TEST(Verdict, SingleFollowerNoseFloatOnTheEccentric) {
+  // examples/circle_cam.toml: flat face on an eccentric circle, X = R + e cos θ (R 2, e 0.5),
+  // m 1, k 500, precompression 7; started at θ₀ = 180° (spring origin x₀ = X(180°) = 1.5).
+  // The cam's force F = −m e ω² cos θ + k (7 + X − 1.5) reaches zero where
+  // cos θ = 3750/(e ω² − 250); at 16 rev/s first at θ = 360° − 38.7°. The nose of an
+  // eccentric is where X″ = −e cos θ ≤ 0: |θ| ≤ 90°.
+  Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/circle_cam.toml");
+  s.cam.speed_rev_s = 16.0;
+  s.cam.theta0_deg = 180.0;
+  s.contact.model = ContactModel::Event;
+  s.solver.rtol = 1e-10;
+  s.run.t_end = 1.0 / 16.0;
+  const Summary r = Simulator(s).run();
+  ASSERT_TRUE(r.finished) << r.message;
+  const double w = 2 * kPi * 16.0;
+  const double theta = 360.0 - std::acos(3750.0 / (0.5 * w * w - 250.0)) * 180.0 / kPi;
+  ASSERT_FALSE(r.verdict.empty());
+  EXPECT_EQ(r.verdict.front().kind, "nose_float") << r.verdict_text;
+  EXPECT_EQ(r.verdict.front().contact, "cam");
+  EXPECT_NEAR(r.verdict.front().theta_deg, theta, 0.02) << r.verdict_text;
+}
+
 TEST(Verdict, JumpSpeedTextHasOnlyTheBracketsDigits) {
   JumpResult r;
   r.method = "simulation";

@@ -440,8 +440,10 @@ int cmd_jump(const JumpOpts& o) {
     std::printf("%s: %s, margin reaches zero at cam angle %s deg", sc.title.c_str(),
                 r.method.c_str(), fmt_g(r.theta_deg, 10).c_str());
     if (r.method == "simulation") std::printf(" (%d runs to t = %g)", r.simulations, sc.run.t_end);
-    std::printf("\njump speed: %s\nphenomenon: %s\noutput: %s\n", jump_speed_text(r).c_str(),
-                r.phenomenon_text.c_str(), path.c_str());
+    std::printf("\njump speed: %s\nphenomenon: %s", jump_speed_text(r).c_str(), r.phenomenon.c_str());
+    if (r.method == "simulation") std::printf(" (the run at the upper bracket end: %s)", r.phenomenon_text.c_str());
+    else std::printf(" (%s)", r.phenomenon_text.c_str());
+    std::printf("\noutput: %s\n", path.c_str());
   }
   std::printf("jump_speed_rev_s = %.17g\n", r.jump_speed_rev_s);
   std::fflush(stdout);
