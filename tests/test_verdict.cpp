@@ -16,6 +16,7 @@
 //     t = (2/Ω) atan(v0 k/(Ω F0)), Ω = √(k/m): the re-impact's cam angle.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -187,6 +188,71 @@ TEST(Verdict, SingleFollowerNoseFloatOnTheEccentric) {
   EXPECT_EQ(r.verdict.front().kind, "nose_float") << r.verdict_text;
   EXPECT_EQ(r.verdict.front().contact, "cam");
   EXPECT_NEAR(r.verdict.front().theta_deg, theta, 0.02) << r.verdict_text;
+}
+
+TEST(Verdict, SweepHasAVerdictColumnPerSpeed) {
+  // The harmonic valve (c = 0) below and above its float speed (81.4 rev/s by the closed
+  // form of the nose float: mω²Hπ²/(2β²) − kH/2 = F0 + kH/2).
+  SweepOptions o;
+  o.axes = {{"cam.speed_rev_s", {20.0, 100.0}}};
+  Scene base = harmonic_valve(0.0, 20.0, 0.0, 0.0);
+  base.run.t_end = 0.01;
+  const SweepPlan plan = plan_sweep(base, o);
+  std::vector<std::string> head;
+  {
+    std::string h = plan.header, f;
+    for (char ch : h) {
+      if (ch == ',' || ch == '\n') head.push_back(f), f.clear();
+      else f += ch;
+    }
+  }
+  const size_t col = size_t(std::find(head.begin(), head.end(), "verdict") - head.begin());
+  ASSERT_LT(col, head.size());
+  auto verdict_of = [&](long i) {
+    const std::string j = run_sweep_point(plan, i, false, 0.0, nullptr);
+    const std::string row = j.substr(j.find('\t', 2) + 1);
+    std::vector<std::string> f(1);
+    for (char ch : row) {
+      if (ch == ',') f.emplace_back();
+      else f.back() += ch;
+    }
+    return f.at(col);
+  };
+  EXPECT_EQ(verdict_of(0), "no_separation");
+  EXPECT_EQ(verdict_of(1).rfind("nose_float", 0), 0u) << verdict_of(1);
+}
+
+TEST(Verdict, JumpBySimulationNamesItsPhenomenon) {
+  // The rigid follower on the harmonic lobe, bisected by simulation: its phenomenon is the
+  // nose float, and the bracket contains the closed form.
+  Scene s = parse_scene(R"(
+[cam]
+profile = "law"
+law = "dwell 100; harmonic 80 0.008; harmonic 80 -0.008; dwell 100"
+follower_face = "point"
+speed_rev_s = 20
+[follower]
+kind = "rigid"
+mass = 0.1
+[spring]
+stiffness = 35000.0
+precompression = 0.00714285714285714
+[contact]
+model = "event"
+[run]
+t_end = 0.02
+)",
+                        "jump.toml");
+  const JumpResult cf = jump_speed(s);
+  JumpOptions o;
+  o.force_simulation = true;
+  o.rel_tol = 1e-3;
+  const JumpResult r = jump_speed(s, o);
+  EXPECT_EQ(r.method, "simulation");
+  EXPECT_LE(r.lo_rev_s, cf.jump_speed_rev_s * (1 + 1e-6));
+  EXPECT_GE(r.hi_rev_s, cf.jump_speed_rev_s * (1 - 1e-6));
+  EXPECT_EQ(r.phenomenon, "nose_float") << r.phenomenon_text;
+  EXPECT_NE(jump_speed_text(r).find(", bracket ["), std::string::npos);
 }
 
 TEST(Verdict, JumpSpeedTextHasOnlyTheBracketsDigits) {
