@@ -23,6 +23,7 @@
 #include "camdyn/cam.hpp"
 #include "camdyn/designer.hpp"
 #include "camdyn/simulator.hpp"
+#include "network_run_support.hpp"
 #include "verdict.hpp"
 
 namespace camdyn {
@@ -52,31 +53,28 @@ output_dt = 1e-5
   s.follower.kind = FollowerKind::Network;
   s.cam.speed_rev_s = speed;
   s.run.t_end = 1.0 / speed;
-  NodeSpec v;
-  v.name = "valve";
-  v.mass = m;
-  s.network.nodes = {v};
-  ElementSpec sp;
-  sp.name = "valve_spring";
-  sp.kind = ElementKind::Spring;
-  sp.nodes = {"valve", "ground"};
-  sp.stiffness = k;
-  sp.preload = F0;
-  s.network.elements = {sp};
-  ContactPointSpec cam;
-  cam.name = "cam";
-  cam.kind = ContactPointKind::Cam;
-  cam.nodes = {"valve"};
-  cam.clearance = clearance;
-  cam.restitution = e_cam;
-  ContactPointSpec seat;
-  seat.name = "seat";
-  seat.kind = ContactPointKind::Stop;
-  seat.nodes = {"valve"};
-  seat.side = StopSide::Below;
-  seat.restitution = e_seat;
-  s.network.contacts = {cam, seat};
+  s.network = camdyn_test::one_node_valve_network(m, k, F0, clearance);
+  s.network.contacts[0].restitution = e_cam;
+  s.network.contacts[1].restitution = e_seat;
   return s;
+}
+
+// The same lobe on a rigid follower: m 0.1 kg, k 35 kN/m, preload k·δ₀ = 250 N, 20 rev/s.
+Scene rigid_harmonic() {
+  return parse_scene(R"(
+[cam]
+profile = "law"
+law = "dwell 100; harmonic 80 0.008; harmonic 80 -0.008; dwell 100"
+follower_face = "point"
+speed_rev_s = 20
+[follower]
+kind = "rigid"
+mass = 0.1
+[spring]
+stiffness = 35000.0
+precompression = 0.00714285714285714
+)",
+                     "jump.toml");
 }
 
 const VerdictItem* find(const Summary& s, const std::string& kind) {
@@ -225,24 +223,9 @@ TEST(Verdict, SweepHasAVerdictColumnPerSpeed) {
 TEST(Verdict, JumpBySimulationNamesItsPhenomenon) {
   // The rigid follower on the harmonic lobe, bisected by simulation: its phenomenon is the
   // nose float, and the bracket contains the closed form.
-  Scene s = parse_scene(R"(
-[cam]
-profile = "law"
-law = "dwell 100; harmonic 80 0.008; harmonic 80 -0.008; dwell 100"
-follower_face = "point"
-speed_rev_s = 20
-[follower]
-kind = "rigid"
-mass = 0.1
-[spring]
-stiffness = 35000.0
-precompression = 0.00714285714285714
-[contact]
-model = "event"
-[run]
-t_end = 0.02
-)",
-                        "jump.toml");
+  Scene s = rigid_harmonic();
+  s.contact.model = ContactModel::Event;
+  s.run.t_end = 0.02;
   const JumpResult cf = jump_speed(s);
   JumpOptions o;
   o.force_simulation = true;
@@ -269,20 +252,7 @@ TEST(Verdict, JumpSpeedTextHasOnlyTheBracketsDigits) {
 TEST(Verdict, ClosedFormJumpIsANoseFloatOnTheHarmonicLobe) {
   // A rigid follower on the harmonic lobe: F_req = m X″ω² + F0 + kX is least at the peak
   // (180°) when mω²π²/β² > k, so the closed form's angle is 180° — on the nose.
-  Scene s = parse_scene(R"(
-[cam]
-profile = "law"
-law = "dwell 100; harmonic 80 0.008; harmonic 80 -0.008; dwell 100"
-follower_face = "point"
-speed_rev_s = 20
-[follower]
-kind = "rigid"
-mass = 0.1
-[spring]
-stiffness = 35000.0
-precompression = 0.00714285714285714
-)",
-                        "jump.toml");
+  Scene s = rigid_harmonic();
   const JumpResult r = jump_speed(s);
   EXPECT_NEAR(r.theta_deg, 180.0, 0.01);
   EXPECT_EQ(r.phenomenon, "nose_float");
