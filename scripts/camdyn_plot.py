@@ -2,7 +2,7 @@
 """Figures of a camdyn output directory (numpy + matplotlib, no display needed).
 
     camdyn_plot.py run DIR [--zoom T0 T1]
-        DIR/history.csv -> DIR/displacement.png       u_c(t) and the cam X_C = u_c + gap
+        DIR/history.csv -> DIR/displacement.png       u_c(t) and the cam X_C = u_c − gap
                            DIR/contact_force.png      contact force over the run
                            DIR/contact_force_zoom.png 0.02 s around the largest force
                                                       (or the window T0..T1)
@@ -108,6 +108,12 @@ def cam_info(d):
 # ---- run -----------------------------------------------------------------------------
 
 
+def cam_of_history(c):
+    """The cam's contact point from a history: gap = u_c − X_C (docs/interface.md), so
+    X_C = u_c − gap (networks: u_c and X_C measured from the base circle, X_C the lift)."""
+    return c["u_c"] - c["gap"]
+
+
 def plot_run(d, zoom=None):
     path = os.path.join(d, "history.csv")
     _, c = read_csv(path)
@@ -120,7 +126,7 @@ def plot_run(d, zoom=None):
     # Displacement of the contact face, and the cam's contact point.
     fig, ax = plt.subplots(figsize=(8, 4.5))
     ax.plot(t, u, "-", lw=1.2, label="follower $u_c$")
-    ax.plot(t, u + gap, "--", lw=1.0, label="cam $X_C = u_c + $gap")
+    ax.plot(t, cam_of_history(c), "--", lw=1.0, label="cam $X_C = u_c - $gap")
     ax.set_xlabel("time t")
     ax.set_ylabel("displacement")
     ax.set_title(("Displacement of the contact face\n" + title).strip())
@@ -175,23 +181,33 @@ def network_names(c):
     return contacts, nodes
 
 
-def plot_network(d, c, title=""):
-    """DIR/network_motion.png: the cam lift (u_c − gap) and every node's displacement against
-    cam angle; DIR/network_forces.png: the force of every contact against cam angle, its
-    impacts (DIR/events.csv) marked."""
-    contacts, nodes = network_names(c)
-    deg = np.degrees(c["theta"])
-    fig, ax = plt.subplots(figsize=(8, 4.5))
-    ax.plot(deg, 1e3 * (c["u_c"] - c["gap"]), "k--", lw=1.0, label="cam lift")
-    for n in nodes:
-        ax.plot(deg, 1e3 * c["u_" + n], "-", lw=1.1, label=n)
-    ax.set_xlabel("cam angle [deg]")
-    ax.set_ylabel("displacement [mm]")
-    ax.set_title(("Lift and node displacements\n" + title).strip())
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize="small")
-    save(fig, os.path.join(d, "network_motion.png"))
+def cam_contact_clearances(d):
+    """[(name, clearance)] of the cam contacts of DIR/summary.json's scene ("options" →
+    "contacts", type "cam"), in the scene's order; [] if unknown."""
+    try:
+        with open(os.path.join(d, "summary.json"), "r", encoding="utf-8") as f:
+            s = json.load(f)
+        cs = s.get("options", {}).get("contacts", [])
+        return [(str(k.get("name", "")), float(k.get("clearance", 0.0) or 0.0))
+                for k in cs if k.get("type") == "cam"]
+    except (OSError, ValueError, AttributeError, TypeError):
+        return []
 
+
+def cam_curves(c, clearances):
+    """The cam's input to each cam contact's node, in the node's coordinates: the lift above
+    the base circle X_C − X_base (= u_c − gap of the history's first cam contact,
+    docs/interface.md) minus the contact's clearance, so that it lies on the node's curve
+    while the contact is closed and at −clearance on the base circle.
+    Returns [(label, array)]; without known clearances the bare lift."""
+    lift = cam_of_history(c)
+    if not clearances:
+        return [("cam lift $X_C - X_{base}$", lift)]
+    return [("cam '%s': lift − clearance %.4g mm" % (n, 1e3 * g), lift - g) for n, g in clearances]
+
+
+def read_impacts(d):
+    """{contact: [t of each impact]} from DIR/events.csv ({} if absent)."""
     impacts = {}
     ev = os.path.join(d, "events.csv")
     if os.path.isfile(ev):
@@ -200,6 +216,32 @@ def plot_network(d, c, title=""):
             for e in csv.DictReader(f):
                 if e.get("kind") == "impact" and e.get("contact"):
                     impacts.setdefault(e["contact"], []).append(float(e["t"]))
+    return impacts
+
+
+def plot_network(d, c, title=""):
+    """DIR/network_motion.png: the cam's input (lift − clearance, per cam contact) and every
+    node's displacement against cam angle, impacts marked; DIR/network_forces.png: the force
+    of every contact against cam angle, its impacts (DIR/events.csv) marked."""
+    contacts, nodes = network_names(c)
+    deg = np.degrees(c["theta"])
+    impacts = read_impacts(d)
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for label, curve in cam_curves(c, cam_contact_clearances(d)):
+        ax.plot(deg, 1e3 * curve, "k--", lw=1.0, label=label)
+    for n in nodes:
+        ax.plot(deg, 1e3 * c["u_" + n], "-", lw=1.1, label=n)
+    ts = sorted(t for v in impacts.values() for t in v)
+    if ts:
+        ax.plot(np.degrees(np.interp(ts, c["t"], c["theta"])), np.zeros(len(ts)), "rv", ms=5,
+                label="impacts")
+    ax.set_xlabel("cam angle [deg]")
+    ax.set_ylabel("displacement [mm]")
+    ax.set_title(("Lift and node displacements\n" + title).strip())
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize="small")
+    save(fig, os.path.join(d, "network_motion.png"))
+
     fig, axs = plt.subplots(len(contacts), 1, figsize=(8, 2.2 + 1.8 * len(contacts)), sharex=True,
                             squeeze=False)
     for ax, name in zip(axs[:, 0], contacts):

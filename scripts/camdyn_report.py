@@ -165,7 +165,9 @@ def verdict_html(v):
         return head + ("<table>%s</table>" % rows if rows else "")
     if isinstance(v, list):
         return "<p class='verdict'><b>Verdict:</b></p><ul>%s</ul>" % "".join(
-            "<li>%s</li>" % html.escape(x if isinstance(x, str) else json.dumps(x)) for x in v)
+            "<li>%s</li>" % html.escape(x if isinstance(x, str) else
+                                        str(x["text"]) if isinstance(x, dict) and "text" in x else json.dumps(x))
+            for x in v)
     return "<p class='verdict'><b>Verdict:</b> %s</p>" % html.escape(json.dumps(v))
 
 

@@ -3,12 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "camdyn/cam.hpp"
 #include "camdyn/follower_system.hpp"
 #include "camdyn/output.hpp"
 #include "designer_stats.hpp"
+#include "verdict.hpp"
 
 namespace camdyn {
 
@@ -114,7 +116,7 @@ JumpResult jump_closed_form(const Scene& s, const JumpOptions& o, double dir) {
 }
 
 bool separates(const Scene& base, double speed, double* theta_deg,
-               const std::shared_ptr<const FollowerSystem>& follower) {
+               const std::shared_ptr<const FollowerSystem>& follower, std::vector<VerdictItem>* verdict) {
   Scene s = base;
   s.cam.speed_rev_s = speed;
   // run.output_dt is kept: Lee lands its steps on output times, so it shapes the run.
@@ -123,6 +125,7 @@ bool separates(const Scene& base, double speed, double* theta_deg,
     throw SceneError(base.source, 0, "cam.speed_rev_s", num(speed),
                      "jump speed: the simulation failed there (" + r.message + ")");
   if (theta_deg) *theta_deg = r.first_separation_theta_deg;
+  if (verdict) *verdict = r.verdict;
   // A network separates every cycle somewhere (the valve leaves its seat, a lash opens):
   // it jumps when its cam contact separates on the lift (the designer's first separation).
   // So does a user follower (issue 28): its first cam contact's first separation.
@@ -176,8 +179,21 @@ Scene jump_scene(const Scene& scene_in, const JumpOptions& o) {
 JumpResult jump_speed(const Scene& scene_in, const JumpOptions& o) {
   const Scene scene = jump_scene(scene_in, o);
   const double dir = scene.cam.speed_rev_s < 0 ? -1.0 : 1.0;
-  if (scene.follower.kind == FollowerKind::Rigid && !o.force_simulation)
-    return jump_closed_form(scene, o, dir);
+  if (scene.follower.kind == FollowerKind::Rigid && !o.force_simulation) {
+    JumpResult r = jump_closed_form(scene, o, dir);
+    if (std::isfinite(r.theta_deg)) {
+      const Cam cam(scene.cam);
+      const detail::CamRegions reg(cam, scene.cam);
+      r.phenomenon = detail::region_kind(reg.at(r.theta_deg * (kTwoPi / 360.0)));
+      char b[64];
+      std::snprintf(b, sizeof b, "%.1f", r.theta_deg);
+      r.phenomenon_text = std::string(detail::kind_words(r.phenomenon)) + " at " + b + " deg";
+    } else {
+      r.phenomenon = "no_separation";
+      r.phenomenon_text = detail::kind_words(r.phenomenon);
+    }
+    return r;
+  }
 
   // Simulation: bisection on "the run separates", bracket from the rigid-body estimate.
   Scene rigid = scene;
@@ -210,21 +226,22 @@ JumpResult jump_by_simulation(const Scene& scene, const JumpOptions& o, double d
   double hi = o.hi_rev_s > 0 ? o.hi_rev_s : 1.5 * est;
   JumpResult res;
   res.method = "simulation";
-  auto test = [&](double sp, double* th) {
-    const bool sep = separates(scene, dir * sp, th, follower);
+  std::vector<VerdictItem> v_hi, v_dummy, v_mid;
+  auto test = [&](double sp, double* th, std::vector<VerdictItem>* v) {
+    const bool sep = separates(scene, dir * sp, th, follower, v);
     ++res.simulations;
     if (o.log) o.log(dir * sp, sep);
     return sep;
   };
   double th_hi = NAN, th_dummy = NAN;
-  for (int i = 0; test(lo, &th_dummy); ++i) {
+  for (int i = 0; test(lo, &th_dummy, &v_dummy); ++i) {
     if (o.lo_rev_s > 0 || i >= 12)
       throw SceneError(scene.source, 0, "cam.speed_rev_s", num(dir * lo),
                        "jump speed: the follower already separates at the lower bracket speed");
     hi = lo;
     lo *= 0.5;
   }
-  for (int i = 0; !test(hi, &th_hi); ++i) {
+  for (int i = 0; !test(hi, &th_hi, &v_hi); ++i) {
     if (o.hi_rev_s > 0 || i >= 12)
       throw SceneError(scene.source, 0, "cam.speed_rev_s", num(dir * hi),
                        "jump speed: no separation up to the upper bracket speed within run.t_end");
@@ -234,9 +251,10 @@ JumpResult jump_by_simulation(const Scene& scene, const JumpOptions& o, double d
   while (hi - lo > o.rel_tol * hi) {
     const double mid = 0.5 * (lo + hi);
     double th = NAN;
-    if (test(mid, &th)) {
+    if (test(mid, &th, &v_mid)) {
       hi = mid;
       th_hi = th;
+      v_hi = v_mid;
     } else {
       lo = mid;
     }
@@ -245,6 +263,10 @@ JumpResult jump_by_simulation(const Scene& scene, const JumpOptions& o, double d
   res.hi_rev_s = dir * hi;
   res.jump_speed_rev_s = dir * 0.5 * (lo + hi);
   res.theta_deg = th_hi;
+  res.phenomenon_text = detail::verdict_one_line(v_hi);
+  for (const VerdictItem& v : v_hi)
+    if (res.phenomenon.empty() && v.kind != "seat_bounce") res.phenomenon = v.kind;
+  if (res.phenomenon.empty() && !v_hi.empty()) res.phenomenon = v_hi.front().kind;
   return res;
 }
 

@@ -17,6 +17,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include "verdict.hpp"
+
 namespace camdyn {
 
 namespace fs = std::filesystem;
@@ -737,6 +739,10 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
     }
     t += "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
     o.raw("contacts", t);
+  }
+  if (!s.verdict.empty()) {
+    o.raw("verdict", detail::verdict_json(s.verdict, o.child_indent()));
+    o.str("verdict_text", s.verdict_text);
   }
   o.raw("model", model_json(s.model, o.child_indent()));
   o.integer("events", static_cast<long long>(s.events.size()));

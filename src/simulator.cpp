@@ -14,6 +14,7 @@
 
 #include "contact/network_run.hpp"
 #include "designer_columns.hpp"
+#include "verdict.hpp"
 #include "initial_check.hpp"
 #include "mechanism.hpp"
 #include "run_context.hpp"
@@ -218,6 +219,8 @@ Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
     Summary sum = method->run();
     detail::describe_tolerance(scene_, sum);
     sum.warnings = warnings_;
+    sum.verdict = detail::make_verdict(scene_, mech_.get(), sum.events);
+    sum.verdict_text = detail::verdict_one_line(sum.verdict);
     return sum;
   }
   auto method = detail::make_contact_method(scene_, model_, observer, stop);
@@ -225,6 +228,8 @@ Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
   Summary sum = method->run();
   detail::describe_tolerance(scene_, sum);
   sum.warnings = warnings_;
+  sum.verdict = detail::make_verdict(scene_, nullptr, sum.events);
+  sum.verdict_text = detail::verdict_one_line(sum.verdict);
   return sum;
 }
 
@@ -251,6 +256,7 @@ std::string Summary::BriefReport() const {
     << " steps (" << rejected_steps << " rejected), " << rhs_evals << " rhs evals, "
     << separations << " separations, " << impacts << " impacts, max force "
     << fmt(max_contact_force) << ", cpu " << fmt(cpu_seconds) << " s";
+  if (!verdict_text.empty()) o << " — " << verdict_text;
   if (!finished) o << " — " << message << " [" << to_string(termination) << "]";
   return o.str();
 }
@@ -306,6 +312,7 @@ std::string Summary::FullReport() const {
       << ang(c.first_impact_theta_deg) << "), " << c.separations << " separations (first at "
       << ang(c.first_separation_theta_deg) << ")\n";
   }
+  if (!verdict_text.empty()) o << "  verdict:            " << verdict_text << "\n";
   o << "  energy residual:    " << fmt(energy_residual) << "\n"
     << "  cpu / wall:         " << fmt(cpu_seconds) << " s / " << fmt(wall_seconds) << " s\n";
   return o.str();

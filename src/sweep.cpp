@@ -96,7 +96,7 @@ const std::vector<std::string>& sweep_result_columns() {
       "finished", "separations", "impacts", "max_contact_force", "min_contact_force",
       "min_force_theta_deg", "first_separation_theta_deg", "first_impact_theta_deg",
       "max_impact_velocity", "max_impact_theta_deg", "max_gap", "min_gap", "period",
-      "period_kind", "t_end", "steps", "rejected_steps", "cpu_seconds", "message"};
+      "period_kind", "t_end", "steps", "rejected_steps", "cpu_seconds", "verdict", "message"};
   return cols;
 }
 
@@ -292,6 +292,10 @@ std::string run_sweep_point(const SweepPlan& plan, long index, bool timing, doub
   add(std::to_string(s.steps));
   add(std::to_string(s.rejected_steps));
   add(num(cpu));
+  // the verdict's kinds in order of first occurrence, '+'-joined (docs/contacts.md)
+  std::string kinds;
+  for (const VerdictItem& v : s.verdict) kinds += (kinds.empty() ? "" : "+") + v.kind;
+  add(kinds);
   row += csv_quote(s.message);
   std::string out = "R\t" + I + "\t" + row + "\n";
   for (const auto& p : s.poincare)

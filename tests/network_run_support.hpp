@@ -13,6 +13,38 @@
 
 namespace camdyn_test {
 
+/// The simplest direct-acting valve train (issue 28): one node "valve" of `mass` on a
+/// "valve_spring" to ground (`stiffness`, `preload`), a cam contact "cam" above it with
+/// `clearance` and a seat "seat" (stop, below) — two contacts on one node.
+inline camdyn::NetworkSpec one_node_valve_network(double mass, double stiffness, double preload,
+                                                  double clearance) {
+  using namespace camdyn;
+  NetworkSpec n;
+  NodeSpec v;
+  v.name = "valve";
+  v.mass = mass;
+  n.nodes = {v};
+  ElementSpec sp;
+  sp.name = "valve_spring";
+  sp.kind = ElementKind::Spring;
+  sp.nodes = {"valve", "ground"};
+  sp.stiffness = stiffness;
+  sp.preload = preload;
+  n.elements = {sp};
+  ContactPointSpec cam;
+  cam.name = "cam";
+  cam.kind = ContactPointKind::Cam;
+  cam.nodes = {"valve"};
+  cam.clearance = clearance;
+  ContactPointSpec seat;
+  seat.name = "seat";
+  seat.kind = ContactPointKind::Stop;
+  seat.nodes = {"valve"};
+  seat.side = StopSide::Below;
+  n.contacts = {cam, seat};
+  return n;
+}
+
 struct NetRun {
   camdyn::Summary sum;
   std::vector<camdyn::HistoryRow> rows;

@@ -23,6 +23,7 @@
 #include "camdyn/follower_system.hpp"
 #include "camdyn/simulator.hpp"
 #include "contact/active_set.hpp"
+#include "network_run_support.hpp"
 
 namespace camdyn {
 namespace {
@@ -34,29 +35,7 @@ Scene one_node_valve(double clearance, ContactModel model, Integrator integ) {
   s.contact.model = model;
   s.solver.integrator = integ;
   s.run.output_dt = 1e-5;
-  s.network = NetworkSpec{};
-  NodeSpec v;
-  v.name = "valve";
-  v.mass = 0.1;
-  s.network.nodes = {v};
-  ElementSpec sp;
-  sp.name = "valve_spring";
-  sp.kind = ElementKind::Spring;
-  sp.nodes = {"valve", "ground"};
-  sp.stiffness = 35000.0;
-  sp.preload = 250.0;
-  s.network.elements = {sp};
-  ContactPointSpec cam;
-  cam.name = "cam";
-  cam.kind = ContactPointKind::Cam;
-  cam.nodes = {"valve"};
-  cam.clearance = clearance;
-  ContactPointSpec seat;
-  seat.name = "seat";
-  seat.kind = ContactPointKind::Stop;
-  seat.nodes = {"valve"};
-  seat.side = StopSide::Below;
-  s.network.contacts = {cam, seat};
+  s.network = camdyn_test::one_node_valve_network(0.1, 35000.0, 250.0, clearance);
   return s;
 }
 

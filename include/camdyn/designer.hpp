@@ -65,7 +65,22 @@ struct JumpResult {
   /// Simulation: final bracket [rev/s] (lo keeps contact, hi separates) and runs made.
   double lo_rev_s = 0, hi_rev_s = 0;
   int simulations = 0;
+  /// What the follower does at the jump speed, as a verdict kind (VerdictItem::kind;
+  /// docs/contacts.md "The verdict"): closed form — the cam region of theta_deg
+  /// ("opening_liftoff", "nose_float", "closing_bounce"); simulation — the first phenomenon
+  /// of the run at the upper bracket speed other than a seat bounce (else its first item).
+  std::string phenomenon;
+  /// Simulation: the verdict of the run at the upper bracket speed (Summary::verdict_text);
+  /// closed form: the phenomenon in words with its angle.
+  std::string phenomenon_text;
 };
+
+/// The jump speed in words with only the digits its bracket supports: simulation —
+/// "24.99 rev/s, bracket [24.987, 24.990] rev/s, width 0.0025 rev/s" (the midpoint rounded
+/// to the decimal place of the width, the ends rounded outwards one place further, the
+/// width to 2 digits); closed form — 10 significant digits and "(closed form)"; "+inf"
+/// when it never separates.
+std::string jump_speed_text(const JumpResult& r);
 
 /// The jump speed of `scene` at constant cam speed: closed form for a rigid follower,
 /// else bisection over cam.speed_rev_s on whether a run to run.t_end separates.

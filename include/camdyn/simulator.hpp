@@ -131,6 +131,20 @@ struct ContactResult {
   double max_side_load_theta_deg = NAN;
 };
 
+/// One phenomenon of the verdict (issue 28; docs/contacts.md "The verdict"), the first
+/// occurrence of its kind on its contact. Kinds: "opening_liftoff" (lift-off on the
+/// opening flank), "nose_float" (float on the nose), "closing_bounce" (bounce on the
+/// closing flank), "seat_bounce" (a stop re-impacts after its closing impact),
+/// "no_separation" (none of these: the only item then, contact "", angles NaN).
+struct VerdictItem {
+  std::string kind;
+  std::string contact;              ///< the contact's name ("cam" for a single follower)
+  double theta_deg = NAN;           ///< cam angle of the first occurrence [deg, 0..360)
+  double speed_rev_s = NAN;         ///< cam speed there [rev/s] (signed, as cam.speed_rev_s)
+  long count = 0;                   ///< occurrences in the run
+  std::string text;                 ///< in words, e.g. "float on the nose: contact 'cam' at 159.2 deg, 70 rev/s"
+};
+
 struct Summary {
   std::string scene;
   bool finished = false;  ///< termination == Termination::Finished
@@ -210,6 +224,11 @@ struct Summary {
   /// Per contact (network and user followers; empty otherwise), in the contacts' order.
   /// The top-level designer fields above follow the primary (first cam) contact only.
   std::vector<ContactResult> contacts;
+  /// The verdict in words (every follower kind): what the follower does, per contact, in
+  /// the order of first occurrence; one "no_separation" item when nothing happens.
+  std::vector<VerdictItem> verdict;
+  /// The verdict's texts joined by "; " (summary.json "verdict_text").
+  std::string verdict_text;
 
   std::string BriefReport() const;
   std::string FullReport() const;

@@ -417,10 +417,14 @@ int cmd_jump(const JumpOpts& o) {
   std::string j = "{\n  \"scene\": " + json_string(sc.title) +
                   ",\n  \"jump_speed_rev_s\": " + json_number(r.jump_speed_rev_s) +
                   ",\n  \"method\": " + json_string(r.method) +
-                  ",\n  \"theta_deg\": " + json_number(r.theta_deg);
+                  ",\n  \"theta_deg\": " + json_number(r.theta_deg) +
+                  ",\n  \"phenomenon\": " + json_string(r.phenomenon) +
+                  ",\n  \"phenomenon_text\": " + json_string(r.phenomenon_text) +
+                  ",\n  \"jump_speed_text\": " + json_string(jump_speed_text(r));
   if (r.method == "simulation") {
     j += ",\n  \"lo_rev_s\": " + json_number(r.lo_rev_s) + ",\n  \"hi_rev_s\": " +
-         json_number(r.hi_rev_s) + ",\n  \"rel_tol\": " + json_number(o.rel_tol) +
+         json_number(r.hi_rev_s) + ",\n  \"bracket_width_rev_s\": " +
+         json_number(std::abs(r.hi_rev_s - r.lo_rev_s)) + ",\n  \"rel_tol\": " + json_number(o.rel_tol) +
          ",\n  \"simulations\": " + std::to_string(r.simulations) + ",\n  \"t_end\": " +
          json_number(sc.run.t_end);
   }
@@ -435,9 +439,10 @@ int cmd_jump(const JumpOpts& o) {
   if (!o.quiet) {
     std::printf("%s: %s, margin reaches zero at cam angle %s deg", sc.title.c_str(),
                 r.method.c_str(), fmt_g(r.theta_deg, 10).c_str());
-    if (r.method == "simulation")
-      std::printf(" (bracket %.10g .. %.10g rev/s, %d runs to t = %g)", r.lo_rev_s, r.hi_rev_s,
-                  r.simulations, sc.run.t_end);
+    if (r.method == "simulation") std::printf(" (%d runs to t = %g)", r.simulations, sc.run.t_end);
+    std::printf("\njump speed: %s\nphenomenon: %s", jump_speed_text(r).c_str(), r.phenomenon.c_str());
+    if (r.method == "simulation") std::printf(" (the run at the upper bracket end: %s)", r.phenomenon_text.c_str());
+    else std::printf(" (%s)", r.phenomenon_text.c_str());
     std::printf("\noutput: %s\n", path.c_str());
   }
   std::printf("jump_speed_rev_s = %.17g\n", r.jump_speed_rev_s);

@@ -247,3 +247,19 @@ def test_whole_network_rules_raise_scene_error():
         camdyn.run(sc)
     with pytest.raises(TypeError):
         camdyn.network_scene(nodes=["a"])
+
+
+def test_verdict_seat_bounce_in_python():
+    """The verdict (issue 28) in Python's summary: the valve above released onto its seat
+    (restitution E, nothing lifts it again) re-impacts after its first, closing, impact
+    every time: one seat_bounce item counting every impact but the first."""
+    r = camdyn.run(valve_on_seat())
+    assert r.finished, r.summary["message"]
+    impacts = [e for e in r.events if e["kind"] == "impact"]
+    assert len(impacts) >= 3
+    v = r.summary["verdict"]
+    assert [x["kind"] for x in v] == ["seat_bounce"]
+    assert v[0]["contact"] == "seat"
+    assert v[0]["count"] == len(impacts) - 1
+    assert v[0]["speed_rev_s"] == 0.0
+    assert r.summary["verdict_text"].startswith("seat bounce: contact 'seat' at ")
