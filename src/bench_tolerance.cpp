@@ -88,7 +88,8 @@ class Sweep {
   }
 
   /// The reference of `model` on the scene (made once): event-driven (Lee's and the event
-  /// method's), holonomic, or penalty, at rtol 1e-12, atol 1e-14: arkode-erk on a rigid
+  /// method's), holonomic, or penalty, at options' reference_rtol (1e-12) and atol 1e-2 of
+  /// it: arkode-erk on a rigid
   /// follower (contact phases closed form), cvode-bdf otherwise (the bar is stiff).
   Reference& reference(const std::string& label, const Scene& base, ContactModel model) {
     const ContactModel key = model == ContactModel::Lee ? ContactModel::Event : model;
@@ -98,10 +99,10 @@ class Sweep {
     Scene ref = base;
     ref.contact.model = key;
     ref.solver.integrator = rigid ? Integrator::ArkodeErk : Integrator::CvodeBdf;
-    ref.solver.rtol = 1e-12;
-    ref.solver.atol = 1e-14;
+    ref.solver.rtol = o_.reference_rtol;
+    ref.solver.atol = 1e-2 * o_.reference_rtol;
     slot.what = std::string(to_string(key)) + " " + to_string(ref.solver.integrator) +
-                " rtol 1e-12 atol 1e-14";
+                " rtol " + g3(ref.solver.rtol) + " atol " + g3(ref.solver.atol);
     // On the finest grid (1e-4); the scene's common grid is a multiple of it, chosen by
     // the first reference as `camdyn bench` does (1e-2 rigid, 1e-3 if it separates, 1e-4
     // elastic or network).
@@ -115,8 +116,8 @@ class Sweep {
     row.scene = label;
     row.method = std::string("reference ") + to_string(key);
     row.engine = to_string(ref.solver.integrator);
-    row.rtol = 1e-12;
-    row.atol = 1e-14;
+    row.rtol = ref.solver.rtol;
+    row.atol = ref.solver.atol;
     row.cpu_seconds = rr.sum.cpu_seconds;
     row.steps = rr.sum.steps;
     row.status = "reference";
@@ -130,8 +131,8 @@ class Sweep {
     // Its own error: the same run one decade looser, compared with it.
     Scene chk = ref;
     chk.run.output_dt = 1e-4;
-    chk.solver.rtol = 1e-11;
-    chk.solver.atol = 1e-13;
+    chk.solver.rtol = 10 * ref.solver.rtol;
+    chk.solver.atol = 10 * ref.solver.atol;
     Run rc = run_once(chk, 0.0, true);
     double umax = 0;
     for (double u : slot.si.ref.u) umax = std::max(umax, std::fabs(u));
@@ -146,7 +147,7 @@ class Sweep {
         slot.floor_f = std::max(slot.floor_f, c.err_force);
       }
     }
-    row.message = "output grid " + g3(dt) + "; floors (its distance to rtol 1e-11, at least 4 ulps): err_u " +
+    row.message = "output grid " + g3(dt) + "; floors (its distance to rtol " + g3(chk.solver.rtol) + ", at least 4 ulps): err_u " +
                   g3(slot.floor_u) + ", err_force " + g3(slot.floor_f);
     rows_.push_back(row);
     log("  reference " + slot.what + ": cpu " + g3(rr.sum.cpu_seconds) + " s; " + row.message);
@@ -332,6 +333,8 @@ ToleranceSweepResult run_tolerance_sweep(const ToleranceSweepOptions& options) {
     for (double r : *grid)
       if (!(r >= 1e-14 && r <= 0.1))
         throw SceneError("bench", 0, "rtol", g3(r), "must be in [1e-14, 0.1]");
+  if (!(o.reference_rtol >= 1e-14 && o.reference_rtol <= 1e-6))
+    throw SceneError("bench", 0, "reference_rtol", g3(o.reference_rtol), "must be in [1e-14, 1e-6]");
   if (o.rtols.empty()) throw SceneError("bench", 0, "rtols", "(none)", "must not be empty");
   pick(method_names(), o.methods, "method");
   pick(engine_names(), o.engines, "engine");
@@ -360,10 +363,10 @@ ToleranceSweepResult run_tolerance_sweep(const ToleranceSweepOptions& options) {
   md << "# camdyn tolerance sweep\n\n"
      << "tol_u = (scene's tol_u/rtol) · rtol, atol = min(scene atol, 1e-3 rtol); CPU budget "
      << g3(o.time_budget_seconds) << " s per run (timed once). Errors against the reference "
-        "of the same contact model (rows `reference …`: event-driven for lee and event) on "
-        "the scene's output grid. A series is monotone when no finished run's error exceeds "
+        "of the same contact model (rows `reference …`: event-driven for lee and event; rtol "
+     << g3(o.reference_rtol) << ") on the scene's output grid. A series is monotone when no finished run's error exceeds "
         "2 × max(the previous finished run's, the floor); the floor is the reference's own "
-        "error (its distance to the same run at rtol 1e-11), at least 4 ulps.\n\n";
+        "error (its distance to the same run at 10 × its rtol and atol), at least 4 ulps.\n\n";
   for (size_t i = 0; i < o.labels.size(); ++i) {
     md << "## " << o.labels[i] << "\n\n| method | engine | quantity | floor | levels off at | "
        << "from rtol | finished | verdict |\n|---|---|---|---|---|---|---|---|\n";

@@ -57,6 +57,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 namespace camdyn {
@@ -65,6 +66,13 @@ namespace {
 
 /// IDA steps per IDASolve call (IdaHeldContact::advance returns short of tout after them).
 constexpr long kStepsPerCall = 20000;
+
+/// IDA's messages as its default handler prints them, except the end of a chunk of
+/// kStepsPerCall steps (not an error here).
+void ida_errors(int code, const char* module, const char* function, char* msg, void*) {
+  if (code == IDA_TOO_MUCH_WORK) return;
+  std::fprintf(stderr, "\n[%s ERROR]  %s\n  %s\n\n", module, function, msg);
+}
 
 struct IdaDel {
   void operator()(void* m) const { IDAFree(&m); }
@@ -289,6 +297,7 @@ void IdaHeldContact::init(double t0, const Eigen::VectorXd& qv, double tstop) {
   // run loop checks the caller's stop flag, its CPU budget and run.max_steps between chunks
   // (the tolerance sweep found case A at rtol 1e-12 stepping for minutes inside one call).
   check_flag(IDASetMaxNumSteps(mem, kStepsPerCall), "IDASetMaxNumSteps");
+  check_flag(IDASetErrHandlerFn(mem, &ida_errors, nullptr), "IDASetErrHandlerFn");
   check_flag(IDASetMaxOrd(mem, m.rigid() ? 5 : 2), "IDASetMaxOrd");
   check_flag(IDASetStopTime(mem, tstop), "IDASetStopTime");
   if (d.spec.max_step > 0) check_flag(IDASetMaxStep(mem, d.spec.max_step), "IDASetMaxStep");

@@ -32,6 +32,10 @@ struct ToleranceSweepOptions {
   /// "arkode-dirk", "cvode-bdf", "ida"); empty: all. A method × engine the scene does not
   /// allow (e.g. ida without holonomic) is recorded once as "unsupported" with the reason.
   std::vector<std::string> methods, engines;
+  /// rtol of the references (atol = 1e-2 × it); their own error is measured against the
+  /// same run at 10 × both. 1e-12 by default; 1e-10 makes elastic and network scenes
+  /// affordable (the floor the sweep names rises accordingly).
+  double reference_rtol = 1e-12;
   /// CPU budget of one run [s]; a run over it is stopped and the tighter runs of its series
   /// are recorded as skipped. References have no budget.
   double time_budget_seconds = 20.0;

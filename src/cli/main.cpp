@@ -358,6 +358,7 @@ struct BenchOpts {
   bool no_plot = false;
   bool tolerance_sweep = false;
   std::vector<double> rtols, heavy_rtols;
+  double reference_rtol = 1e-12;
   std::vector<std::string> methods, engines;
 };
 
@@ -834,6 +835,7 @@ int cmd_tolerance_sweep(const BenchOpts& o) {
   }
   if (!o.rtols.empty()) to.rtols = o.rtols;
   to.heavy_rtols = o.heavy_rtols;
+  to.reference_rtol = o.reference_rtol;
   to.methods = o.methods;
   to.engines = o.engines;
   to.time_budget_seconds = o.budget;
@@ -1091,6 +1093,10 @@ int real_main(int argc, char** argv) {
                     "Tolerance sweep: the rtol grid of elastic and network scenes (default: --rtols)")
       ->delimiter(',')
       ->type_name("R,R,...");
+  bench->add_option("--reference-rtol", bo.reference_rtol,
+                    "Tolerance sweep: rtol of the references (atol 1e-2 of it)")
+      ->type_name("R")
+      ->capture_default_str();
   bench->add_option("--methods", bo.methods, "Tolerance sweep: lee,event,holonomic,penalty (default all)")
       ->delimiter(',')
       ->type_name("M,M,...");
