@@ -9,35 +9,21 @@ order (colour: method; marker: engine). Only finished runs with a positive error
 drawn; each line's loosest point is labelled with its rtol. Exit status: 0 ok, 2 bad
 input, 3 matplotlib missing.
 """
-import csv
 import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from camdyn_bench_plot import load_rows  # noqa: E402  (installed next to this script)
 
 ENGINE_MARK = {"arkode-erk": "o", "arkode-dirk": "s", "cvode-bdf": "^", "ida": "D"}
 METHOD_COLOUR = {"lee": "C0", "event": "C1", "holonomic": "C2", "penalty": "C3"}
 
 
 def main(argv):
-    args = [a for a in argv[1:] if not a.startswith("--")]
-    quiet = "--quiet" in argv
-    if len(args) != 1:
-        print(__doc__, file=sys.stderr)
-        return 2
-    d = args[0]
-    path = os.path.join(d, "tol_sweep.csv")
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("camdyn_tol_sweep_plot: matplotlib is not installed", file=sys.stderr)
-        return 3
-    try:
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
-    except OSError as e:
-        print(f"camdyn_tol_sweep_plot: cannot read {path}: {e}", file=sys.stderr)
-        return 2
+    loaded = load_rows(argv, "tol_sweep.csv", "camdyn_tol_sweep_plot", __doc__)
+    if isinstance(loaded, int):
+        return loaded
+    d, quiet, plt, rows = loaded
     scenes = []
     for r in rows:
         if r["scene"] not in scenes:
