@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <limits>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "camdyn/output.hpp"
@@ -72,9 +74,26 @@ struct Run {
   bool over_budget = false;
 };
 
+/// One run under a CPU budget (0: none). Besides the observer's checks (rows, progress), a
+/// watchdog thread polls the process CPU clock every 20 ms and raises the stop flag, which
+/// every engine's run loop reads after each step or chunk of steps (an IDA run stuck at
+/// t = 1.5e-16 reported neither rows nor progress).
 inline Run run_once(const Scene& sc, double budget, bool keep_rows) {
-  std::atomic<bool> stop{false};
+  std::atomic<bool> stop{false}, done{false}, watchdog_fired{false};
   GridObserver obs(budget, &stop, keep_rows);
+  std::thread watchdog;
+  if (budget > 0)
+    watchdog = std::thread([&] {
+      const std::clock_t c0 = std::clock();
+      while (!done.load()) {
+        if (double(std::clock() - c0) / CLOCKS_PER_SEC > budget) {
+          watchdog_fired.store(true);
+          stop.store(true);
+          return;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    });
   Run r;
   try {
     Simulator sim(sc);
@@ -83,9 +102,11 @@ inline Run run_once(const Scene& sc, double budget, bool keep_rows) {
     r.sum.finished = false;
     r.sum.message = std::string("error: ") + e.what();
   }
+  done.store(true);
+  if (watchdog.joinable()) watchdog.join();
   r.rows = std::move(obs.rows);
   r.events = std::move(obs.events);
-  r.over_budget = obs.over_budget;
+  r.over_budget = obs.over_budget || watchdog_fired.load();
   return r;
 }
 
