@@ -163,7 +163,9 @@ class Sweep {
     proto.engine = ename;
     // Does the scene allow this method on this engine at all (at a loose tolerance)?
     try {
-      validate(configure(base, model, eng, 1e-4, tol_ratio));
+      const Scene loose = configure(base, model, eng, 1e-4, tol_ratio);
+      validate(loose);
+      Simulator probe(loose);  // the checks made at the start (e.g. ida on a network)
     } catch (const SceneError& e) {
       ToleranceRow row = proto;
       row.status = "unsupported";
