@@ -17,27 +17,40 @@ import re
 import sys
 
 
-def main(argv):
+def load_rows(argv, csv_name, prog, doc):
+    """Parse `DIR [--quiet]`, import matplotlib (Agg) and read DIR/csv_name.
+
+    Returns (dir, quiet, pyplot, rows), or an exit status (2 bad input, 3 no matplotlib).
+    """
     args = [a for a in argv[1:] if not a.startswith("--")]
     quiet = "--quiet" in argv
     if len(args) != 1:
-        print(__doc__, file=sys.stderr)
+        print(doc, file=sys.stderr)
         return 2
     d = args[0]
-    path = os.path.join(d, "work_precision.csv")
+    path = os.path.join(d, csv_name)
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
-        print("camdyn_bench_plot: matplotlib is not installed", file=sys.stderr)
+        print(f"{prog}: matplotlib is not installed", file=sys.stderr)
         return 3
     try:
         with open(path, newline="") as f:
             rows = list(csv.DictReader(f))
     except OSError as e:
-        print(f"camdyn_bench_plot: cannot read {path}: {e}", file=sys.stderr)
+        print(f"{prog}: cannot read {path}: {e}", file=sys.stderr)
         return 2
+    return d, quiet, plt, rows
+
+
+def main(argv):
+    loaded = load_rows(argv, "work_precision.csv", "camdyn_bench_plot", __doc__)
+    if isinstance(loaded, int):
+        return loaded
+    d, quiet, plt, rows = loaded
+    import matplotlib  # imported (Agg) by load_rows
 
     def num(s):
         try:

@@ -57,11 +57,22 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 namespace camdyn {
 
 namespace {
+
+/// IDA steps per IDASolve call (IdaHeldContact::advance returns short of tout after them).
+constexpr long kStepsPerCall = 20000;
+
+/// IDA's messages as its default handler prints them, except the end of a chunk of
+/// kStepsPerCall steps (not an error here).
+void ida_errors(int code, const char* module, const char* function, char* msg, void*) {
+  if (code == IDA_TOO_MUCH_WORK) return;
+  std::fprintf(stderr, "\n[%s ERROR]  %s\n  %s\n\n", module, function, msg);
+}
 
 struct IdaDel {
   void operator()(void* m) const { IDAFree(&m); }
@@ -282,7 +293,11 @@ void IdaHeldContact::init(double t0, const Eigen::VectorXd& qv, double tstop) {
   check_flag(IDASVtolerances(mem, rtol, d.atol.get()), "IDASVtolerances");
   check_flag(IDASetId(mem, d.id.get()), "IDASetId");
   check_flag(IDASetSuppressAlg(mem, SUNTRUE), "IDASetSuppressAlg");
-  check_flag(IDASetMaxNumSteps(mem, 1000000000L), "IDASetMaxNumSteps");
+  // At most kStepsPerCall steps per IDASolve: advance() then returns short of tout, so the
+  // run loop checks the caller's stop flag, its CPU budget and run.max_steps between chunks
+  // (the tolerance sweep found case A at rtol 1e-12 stepping for minutes inside one call).
+  check_flag(IDASetMaxNumSteps(mem, kStepsPerCall), "IDASetMaxNumSteps");
+  check_flag(IDASetErrHandlerFn(mem, &ida_errors, nullptr), "IDASetErrHandlerFn");
   check_flag(IDASetMaxOrd(mem, m.rigid() ? 5 : 2), "IDASetMaxOrd");
   check_flag(IDASetStopTime(mem, tstop), "IDASetStopTime");
   if (d.spec.max_step > 0) check_flag(IDASetMaxStep(mem, d.spec.max_step), "IDASetMaxStep");
@@ -322,8 +337,9 @@ double IdaHeldContact::advance(double tout, bool one_step) {
   // step points to O(local error / h) but not through IDA's interpolating polynomial
   // (case A, rtol 1e-10: interpolated rows 2.0e-8 of the peak force off, step points 4.9e-9).
   check_flag(IDASetStopTime(d.mem.get(), tout), "IDASetStopTime");
-  const int flag = check_flag(IDASolve(d.mem.get(), tout, &tret, d.yy.get(), d.yp.get(), one_step ? IDA_ONE_STEP : IDA_NORMAL),
-                              "IDASolve");
+  int raw = IDASolve(d.mem.get(), tout, &tret, d.yy.get(), d.yp.get(), one_step ? IDA_ONE_STEP : IDA_NORMAL);
+  if (raw == IDA_TOO_MUCH_WORK) raw = IDA_SUCCESS;  // kStepsPerCall steps taken: tret < tout
+  const int flag = check_flag(raw, "IDASolve");
   hit_root_ = flag == IDA_ROOT_RETURN;
   const double* y = N_VGetArrayPointer(d.yy.get());
   qv_ = Eigen::Map<const Eigen::VectorXd>(y, 2 * d.n);

@@ -26,6 +26,7 @@
 #include <iostream>
 #include <new>
 #include <optional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,7 @@
 #include <unistd.h>
 
 #include "camdyn/bench.hpp"
+#include "camdyn/bench_tolerance.hpp"
 #include "camdyn/cam.hpp"
 #include "camdyn/designer.hpp"
 #include "camdyn/output.hpp"
@@ -354,6 +356,10 @@ struct BenchOpts {
   double output_dt = 0.0;
   bool quiet = false;
   bool no_plot = false;
+  bool tolerance_sweep = false;
+  std::vector<double> rtols, heavy_rtols;
+  double reference_rtol = 1e-12;
+  std::vector<std::string> methods, engines;
 };
 
 struct JumpOpts {
@@ -807,7 +813,70 @@ int cmd_report(const std::string& dir) {
   return kExitOk;
 }
 
+/// `camdyn bench --tolerance-sweep`: scene names A, A7, B1, B2 (t_end 0.1 unless --t-end),
+/// stiff, ohc and ohv (examples/ohc_bucket_tappet.toml, examples/ohv_pushrod_train.toml:
+/// one revolution), or scene files; none: all of them.
+int cmd_tolerance_sweep(const BenchOpts& o) {
+  ToleranceSweepOptions to;
+  std::vector<std::string> names = o.scenes;
+  if (names.empty()) names = {"A", "A7", "B1", "B2", "stiff", "ohc", "ohv"};
+  const std::map<std::string, std::string> trains{{"ohc", "ohc_bucket_tappet.toml"},
+                                                  {"ohv", "ohv_pushrod_train.toml"}};
+  std::error_code ec;
+  for (const auto& name : names) {
+    if (fs::exists(name, ec) || (!is_bench_case(name) && !trains.count(name))) {
+      Scene sc = load_scene_file(name);
+      Cam cam(sc.cam);  // a bad profile is bad input
+      to.scenes.push_back(std::move(sc));
+      to.labels.push_back(fs::path(name).stem().string());
+    } else if (trains.count(name)) {
+      fs::path f = fs::path("examples") / trains.at(name);
+      if (!fs::exists(f, ec)) f = fs::path(CAMDYN_PLOT_SCRIPT_BUILD).parent_path().parent_path() / "examples" / trains.at(name);
+      if (!fs::exists(f, ec))
+        throw SceneError("bench", 0, "scene", name, "examples/" + trains.at(name) + " not found");
+      to.scenes.push_back(load_scene_file(f.string()));
+      to.labels.push_back(name);
+    } else {
+      Scene sc = bench_case(name);
+      if (name != "stiff") sc.run.t_end = 0.1;
+      to.scenes.push_back(std::move(sc));
+      to.labels.push_back(name);
+    }
+  }
+  if (!o.rtols.empty()) to.rtols = o.rtols;
+  to.heavy_rtols = o.heavy_rtols;
+  to.reference_rtol = o.reference_rtol;
+  to.methods = o.methods;
+  to.engines = o.engines;
+  to.time_budget_seconds = o.budget;
+  to.t_end = o.t_end;
+  to.out_dir = o.out;
+  if (!o.quiet)
+    to.log = [](const std::string& line) {
+      std::fprintf(stderr, "%s\n", line.c_str());
+      std::fflush(stderr);
+    };
+  const ToleranceSweepResult res = run_tolerance_sweep(to);  // SceneError: exit 2
+  int bad = 0;
+  for (const auto& c : res.checks) bad += c.monotone ? 0 : 1;
+  if (!o.quiet)
+    std::printf("tolerance sweep: %zu runs, %zu series checks, %d not monotone; output: %s, %s, %s\n",
+                res.rows.size(), res.checks.size(), bad, res.csv_path.c_str(),
+                res.series_path.c_str(), res.md_path.c_str());
+  if (!o.no_plot) {
+    std::string why;
+    const std::string script = companion_script_path("CAMDYN_TOL_SWEEP_PLOT_SCRIPT", "camdyn_tol_sweep_plot.py");
+    if (script.empty() || run_plot_script({o.out}, &why, script) != 0)
+      std::fprintf(stderr, "camdyn: warning: no figures drawn: %s\n",
+                   script.empty() ? "camdyn_tol_sweep_plot.py not found" : why.c_str());
+    else if (!o.quiet)
+      std::printf("figures: %s\n", join_path(o.out, "tol_sweep_*.png").c_str());
+  }
+  return kExitOk;
+}
+
 int cmd_bench(const BenchOpts& o) {
+  if (o.tolerance_sweep) return cmd_tolerance_sweep(o);
   // Input stage: every error here is bad input (exit 2, raised to main()).
   BenchOptions bo;
   for (const auto& name : o.scenes) {
@@ -1022,6 +1091,29 @@ int real_main(int argc, char** argv) {
       ->type_name("DT");
   bench->add_flag("-q,--quiet", bo.quiet, "Print nothing but errors");
   bench->add_flag("--no-plot", bo.no_plot, "Write the CSV and Markdown only, no figures");
+  bench->add_flag("--tolerance-sweep", bo.tolerance_sweep,
+                  "Tolerance sweep instead: every contact method x engine over rtol 1e-2..1e-12 "
+                  "(tol_u alike) against a tight reference, per scene (names A A7 B1 B2 (0.1 s) "
+                  "stiff ohc ohv, or files; default all); writes DIR/tol_sweep.csv, "
+                  "tol_sweep_series.csv, tol_sweep.md, tol_sweep_*.png (docs/bench_tolerance_sweep.md)");
+  bench->add_option("--rtols", bo.rtols, "Tolerance sweep: the rtol grid (default 1e-2 ... 1e-12, decades)")
+      ->delimiter(',')
+      ->type_name("R,R,...");
+  bench->add_option("--heavy-rtols", bo.heavy_rtols,
+                    "Tolerance sweep: the rtol grid of elastic and network scenes (default: --rtols)")
+      ->delimiter(',')
+      ->type_name("R,R,...");
+  bench->add_option("--reference-rtol", bo.reference_rtol,
+                    "Tolerance sweep: rtol of the references (atol 1e-2 of it)")
+      ->type_name("R")
+      ->capture_default_str();
+  bench->add_option("--methods", bo.methods, "Tolerance sweep: lee,event,holonomic,penalty (default all)")
+      ->delimiter(',')
+      ->type_name("M,M,...");
+  bench->add_option("--engines", bo.engines,
+                    "Tolerance sweep: arkode-erk,arkode-dirk,cvode-bdf,ida (default all)")
+      ->delimiter(',')
+      ->type_name("E,E,...");
 
   JumpOpts jo;
   auto* jump = app.add_subcommand(
