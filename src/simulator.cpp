@@ -72,6 +72,12 @@ double cam_scale(const CamSpec& c) {
     case CamProfileKind::Circle:
       r = std::max(r, c.radius + c.eccentricity);
       break;
+    case CamProfileKind::Arc:
+      r = std::max(r, c.nose_distance + c.nose_radius);
+      break;
+    case CamProfileKind::Law:  // the base circle: the lift is of its order or smaller
+      r = std::max(r, std::abs(c.base_radius));
+      break;
   }
   return r;
 }
