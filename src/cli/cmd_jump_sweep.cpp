@@ -1,0 +1,187 @@
+// camdyn — command-line tool: `camdyn jump` and `camdyn sweep`.
+#include "commands.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "camdyn/designer.hpp"
+#include "camdyn/output.hpp"
+#include "camdyn/scene.hpp"
+#include "sweep_mpi.hpp"
+
+namespace camdyn_cli {
+
+using namespace camdyn;
+namespace fs = std::filesystem;
+
+int cmd_jump(const JumpOpts& o) {
+  Scene sc = required_scene("jump", o.c);
+  JumpOptions jo;
+  jo.rel_tol = o.rel_tol;
+  jo.lo_rev_s = o.lo;
+  jo.hi_rev_s = o.hi;
+  jo.force_simulation = o.simulate;
+  if (!o.quiet)
+    jo.log = [](double sp, bool sep) {
+      std::fprintf(stderr, "  %.10g rev/s: %s\n", sp, sep ? "separates" : "keeps contact");
+      std::fflush(stderr);
+    };
+  ensure_output_dir(o.out);
+  JumpResult r;
+  {
+    SigintGuard guard;
+    r = jump_speed(sc, jo);  // SceneError → exit 2; a failing run is reported as such
+  }
+  const std::string path = join_path(o.out, "jump.json");
+  std::string j = "{\n  \"scene\": " + json_string(sc.title) +
+                  ",\n  \"jump_speed_rev_s\": " + json_number(r.jump_speed_rev_s) +
+                  ",\n  \"method\": " + json_string(r.method) +
+                  ",\n  \"theta_deg\": " + json_number(r.theta_deg) +
+                  ",\n  \"phenomenon\": " + json_string(r.phenomenon) +
+                  ",\n  \"phenomenon_text\": " + json_string(r.phenomenon_text) +
+                  ",\n  \"jump_speed_text\": " + json_string(jump_speed_text(r));
+  if (r.method == "simulation") {
+    j += ",\n  \"lo_rev_s\": " + json_number(r.lo_rev_s) + ",\n  \"hi_rev_s\": " +
+         json_number(r.hi_rev_s) + ",\n  \"bracket_width_rev_s\": " +
+         json_number(std::abs(r.hi_rev_s - r.lo_rev_s)) + ",\n  \"rel_tol\": " + json_number(o.rel_tol) +
+         ",\n  \"simulations\": " + std::to_string(r.simulations) + ",\n  \"t_end\": " +
+         json_number(sc.run.t_end);
+  }
+  j += "\n}\n";
+  int rc = kExitOk;
+  try {
+    write_file_atomic(path, j);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "camdyn: cannot write '%s': %s\n", path.c_str(), e.what());
+    rc = kExitFailed;
+  }
+  if (!o.quiet) {
+    std::printf("%s: %s, margin reaches zero at cam angle %s deg", sc.title.c_str(),
+                r.method.c_str(), fmt_g(r.theta_deg, 10).c_str());
+    if (r.method == "simulation") std::printf(" (%d runs to t = %g)", r.simulations, sc.run.t_end);
+    std::printf("\njump speed: %s\nphenomenon: %s", jump_speed_text(r).c_str(), r.phenomenon.c_str());
+    if (r.method == "simulation") std::printf(" (the run at the upper bracket end: %s)", r.phenomenon_text.c_str());
+    else std::printf(" (%s)", r.phenomenon_text.c_str());
+    std::printf("\noutput: %s\n", path.c_str());
+  }
+  std::printf("jump_speed_rev_s = %.17g\n", r.jump_speed_rev_s);
+  std::fflush(stdout);
+  return rc;
+}
+
+namespace {
+
+class SweepProgress {
+ public:
+  explicit SweepProgress(bool on) : on_(on), tty_(::isatty(STDERR_FILENO) != 0) {}
+  void operator()(long done, long total, long failed, double elapsed) {
+    if (!on_) return;
+    if (first_ < 0) first_ = done - 1;
+    const long computed = done - first_;
+    const double now = elapsed;
+    if (tty_ && now - last_ < 0.2 && done < total) return;
+    if (!tty_ && done * 10 / total == last_decile_ && done < total) return;
+    last_ = now;
+    last_decile_ = done * 10 / total;
+    char eta[48] = "?";
+    if (computed > 0 && done < total) {
+      const double rest = now / double(computed) * double(total - done);
+      if (rest < 120) std::snprintf(eta, sizeof eta, "%.0f s", rest);
+      else if (rest < 7200) std::snprintf(eta, sizeof eta, "%.0f min", rest / 60);
+      else std::snprintf(eta, sizeof eta, "%.1f h", rest / 3600);
+    } else if (done >= total) {
+      std::snprintf(eta, sizeof eta, "done");
+    }
+    char line[200];
+    const int n = std::snprintf(line, sizeof line, " sweep: %ld/%ld points, %ld failed, ETA %s",
+                                done, total, failed, eta);
+    if (tty_) {
+      std::fprintf(stderr, "\r%s%*s", line, std::max(0, width_ - n), "");
+      width_ = std::max(width_, n);
+    } else {
+      std::fprintf(stderr, "%s\n", line);
+    }
+    std::fflush(stderr);
+  }
+  void finish() {
+    if (tty_ && width_ > 0) std::fprintf(stderr, "\r%*s\r", width_, "");
+    std::fflush(stderr);
+  }
+
+ private:
+  bool on_, tty_;
+  long first_ = -1, last_decile_ = -1;
+  double last_ = -1;
+  int width_ = 0;
+};
+
+}  // namespace
+
+int cmd_sweep(const SweepOpts& o) {
+  Scene sc = required_scene("sweep", o.c);
+  if (o.jobs < 0) throw SceneError("--jobs", 0, "jobs", std::to_string(o.jobs), "must be >= 1 (0: all cores)");
+  SweepOptions so;
+  so.axes.push_back(make_sweep_axis(sc, o.a1.key, o.a1.from, o.a1.to, o.a1.step, o.a1.points, o.a1.log));
+  if (!o.a2.key.empty()) {
+    try {
+      so.axes.push_back(make_sweep_axis(sc, o.a2.key, o.a2.from, o.a2.to, o.a2.step, o.a2.points, o.a2.log));
+    } catch (const SceneError& e) {  // name the second axis' options: --from2, key 'to2', ...
+      throw SceneError(e.file() + "2", 0, e.key() + "2", e.value(), e.rule());
+    }
+  } else if (!std::isnan(o.a2.from) || !std::isnan(o.a2.to) || !std::isnan(o.a2.step) || o.a2.points != 0 ||
+             o.a2.log) {
+    throw SceneError("--key2", 0, "key2", "", "--from2/--to2/--step2/--points2/--log2 need --key2 KEY");
+  }
+  so.jobs = o.jobs;
+  so.out_dir = o.out;
+  so.resume = o.resume;
+  so.timing = !o.no_timing;
+  so.point_timeout_seconds = o.timeout;
+  so.stop = &g_stop;
+  SweepProgress progress(!o.quiet);
+  so.progress = [&progress](long d, long t, long f, double e) { progress(d, t, f, e); };
+  so.validate();
+  SweepResult res;
+  bool master = true;
+  {
+    SigintGuard guard;
+    if (camdyn_cli::launched_under_mpi())
+      res = camdyn_cli::run_sweep_mpi(sc, so, &master);
+    else
+      res = run_sweep(sc, so);
+  }
+  progress.finish();
+  if (!master) return kExitOk;
+  if (!o.quiet) {
+    const std::string by = signal_name().empty() ? "" : " by " + signal_name();
+    const std::string tail = res.interrupted ? " — INTERRUPTED" + by + " (run again with --resume)" : "";
+    std::printf("sweep: %ld points (%ld computed, %ld from the journal), %ld failed%s\n", res.total,
+                res.computed, res.skipped, res.failed, tail.c_str());
+    std::printf("output: %s, %s\n", res.csv_path.c_str(), res.poincare_path.c_str());
+    std::fflush(stdout);
+  }
+  if (o.plot) {
+    std::string why;
+    const std::string script = sweep_plot_script_path();
+    if (script.empty()) {
+      std::fprintf(stderr, "camdyn: warning: no figures drawn: camdyn_sweep_plot.py not found\n");
+    } else if (run_plot_script({o.out, "--quiet"}, &why, script) != 0) {
+      std::fprintf(stderr, "camdyn: warning: no figures drawn: %s\n", why.c_str());
+    } else {
+      if (!o.quiet) std::printf("figures: %s\n", join_path(o.out, "sweep_*.png").c_str());
+      if (write_report(o.out, true, &why) != 0)
+        std::fprintf(stderr, "camdyn: warning: no report written: %s\n", why.c_str());
+      else if (!o.quiet)
+        std::printf("report: %s\n", join_path(o.out, "report.html").c_str());
+    }
+  }
+  return res.interrupted ? kExitFailed : kExitOk;
+}
+
+}  // namespace camdyn_cli

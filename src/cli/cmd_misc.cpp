@@ -1,0 +1,155 @@
+// camdyn — command-line tool: `camdyn cam`, `camdyn scene`, `camdyn plot` and `camdyn report`.
+#include "commands.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "camdyn/cam.hpp"
+#include "camdyn/output.hpp"
+#include "camdyn/scene.hpp"
+#include "camdyn/scene_keys.hpp"
+
+namespace camdyn_cli {
+
+using namespace camdyn;
+namespace fs = std::filesystem;
+
+int cmd_cam(const CamOpts& o) {
+  // Without a scene: the paper cam (default CamSpec) at its default speed.
+  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, Scene{});
+  resolve_defaults(sc);
+  validate(sc);
+  Cam cam(sc.cam);  // SceneError on a bad profile → exit 2
+  ensure_output_dir(o.out);
+  const std::string path = join_path(o.out, "cam.csv");
+  try {
+    write_file_atomic(path, cam_csv(cam, o.points));
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "camdyn: cannot write '%s': %s\n", path.c_str(), e.what());
+    return kExitFailed;
+  }
+  double speed = sc.cam.speed_rev_s;
+  if (!sc.cam.speed_table_rev_s.empty()) speed = sc.cam.speed_table_rev_s.front();
+  // Side file for the figures ('camdyn plot DIR' redraws them at the same speed).
+  try {
+    write_file_atomic(join_path(o.out, "cam_info.json"),
+                      "{\n  \"title\": " + json_string(sc.title) +
+                          ",\n  \"speed_rev_s\": " + json_number(speed) +
+                          ",\n  \"points\": " + std::to_string(o.points) +
+                          ",\n  \"lift\": " + json_number(cam.lift()) +
+                          ",\n  \"min_radius_of_curvature\": " +
+                          json_number(cam.min_radius_of_curvature()) +
+                          ",\n  \"profile\": " + json_string(to_string(sc.cam.profile)) +
+                          ",\n  \"follower_face\": " + json_string(to_string(sc.cam.follower_face)) +
+                          ",\n  \"follower_offset\": " + json_number(sc.cam.follower_offset) +
+                          ",\n  \"roller_radius\": " + json_number(sc.cam.roller_radius) +
+                          ",\n  \"follower_motion\": " + json_string(to_string(sc.cam.follower_motion)) +
+                          ",\n  \"pivot_x\": " + json_number(sc.cam.pivot_x) +
+                          ",\n  \"pivot_y\": " + json_number(sc.cam.pivot_y) +
+                          ",\n  \"continuity\": " + json_string(cam.law() ? cam.law()->continuity_report() : "") +
+                          "\n}\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "camdyn: warning: %s\n", e.what());
+  }
+  if (!o.quiet) {
+    std::printf("wrote %s (%d points): lift %s, smallest radius of curvature %s\n",
+                path.c_str(), o.points, fmt_g(cam.lift()).c_str(),
+                fmt_g(cam.min_radius_of_curvature()).c_str());
+    if (cam.law()) std::printf("motion law: continuity at the joints: %s\n", cam.law()->continuity_report().c_str());
+    if (!cam.breakpoints().empty())
+      std::printf("breakpoints: %zu (steps land on them: cam.land_on_breaks = %s)\n", cam.breakpoints().size(),
+                  sc.cam.land_on_breaks ? "true" : "false");
+    std::fflush(stdout);
+  }
+  if (!o.no_plot) {
+    std::string why;
+    // --quiet: the figures are listed below, once.
+    std::vector<std::string> args{"cam", o.out, "--speed", fmt_g(speed, 17), "--quiet"};
+    const int prc = run_plot_script(args, &why);
+    if (prc != 0) {
+      std::fprintf(stderr, "camdyn: warning: no cam figures drawn: %s\n", why.c_str());
+    } else if (!o.quiet) {
+      std::printf("figures: %s, %s, %s\n", join_path(o.out, "cam_profile.png").c_str(),
+                  join_path(o.out, "cam_kinematics.png").c_str(),
+                  join_path(o.out, "cam_geometry.png").c_str());
+    }
+  }
+  return kExitOk;
+}
+
+int cmd_scene(const SceneOpts& o) {
+  if (o.keys) {
+    std::fputs((o.json ? scene_keys_json() : scene_keys_markdown()).c_str(), stdout);
+    return kExitOk;
+  }
+  if (o.json) throw SceneError("scene", 0, "--json", "", "needs --keys (the scene itself is printed as TOML)");
+  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
+  Scene resolved = sc;
+  resolve_defaults(resolved);
+  validate(resolved);
+  const std::string text = to_toml(o.resolved ? resolved : sc);
+  std::fputs(text.c_str(), stdout);
+  if (!text.empty() && text.back() != '\n') std::fputc('\n', stdout);
+  return kExitOk;
+}
+
+int cmd_plot(const PlotOpts& o) {
+  std::error_code ec;
+  if (!fs::is_directory(o.dir, ec)) {
+    throw SceneError("plot", 0, "DIR", o.dir, "not a directory");
+  }
+  const bool have_history = fs::is_regular_file(join_path(o.dir, "history.csv"), ec);
+  const bool have_cam = fs::is_regular_file(join_path(o.dir, "cam.csv"), ec);
+  if (!have_history && !have_cam) {
+    throw SceneError("plot", 0, "DIR", o.dir,
+                     "holds neither history.csv (from 'camdyn run') nor cam.csv (from "
+                     "'camdyn cam')");
+  }
+  int rc = kExitOk;
+  if (have_history) {
+    std::vector<std::string> args{"run", o.dir};
+    if (o.zoom.size() == 2) {
+      args.push_back("--zoom");
+      args.push_back(fmt_g(o.zoom[0], 17));
+      args.push_back(fmt_g(o.zoom[1], 17));
+    }
+    std::string why;
+    if (run_plot_script(args, &why) != 0) {
+      std::fprintf(stderr, "camdyn: cannot draw the figures: %s\n", why.c_str());
+      rc = kExitFailed;
+    }
+  }
+  if (have_cam) {
+    std::string why;
+    if (run_plot_script({"cam", o.dir}, &why) != 0) {
+      std::fprintf(stderr, "camdyn: cannot draw the cam figures: %s\n", why.c_str());
+      rc = kExitFailed;
+    }
+  }
+  return rc;
+}
+
+int cmd_report(const std::string& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw SceneError("report", 0, "DIR", dir, "not a directory");
+  if (!fs::is_regular_file(join_path(dir, "summary.json"), ec) && !fs::is_regular_file(join_path(dir, "sweep.csv"), ec))
+    throw SceneError("report", 0, "DIR", dir,
+                     "holds neither summary.json (from 'camdyn run') nor sweep.csv (from 'camdyn sweep')");
+  std::string why;
+  const int rc = write_report(dir, false, &why);
+  if (rc == 2) return kExitBadInput;  // the script printed what is wrong with DIR
+  if (rc != 0) {
+    std::fprintf(stderr, "camdyn: cannot write the report: %s\n", why.c_str());
+    return kExitFailed;
+  }
+  std::printf("report: %s\n", join_path(dir, "report.html").c_str());
+  return kExitOk;
+}
+
+}  // namespace camdyn_cli

@@ -1,0 +1,186 @@
+// camdyn (private) — the CLI's subcommands, their options and shared helpers (main.cpp
+// parses the command line and dispatches to the cmd_* functions).
+#pragma once
+
+#include <atomic>
+#include <csignal>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "camdyn/scene.hpp"
+
+#ifndef CAMDYN_PLOT_SCRIPT_BUILD
+#define CAMDYN_PLOT_SCRIPT_BUILD ""
+#endif
+#ifndef CAMDYN_PLOT_SCRIPT_INSTALL
+#define CAMDYN_PLOT_SCRIPT_INSTALL ""
+#endif
+
+namespace camdyn_cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailed = 1;
+constexpr int kExitBadInput = 2;
+
+// ---- Ctrl-C -------------------------------------------------------------------------------
+
+extern std::atomic<bool> g_stop;
+extern std::atomic<int> g_signal;  // the signal that set g_stop (SIGINT or SIGTERM)
+extern "C" void on_sigint(int sig);
+
+/// The signal that set g_stop: "SIGINT", "SIGTERM", or "" (none seen).
+std::string signal_name();
+/// What stopped the run, as the CLI reports it: "interrupted (SIGINT)" (Ctrl-C),
+/// "interrupted (SIGTERM)" (kill), "interrupted" (no signal seen).
+std::string stop_reason();
+
+/// Installs on_sigint for SIGINT and SIGTERM while it lives (resets g_stop).
+class SigintGuard {
+ public:
+  SigintGuard() {
+    g_stop.store(false);
+    g_signal.store(0);
+    struct sigaction sa {};
+    sa.sa_handler = on_sigint;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESETHAND;  // a second Ctrl-C kills the program the usual way
+    installed_ = sigaction(SIGINT, &sa, &old_) == 0;
+    sigaction(SIGTERM, &sa, &old_term_);  // SIGTERM too: keep what was computed
+  }
+  ~SigintGuard() {
+    if (installed_) sigaction(SIGINT, &old_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  SigintGuard(const SigintGuard&) = delete;
+  SigintGuard& operator=(const SigintGuard&) = delete;
+
+ private:
+  struct sigaction old_ {};
+  struct sigaction old_term_ {};
+  bool installed_ = false;
+};
+
+// ---- helpers ------------------------------------------------------------------------------
+
+std::string fmt_g(double x, int digits = 6);
+
+/// The scene a subcommand works on: file or paper case or a fallback, then overrides.
+camdyn::Scene build_scene(const std::string& file, const std::string& case_name,
+                          const std::vector<std::string>& sets, camdyn::Scene fallback);
+
+std::string plot_script_path();
+/// A plotting script that ships next to scripts/camdyn_plot.py: $ENV_VAR if set, else the
+/// installed copy, else the source tree's. Empty if none is found.
+std::string companion_script_path(const char* env_var, const char* file_name);
+/// scripts/camdyn_bench_plot.py ($CAMDYN_BENCH_PLOT_SCRIPT overrides).
+std::string bench_plot_script_path();
+/// scripts/camdyn_report.py ($CAMDYN_REPORT_SCRIPT overrides).
+std::string report_script_path();
+/// scripts/camdyn_sweep_plot.py ($CAMDYN_SWEEP_PLOT_SCRIPT overrides).
+std::string sweep_plot_script_path();
+
+/// Run the plot script (`script_override`, or camdyn_plot.py) with `args`. Returns its
+/// exit status, or −1 if it could not start.
+int run_plot_script(const std::vector<std::string>& args, std::string* why,
+                    const std::string& script_override = std::string());
+
+// ---- subcommands --------------------------------------------------------------------------
+
+struct CommonOpts {
+  std::string scene_file;
+  std::string case_name;
+  std::vector<std::string> sets;
+};
+
+struct RunOpts {
+  CommonOpts c;
+  std::string out = "camdyn-out";
+  bool quiet = false;
+  bool plot = false;
+};
+
+struct CamOpts {
+  CommonOpts c;
+  std::string out = "camdyn-out";
+  int points = 3600;
+  bool quiet = false;
+  bool no_plot = false;
+};
+
+struct SceneOpts {
+  CommonOpts c;
+  bool resolved = false;
+  bool keys = false;  // print the key reference instead of a scene
+  bool json = false;  // ... as JSON
+};
+
+struct PlotOpts {
+  std::string dir;
+  std::vector<double> zoom;
+};
+
+struct BenchOpts {
+  std::vector<std::string> scenes;
+  std::string out = "camdyn-bench";
+  bool quick = false;
+  int repeats = 3;
+  double budget = 20.0;
+  double t_end = 0.0;
+  double output_dt = 0.0;
+  bool quiet = false;
+  bool no_plot = false;
+  bool tolerance_sweep = false;
+  std::vector<double> rtols, heavy_rtols;
+  double reference_rtol = 1e-12;
+  std::vector<std::string> methods, engines;
+};
+
+struct JumpOpts {
+  CommonOpts c;
+  std::string out = "camdyn-out";
+  bool simulate = false;
+  double rel_tol = 1e-4;
+  double lo = 0, hi = 0;
+  bool quiet = false;
+};
+
+struct SweepCliAxis {
+  std::string key;
+  double from = NAN, to = NAN, step = NAN;
+  long points = 0;
+  bool log = false;
+};
+
+struct SweepOpts {
+  CommonOpts c;
+  SweepCliAxis a1, a2;
+  int jobs = 0;
+  bool resume = false;
+  std::string out = "camdyn-sweep";
+  bool quiet = false;
+  bool plot = false;
+  bool no_timing = false;
+  double timeout = 0;
+};
+
+/// DIR/report.html by scripts/camdyn_report.py (`reuse`: keep the figures already drawn).
+/// Returns the script's exit status (−1: not found or not started); `why` says what failed.
+int write_report(const std::string& dir, bool reuse, std::string* why);
+
+// jump and sweep need a scene of the user's (no built-in default): the resolved, validated
+// scene from the file or --case with the --set overrides.
+camdyn::Scene required_scene(const char* cmd, const CommonOpts& c);
+
+// ---- subcommands (each returns the exit status) -------------------------------------------
+
+int cmd_run(const RunOpts& o);
+int cmd_cam(const CamOpts& o);
+int cmd_scene(const SceneOpts& o);
+int cmd_plot(const PlotOpts& o);
+int cmd_report(const std::string& dir);
+int cmd_bench(const BenchOpts& o);
+int cmd_jump(const JumpOpts& o);
+int cmd_sweep(const SweepOpts& o);
+
+}  // namespace camdyn_cli
