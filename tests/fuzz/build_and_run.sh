@@ -62,6 +62,7 @@ fi
   -DTOML_HEADER_ONLY=0 \
   "${TOML_INC[@]}" -I"$SRC/include" -I"$SRC/src" -isystem /usr/include/eigen3 \
   "$SRC/tests/fuzz/fuzz_scene.cpp" "$SRC/src/scene.cpp" "$SRC/src/scene_network.cpp" "$SRC/src/scene_units.cpp" "$SRC/src/cam.cpp" \
+  "$SRC/src/scene_format.cpp" "$SRC/src/scene_validate.cpp" "$SRC/src/scene_override.cpp" "$SRC/src/scene_write.cpp" \
   "$SRC/src/follower_geometry.cpp" "$SRC/src/follower_oscillating.cpp" "$SRC/src/motion_law.cpp" "$SRC/src/motion_law_parse.cpp" \
   "$OUT/toml_impl.cpp" "${RUN_FLAGS[@]}" -o "$OUT/fuzz_scene"
 
