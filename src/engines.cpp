@@ -5,7 +5,7 @@
 //   arkode-erk   Dormand–Prince 5(4), v̇ = M⁻¹ r (lumped: diagonal; consistent: LDLᵀ
 //                factor of M computed once).
 //   arkode-dirk  ARKStep, SDIRK 5-stage 4(3) (L-stable), v̇ = M⁻¹ r.
-//   cvode-bdf    CVODE BDF (orders 1–5, ≤ 2 for bars), v̇ = M⁻¹ r.
+//   cvode-bdf    CVODE BDF (orders 1–5, ≤ 2 for bars), v̇ = M⁻¹ r (engine_cvode.cpp).
 //   The Newton systems (I − γJ) x = b of both implicit engines, K̃ = K − e₀e₀ᵀ∂F/∂q₀,
 //   C̃ = C − e₀e₀ᵀ∂F/∂v₀, are solved by our own direct linear solver through the n × n
 //   Schur complement
@@ -19,8 +19,6 @@
 // catch every exception and return −1 so none crosses SUNDIALS.
 #include <arkode/arkode_arkstep.h>
 #include <arkode/arkode_erkstep.h>
-#include <cvode/cvode.h>
-#include <cvode/cvode_proj.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
@@ -32,6 +30,7 @@
 #include <vector>
 
 #include "engine.hpp"
+#include "engine_internal.hpp"
 #include "sparse_lu.hpp"
 #include "sundials_raii.hpp"
 
@@ -99,23 +98,7 @@ double Engine::wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const 
 
 namespace {
 
-// ---------------------------------------------------------------- RAII ----------
-using detail::ContextHolder;
-using detail::LS;
-using detail::Mat;
-using detail::NVec;
-using detail::ArkDel;
-using detail::CvDel;
-using detail::ErkDel;
-using detail::make_nvec;
-using detail::not_null;
-using detail::kTrialMaxSteps;
-using detail::trial_min_step;
-inline Eigen::Map<Eigen::VectorXd> map(N_Vector v) {
-  return Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(v), N_VGetLength(v));
-}
-
-constexpr double kHugeTol = 1e30;  // trial steps: our own error test, never ARKODE's
+using namespace engine_detail;
 
 // ---------------------------------------------------------------- ERK ------------
 class ErkEngine final : public Engine {
@@ -186,143 +169,6 @@ class ErkEngine final : public Engine {
   ContextHolder ctx_;
   NVec y_, ele_;
   std::unique_ptr<void, ErkDel> mem_;
-};
-
-// Values of K, M, C at pattern position p of column j (rigid: scalars).
-struct ModelEntries {
-  const FollowerModel& m;
-  double K(long p) const { return m.rigid() ? m.k_rigid() : m.K().valuePtr()[p]; }
-  double M(long p) const { return m.rigid() ? m.m_rigid() : m.M().valuePtr()[p]; }
-  double C(long p) const {
-    if (!m.damped()) return 0.0;
-    return m.rigid() ? m.c_rigid() : m.C().valuePtr()[p];
-  }
-  long begin(long j) const { return m.rigid() ? 0 : m.K().outerIndexPtr()[j]; }
-  long end(long j) const { return m.rigid() ? 1 : m.K().outerIndexPtr()[j + 1]; }
-  long row(long p) const { return m.rigid() ? 0 : m.K().innerIndexPtr()[p]; }
-};
-
-// ---------------------------------------------------------------- Schur solver ---
-// The Newton systems of both implicit engines, (I − γJ) x = b with
-// J = [[0, I], [−M⁻¹K̃, −M⁻¹C̃]], through the n × n system
-//   S x_v = M b_v − γ K̃ b_u,   S = M + γC̃ + γ²K̃,   x_u = b_u + γ x_v.
-// S has the pattern of K (tridiagonal for a bar). KLU's symbolic analysis is done once
-// for that pattern; the numeric factorisation is redone only when (γ, ∂F/∂q₀, ∂F/∂v₀)
-// changed since the last one — Lee's trial steps retake the same step size several
-// times, and ARKODE asks for a setup at the first stage after every reset.
-class SchurSolver {
- public:
-  SchurSolver(const FollowerModel& m, bool dense, EngineStats& stats)
-      : m_(m), n_(m.n()), stats_(stats), lu_(dense, stats) {
-    if (!m.rigid()) S_ = m.K();  // copy of the shared pattern
-  }
-
-  void setup(double g, double dFdq, double dFdv) {
-    if (factored_ && g == g_ && dFdq == dFdq_ && dFdv == dFdv_) return;  // S unchanged
-    g_ = g;
-    dFdq_ = dFdq;
-    dFdv_ = dFdv;
-    factored_ = true;
-    z_valid_ = false;
-    ++stats_.lin_setups;
-    if (m_.rigid()) {
-      s_rigid_ = m_.m_rigid() + g * (m_.c_rigid() - dFdv) + g * g * (m_.k_rigid() - dFdq);
-      return;
-    }
-    const ModelEntries e{m_};
-    double* x = S_.valuePtr();
-    for (long j = 0; j < n_; ++j)
-      for (long p = e.begin(j); p < e.end(j); ++p) {
-        double v = e.M(p) + g * e.C(p) + g * g * e.K(p);
-        if (j == 0 && e.row(p) == 0) v -= g * dFdv + g * g * dFdq;
-        x[p] = v;
-      }
-    lu_.factor(S_);
-  }
-  // x = (I − γJ)⁻¹ b, in place on b (length 2n).
-  //
-  // Held contact (a HeldContact set): v̇ = P M⁻¹(f₀ − Kq − Cv) + M⁻¹e₀Ẍ_C/M* with
-  // P = I − M⁻¹e₀e₀ᵀ/M*, so J's velocity rows are P M⁻¹[−K, −C] and e₀ᵀP = 0. The
-  // system becomes S x_v = M b_v − γK b_u + e₀λ with x_v,0 = b_v,0 (node 0's velocity
-  // row is the identity): bordered with z = S⁻¹e₀ (one solve per factorisation),
-  // x_v = w + λz, w = S⁻¹(M b_v − γK b_u), λ = (b_v,0 − w₀)/z₀.
-  void solve(double* b, bool held = false) {
-    const long n = n_;
-    double* bu = b;
-    double* bv = b + n;
-    if (m_.rigid()) {
-      if (held) {  // q̈ = Ẍ_C(t): x_v = b_v
-        bu[0] += g_ * bv[0];
-        return;
-      }
-      const double rhs = m_.m_rigid() * bv[0] - g_ * (m_.k_rigid() - dFdq_) * bu[0];
-      bv[0] = rhs / s_rigid_;
-      bu[0] += g_ * bv[0];
-      return;
-    }
-    const double bv0 = bv[0];
-    Eigen::Map<Eigen::VectorXd> U(bu, n), V(bv, n);
-    rhs_.noalias() = m_.M() * V;
-    rhs_.noalias() -= g_ * (m_.K() * U);
-    rhs_[0] += g_ * dFdq_ * U[0];
-    lu_.solve(rhs_.data());
-    V = rhs_;
-    if (held) {
-      if (!z_valid_) {
-        z_.setZero(n);
-        z_[0] = 1.0;
-        lu_.solve(z_.data());
-        z_valid_ = true;
-      }
-      const double lambda = (bv0 - V[0]) / z_[0];
-      V += lambda * z_;
-      V[0] = bv0;
-    }
-    U += g_ * V;
-  }
-
- private:
-  const FollowerModel& m_;
-  long n_;
-  EngineStats& stats_;
-  bool factored_ = false, z_valid_ = false;
-  Eigen::VectorXd z_;  // S⁻¹e₀ (held contact)
-  double g_ = 0, dFdq_ = 0, dFdv_ = 0, s_rigid_ = 1;
-  SparseMatrix S_;
-  Eigen::VectorXd rhs_;
-  detail::SparseLu lu_;
-};
-
-// The SchurSolver as a SUNDIALS linear solver (detail::CustomLinearSolver). The engine's
-// linear-system function hands over γ and the contact law's derivatives (prepare), the
-// solver's setup factorises (if they changed), its solve applies (I − γJ)⁻¹.
-class SchurLinearSolver {
- public:
-  SchurLinearSolver(const FollowerModel& m, bool dense, EngineStats& stats, SUNContext ctx)
-      : schur_(m, dense, stats), n_(m.n()),
-        cls_(ctx, [this] { schur_.setup(gamma_, dFdq_, dFdv_); },
-             [this](double* x) { schur_.solve(x, held_ && *held_); }) {}
-  SUNLinearSolver ls() { return cls_.ls(); }
-  SUNMatrix placeholder() { return cls_.placeholder(); }
-  // From the linear-system function: the system I − γJ at (t, y) under the contact force f.
-  void prepare(const ContactForce* f, double t, const double* y, double gamma) {
-    if (f)
-      f->derivatives(t, y[0], y[n_], &dFdq_, &dFdv_);
-    else
-      dFdq_ = dFdv_ = 0.0;
-    gamma_ = gamma;
-  }
-  /// Where each solve reads whether the contact is held (the engine's held contact, or
-  /// null): the held contact's system has the same S, bordered (SchurSolver::solve), so
-  /// a phase switch needs no new factorisation.
-  void watch(const HeldContact* const* held) { held_ = held; }
-
- private:
-  SchurSolver schur_;
-  long n_;
-  double gamma_ = 0, dFdq_ = 0, dFdv_ = 0;
-  const HeldContact* const* held_ = nullptr;
-  detail::CustomLinearSolver cls_;
 };
 
 // ---------------------------------------------------------------- DIRK -----------
@@ -430,168 +276,6 @@ class DirkEngine final : public Engine {
   std::unique_ptr<void, ArkDel> mem_;
 };
 
-// ---------------------------------------------------------------- CVODE ----------
-class CvodeEngine final : public Engine {
- public:
-  CvodeEngine(std::shared_ptr<const FollowerModel> model, const SolverSpec& spec, LinearSolverKind lsk,
-              bool trial, double tol_u)
-      : Engine(std::move(model), spec), y_(make_nvec(2 * n_, ctx_.ctx)),
-        sls_(*model_, lsk == LinearSolverKind::Dense, stats_, ctx_.ctx) {
-    N_VConst(0.0, y_.get());
-    mem_.reset(not_null(CVodeCreate(CV_BDF, ctx_.ctx), "CVodeCreate"));
-    void* mem = mem_.get();
-    check_flag(CVodeInit(mem, &CvodeEngine::f, 0.0, y_.get()), "CVodeInit");
-    check_flag(CVodeSetUserData(mem, this), "CVodeSetUserData");
-    check_flag(CVodeSStolerances(mem, spec.rtol, spec.atol), "CVodeSStolerances");
-    check_flag(CVodeSetMaxNumSteps(mem, trial ? kTrialMaxSteps : -1), "CVodeSetMaxNumSteps");
-    if (trial) check_flag(CVodeSetErrHandlerFn(mem, &detail::quiet_cvode_errors, nullptr), "CVodeSetErrHandlerFn");
-    // BDF orders 3–5 are not A-stable: an undamped stiff bar has modes on the imaginary
-    // axis far beyond the step's resolution, which they amplify (seen as step sizes
-    // collapsing to ~0.5/ω_max). Elastic followers therefore run A-stable BDF1–2; the
-    // rigid follower (no stiff modes) keeps orders up to 5.
-    if (!model_->rigid()) check_flag(CVodeSetMaxOrd(mem, 2), "CVodeSetMaxOrd");
-    // Trial steps: solve the (linear) corrector far below the error tolerance so that
-    // the step map is affine in the contact force to well below tol_u.
-    if (trial) check_flag(CVodeSetNonlinConvCoef(mem, 1e-4), "CVodeSetNonlinConvCoef");
-    // Trial steps restart CVODE, so each contact step carries a full local tolerance of
-    // error; keep it well below the contact tolerance tol_u (else the displacement level
-    // sees integration error as gap and can clip a real contact force to zero).
-    if (trial && tol_u > 0) {
-      const double scale = std::max(1.0, model_->initial_displacement().cwiseAbs().maxCoeff());
-      check_flag(CVodeSStolerances(mem, std::min(spec.rtol, 1e-2 * tol_u / scale),
-                                   std::min(spec.atol, 1e-2 * tol_u)),
-                 "CVodeSStolerances");
-    }
-    if (spec.max_step > 0) check_flag(CVodeSetMaxStep(mem, spec.max_step), "CVodeSetMaxStep");
-    // Our own direct solver for (I − γJ) x = b (SchurLinearSolver); CVODE hands γ (and
-    // the state, for the penalty Jacobian) to the linear-system function.
-    check_flag(CVodeSetLinearSolver(mem, sls_.ls(), sls_.placeholder()), "CVodeSetLinearSolver");
-    check_flag(CVodeSetLinSysFn(mem, &CvodeEngine::linsys), "CVodeSetLinSysFn");
-    sls_.watch(&held_);
-  }
-  ~CvodeEngine() override {
-    mem_.reset();  // CVodeFree before the linear solver it references
-  }
-  const char* name() const override { return "cvode-bdf"; }
-  int error_order() const override { return 2; }
-  bool estimates_error() const override { return false; }
-  double suggested_step() const override { return hcur_; }
-
-  // A trial step of exactly h: CVODE integrates [t, t+h] under its own error control,
-  // restarted from (t, y). Lee's iteration retakes the step with other force ramps and
-  // needs the same step map each time (the response is then affine in the end force, up
-  // to the Newton tolerance, which is tightened for this reason); CVODE's multistep
-  // history cannot be saved and restored through its API, so each contact step starts
-  // at order 1. CVODE keeps its full history in native stepping (penalty, event).
-  double step(double t, const Eigen::VectorXd& y, double h, Eigen::VectorXd& y_out) override {
-    map(y_.get()) = y;
-    check_flag(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
-    check_flag(CVodeSetInitStep(mem_.get(), first_h_ > 0 ? std::min(h, first_h_) : h), "CVodeSetInitStep");
-    ++stats_.reinits;
-    check_flag(CVodeSetStopTime(mem_.get(), t + h), "CVodeSetStopTime");
-    check_flag(CVodeSetMinStep(mem_.get(), trial_min_step(t, h)), "CVodeSetMinStep");
-    double tret = t;
-    long ns0 = 0, ns1 = 0;
-    CVodeGetNumSteps(mem_.get(), &ns0);
-    check_flag(CVode(mem_.get(), t + h, y_.get(), &tret, CV_NORMAL), "CVode");
-    CVodeGetNumSteps(mem_.get(), &ns1);
-    stats_.steps += ns1 - ns0;
-    y_out = map(y_.get());
-    double h0 = 0;
-    CVodeGetActualInitStep(mem_.get(), &h0);
-    first_h_ = 2.0 * h0;  // start the next restart near the first step that worked
-    CVodeGetCurrentStep(mem_.get(), &hcur_);
-    return 0.0;
-  }
-  void reinit(double t, const Eigen::VectorXd& y) override {
-    map(y_.get()) = y;
-    check_flag(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
-    check_flag(CVodeSetInitStep(mem_.get(), spec_.initial_step), "CVodeSetInitStep");
-    check_flag(CVodeSetMinStep(mem_.get(), 0.0), "CVodeSetMinStep");  // native: no trial bound
-    ++stats_.reinits;
-  }
-  double advance(double tout, Eigen::VectorXd& y_out) override {
-    check_flag(CVodeSetStopTime(mem_.get(), tout), "CVodeSetStopTime");
-    double tret = 0;
-    const int flag = check_flag(CVode(mem_.get(), tout, y_.get(), &tret, CV_ONE_STEP), "CVode");
-    hit_root_ = flag == CV_ROOT_RETURN;
-    y_out = map(y_.get());
-    ++stats_.steps;
-    return tret;
-  }
-  void set_max_order(int q) override {
-    check_flag(CVodeSetMaxOrd(mem_.get(), q), "CVodeSetMaxOrd");
-    check_flag(CVodeSetStabLimDet(mem_.get(), q >= 3 ? SUNTRUE : SUNFALSE), "CVodeSetStabLimDet");
-  }
-  void set_held_projection(bool on) override {
-    if (on && !projection_set_) {
-      check_flag(CVodeSetProjFn(mem_.get(), &CvodeEngine::project), "CVodeSetProjFn");
-      // The error test keeps the unprojected estimate (node 0's drift included:
-      // conservative).
-      check_flag(CVodeSetProjErrEst(mem_.get(), SUNFALSE), "CVodeSetProjErrEst");
-      projection_set_ = true;
-    }
-    if (projection_set_) check_flag(CVodeSetProjFrequency(mem_.get(), on ? 1 : 0), "CVodeSetProjFrequency");
-  }
-  void set_root(RootFn fn, int direction) override {
-    root_fn_ = std::move(fn);
-    check_flag(CVodeRootInit(mem_.get(), root_fn_ ? 1 : 0, &CvodeEngine::g), "CVodeRootInit");
-    if (root_fn_) check_flag(CVodeSetRootDirection(mem_.get(), &direction), "CVodeSetRootDirection");
-  }
-
- private:
-  static int f(double t, N_Vector y, N_Vector ydot, void* ud) {
-    try {
-      static_cast<CvodeEngine*>(ud)->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-      return 0;
-    } catch (...) {
-      return -1;
-    }
-  }
-  static int g(double t, N_Vector y, double* gout, void* ud) {
-    return root_callback(t, N_VGetArrayPointer(y), gout, ud);
-  }
-  // The held contact's displacement and velocity levels: the corrected state is put on
-  // u₀ = X_C, u̇₀ = Ẋ_C by translating the follower rigidly, c = (s·1, ŝ·1) with
-  // s = X_C − u₀, ŝ = Ẋ_C − u̇₀ — the correction that changes no strain and so no internal
-  // force. (Projecting along M⁻¹e₀, or moving node 0 alone, put the drift — up to
-  // rtol·|X_C| — into the first element's strain, k_e·s: on the stiff bar, k_e = 1.25e10,
-  // that gave force spikes and spurious separations at rtol ≥ 1e-4.) CVODE adds c to the
-  // step's correction and to its history.
-  static int project(double t, N_Vector ycur, N_Vector corr, double, N_Vector, void* ud) {
-    try {
-      auto* self = static_cast<CvodeEngine*>(ud);
-      const int n = self->n_;
-      const double* y = N_VGetArrayPointer(ycur);
-      const CamMotion c = self->held_->path(t);
-      Eigen::Map<Eigen::VectorXd> C(N_VGetArrayPointer(corr), 2 * n);
-      C.head(n).setConstant(c.X - y[0]);
-      C.tail(n).setConstant(c.Xdot - y[n]);
-      return 0;
-    } catch (...) {
-      return -1;
-    }
-  }
-  static int linsys(double t, N_Vector y, N_Vector, SUNMatrix, sunbooleantype, sunbooleantype* jcur,
-                    double gamma, void* ud, N_Vector, N_Vector, N_Vector) {
-    try {
-      auto* self = static_cast<CvodeEngine*>(ud);
-      self->sls_.prepare(self->contact_, t, N_VGetArrayPointer(y), gamma);
-      *jcur = SUNTRUE;
-      return 0;
-    } catch (...) {
-      return -1;
-    }
-  }
-
-  ContextHolder ctx_;
-  NVec y_;
-  SchurLinearSolver sls_;
-  std::unique_ptr<void, CvDel> mem_;
-  double hcur_ = 0, first_h_ = 0;
-  bool projection_set_ = false;
-};
-
 }  // namespace
 
 std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, const SolverSpec& solver,
@@ -603,7 +287,7 @@ std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, 
     case Integrator::ArkodeDirk:
       return std::make_unique<DirkEngine>(std::move(model), solver, trial, lsk);
     case Integrator::CvodeBdf:
-      return std::make_unique<CvodeEngine>(std::move(model), solver, lsk, trial, tol_u);
+      return engine_detail::make_cvode_engine(std::move(model), solver, lsk, trial, tol_u);
     case Integrator::Ida:
       // The DAE engine (ida_engine.cpp) integrates the held contact itself; the runner
       // still wants an Engine for its bookkeeping (no contact force): an ERK engine in

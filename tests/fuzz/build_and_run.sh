@@ -17,7 +17,7 @@ CXX="${CXX_FUZZ:-clang++}"
 mkdir -p "$OUT/corpus" "$OUT/artifacts"
 
 # toml++ is compiled from its headers here (toml_impl.cpp below) so the parser itself is
-# instrumented too; scene.cpp, scene_network.cpp and cam.cpp (+ the cam geometry of issue 24:
+# instrumented too; scene.cpp, scene_network.cpp and cam.cpp, cam_profiles.cpp (+ the cam geometry of issue 24:
 # follower_geometry, motion_law, motion_law_parse) need nothing else from the library.
 #
 # Known upstream bug, found by this fuzzer on the first minute: toml++ 3.3.0 (Debian's)
@@ -61,7 +61,7 @@ fi
   -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
   -DTOML_HEADER_ONLY=0 \
   "${TOML_INC[@]}" -I"$SRC/include" -I"$SRC/src" -isystem /usr/include/eigen3 \
-  "$SRC/tests/fuzz/fuzz_scene.cpp" "$SRC/src/scene.cpp" "$SRC/src/scene_network.cpp" "$SRC/src/scene_units.cpp" "$SRC/src/cam.cpp" \
+  "$SRC/tests/fuzz/fuzz_scene.cpp" "$SRC/src/scene.cpp" "$SRC/src/scene_network.cpp" "$SRC/src/scene_units.cpp" "$SRC/src/cam.cpp" "$SRC/src/cam_profiles.cpp" \
   "$SRC/src/scene_format.cpp" "$SRC/src/scene_validate.cpp" "$SRC/src/scene_override.cpp" "$SRC/src/scene_write.cpp" \
   "$SRC/src/follower_geometry.cpp" "$SRC/src/follower_oscillating.cpp" "$SRC/src/motion_law.cpp" "$SRC/src/motion_law_parse.cpp" \
   "$OUT/toml_impl.cpp" "${RUN_FLAGS[@]}" -o "$OUT/fuzz_scene"

@@ -1,0 +1,181 @@
+// camdyn — internal to engines.cpp and engine_cvode.cpp: the SUNDIALS helpers and the
+// Schur-complement linear solver shared by the implicit engines (arkode-dirk in
+// engines.cpp, cvode-bdf in engine_cvode.cpp). Not a public header.
+#pragma once
+
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+
+#include <Eigen/Dense>
+#include <memory>
+
+#include "engine.hpp"
+#include "sparse_lu.hpp"
+#include "sundials_raii.hpp"
+
+namespace camdyn {
+namespace engine_detail {
+
+// ---------------------------------------------------------------- RAII ----------
+using detail::ContextHolder;
+using detail::LS;
+using detail::Mat;
+using detail::NVec;
+using detail::ArkDel;
+using detail::CvDel;
+using detail::ErkDel;
+using detail::make_nvec;
+using detail::not_null;
+using detail::kTrialMaxSteps;
+using detail::trial_min_step;
+inline Eigen::Map<Eigen::VectorXd> map(N_Vector v) {
+  return Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(v), N_VGetLength(v));
+}
+
+constexpr double kHugeTol = 1e30;  // trial steps: our own error test, never ARKODE's
+
+// Values of K, M, C at pattern position p of column j (rigid: scalars).
+struct ModelEntries {
+  const FollowerModel& m;
+  double K(long p) const { return m.rigid() ? m.k_rigid() : m.K().valuePtr()[p]; }
+  double M(long p) const { return m.rigid() ? m.m_rigid() : m.M().valuePtr()[p]; }
+  double C(long p) const {
+    if (!m.damped()) return 0.0;
+    return m.rigid() ? m.c_rigid() : m.C().valuePtr()[p];
+  }
+  long begin(long j) const { return m.rigid() ? 0 : m.K().outerIndexPtr()[j]; }
+  long end(long j) const { return m.rigid() ? 1 : m.K().outerIndexPtr()[j + 1]; }
+  long row(long p) const { return m.rigid() ? 0 : m.K().innerIndexPtr()[p]; }
+};
+
+// ---------------------------------------------------------------- Schur solver ---
+// The Newton systems of both implicit engines, (I − γJ) x = b with
+// J = [[0, I], [−M⁻¹K̃, −M⁻¹C̃]], through the n × n system
+//   S x_v = M b_v − γ K̃ b_u,   S = M + γC̃ + γ²K̃,   x_u = b_u + γ x_v.
+// S has the pattern of K (tridiagonal for a bar). KLU's symbolic analysis is done once
+// for that pattern; the numeric factorisation is redone only when (γ, ∂F/∂q₀, ∂F/∂v₀)
+// changed since the last one — Lee's trial steps retake the same step size several
+// times, and ARKODE asks for a setup at the first stage after every reset.
+class SchurSolver {
+ public:
+  SchurSolver(const FollowerModel& m, bool dense, EngineStats& stats)
+      : m_(m), n_(m.n()), stats_(stats), lu_(dense, stats) {
+    if (!m.rigid()) S_ = m.K();  // copy of the shared pattern
+  }
+
+  void setup(double g, double dFdq, double dFdv) {
+    if (factored_ && g == g_ && dFdq == dFdq_ && dFdv == dFdv_) return;  // S unchanged
+    g_ = g;
+    dFdq_ = dFdq;
+    dFdv_ = dFdv;
+    factored_ = true;
+    z_valid_ = false;
+    ++stats_.lin_setups;
+    if (m_.rigid()) {
+      s_rigid_ = m_.m_rigid() + g * (m_.c_rigid() - dFdv) + g * g * (m_.k_rigid() - dFdq);
+      return;
+    }
+    const ModelEntries e{m_};
+    double* x = S_.valuePtr();
+    for (long j = 0; j < n_; ++j)
+      for (long p = e.begin(j); p < e.end(j); ++p) {
+        double v = e.M(p) + g * e.C(p) + g * g * e.K(p);
+        if (j == 0 && e.row(p) == 0) v -= g * dFdv + g * g * dFdq;
+        x[p] = v;
+      }
+    lu_.factor(S_);
+  }
+  // x = (I − γJ)⁻¹ b, in place on b (length 2n).
+  //
+  // Held contact (a HeldContact set): v̇ = P M⁻¹(f₀ − Kq − Cv) + M⁻¹e₀Ẍ_C/M* with
+  // P = I − M⁻¹e₀e₀ᵀ/M*, so J's velocity rows are P M⁻¹[−K, −C] and e₀ᵀP = 0. The
+  // system becomes S x_v = M b_v − γK b_u + e₀λ with x_v,0 = b_v,0 (node 0's velocity
+  // row is the identity): bordered with z = S⁻¹e₀ (one solve per factorisation),
+  // x_v = w + λz, w = S⁻¹(M b_v − γK b_u), λ = (b_v,0 − w₀)/z₀.
+  void solve(double* b, bool held = false) {
+    const long n = n_;
+    double* bu = b;
+    double* bv = b + n;
+    if (m_.rigid()) {
+      if (held) {  // q̈ = Ẍ_C(t): x_v = b_v
+        bu[0] += g_ * bv[0];
+        return;
+      }
+      const double rhs = m_.m_rigid() * bv[0] - g_ * (m_.k_rigid() - dFdq_) * bu[0];
+      bv[0] = rhs / s_rigid_;
+      bu[0] += g_ * bv[0];
+      return;
+    }
+    const double bv0 = bv[0];
+    Eigen::Map<Eigen::VectorXd> U(bu, n), V(bv, n);
+    rhs_.noalias() = m_.M() * V;
+    rhs_.noalias() -= g_ * (m_.K() * U);
+    rhs_[0] += g_ * dFdq_ * U[0];
+    lu_.solve(rhs_.data());
+    V = rhs_;
+    if (held) {
+      if (!z_valid_) {
+        z_.setZero(n);
+        z_[0] = 1.0;
+        lu_.solve(z_.data());
+        z_valid_ = true;
+      }
+      const double lambda = (bv0 - V[0]) / z_[0];
+      V += lambda * z_;
+      V[0] = bv0;
+    }
+    U += g_ * V;
+  }
+
+ private:
+  const FollowerModel& m_;
+  long n_;
+  EngineStats& stats_;
+  bool factored_ = false, z_valid_ = false;
+  Eigen::VectorXd z_;  // S⁻¹e₀ (held contact)
+  double g_ = 0, dFdq_ = 0, dFdv_ = 0, s_rigid_ = 1;
+  SparseMatrix S_;
+  Eigen::VectorXd rhs_;
+  detail::SparseLu lu_;
+};
+
+// The SchurSolver as a SUNDIALS linear solver (detail::CustomLinearSolver). The engine's
+// linear-system function hands over γ and the contact law's derivatives (prepare), the
+// solver's setup factorises (if they changed), its solve applies (I − γJ)⁻¹.
+class SchurLinearSolver {
+ public:
+  SchurLinearSolver(const FollowerModel& m, bool dense, EngineStats& stats, SUNContext ctx)
+      : schur_(m, dense, stats), n_(m.n()),
+        cls_(ctx, [this] { schur_.setup(gamma_, dFdq_, dFdv_); },
+             [this](double* x) { schur_.solve(x, held_ && *held_); }) {}
+  SUNLinearSolver ls() { return cls_.ls(); }
+  SUNMatrix placeholder() { return cls_.placeholder(); }
+  // From the linear-system function: the system I − γJ at (t, y) under the contact force f.
+  void prepare(const ContactForce* f, double t, const double* y, double gamma) {
+    if (f)
+      f->derivatives(t, y[0], y[n_], &dFdq_, &dFdv_);
+    else
+      dFdq_ = dFdv_ = 0.0;
+    gamma_ = gamma;
+  }
+  /// Where each solve reads whether the contact is held (the engine's held contact, or
+  /// null): the held contact's system has the same S, bordered (SchurSolver::solve), so
+  /// a phase switch needs no new factorisation.
+  void watch(const HeldContact* const* held) { held_ = held; }
+
+ private:
+  SchurSolver schur_;
+  long n_;
+  double gamma_ = 0, dFdq_ = 0, dFdv_ = 0;
+  const HeldContact* const* held_ = nullptr;
+  detail::CustomLinearSolver cls_;
+};
+
+/// The cvode-bdf engine (engine_cvode.cpp), for make_engine.
+std::unique_ptr<Engine> make_cvode_engine(std::shared_ptr<const FollowerModel> model,
+                                          const SolverSpec& solver, LinearSolverKind lsk,
+                                          bool trial, double tol_u);
+
+}  // namespace engine_detail
+}  // namespace camdyn
