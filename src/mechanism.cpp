@@ -20,6 +20,10 @@ std::string element_label(const ElementSpec& e, size_t i) {
 
 Mechanism::Mechanism(const Scene& scene) {
   using detail::fmt;
+  if (scene.follower.kind != FollowerKind::Network) {
+    build_follower(scene);
+    return;
+  }
   const NetworkSpec& net = scene.network;
   std::map<std::string, int> index;  // named node → full DOF
   for (const NodeSpec& nd : net.nodes) {
@@ -256,6 +260,7 @@ Mechanism::Mechanism(const Scene& scene) {
       q0_[red[i]] = qf[i];
       v0_[red[i]] = vf[i];
     }
+  r0_ = f0_ - K_ * q0_;
 
   desc_.follower = "network";
   desc_.nodes = n_;
@@ -290,8 +295,9 @@ void Mechanism::acceleration(double, const double* q, const double* v, const Eig
                              bool homogeneous) const {
   Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
   Eigen::Map<Eigen::VectorXd> A(a, n_);
-  Eigen::VectorXd r = -(K_ * Q);
-  if (!homogeneous) r += f0_;
+  Eigen::VectorXd r;
+  if (homogeneous) r = -(K_ * Q);
+  else r = r0_ - K_ * (Q - q0_);
   if (damped()) r.noalias() -= C_ * V;
   A = Mldlt_.solve(r);
   if (F.size()) A.noalias() += MinvTt_ * F;

@@ -73,6 +73,10 @@ class MechanicalSystem {
   const ModelDescription& description() const { return desc_; }
   /// A typical force (thresholds): the largest preload.
   double force_scale() const { return force_scale_; }
+  /// true: built from a rigid or elastic_bar scene (one cam contact on node 0, the cam's
+  /// X_C absolute: g = q₀ − X_C, u_c = q₀), whose history keeps the single follower's
+  /// standard columns (no per-contact or per-node columns).
+  bool single_follower() const { return single_follower_; }
 
   /// true: r affine in (q, q̇) with constant coefficients (Lee's step map is affine).
   virtual bool linear() const = 0;
@@ -118,12 +122,15 @@ class MechanicalSystem {
   std::vector<std::string> node_names_;
   ModelDescription desc_;
   double force_scale_ = 0.0;
+  bool single_follower_ = false;
 };
 
 /// The linear mechanism of a network scene: r = f₀ − Kq − Cq̇.
 class Mechanism final : public MechanicalSystem {
  public:
-  /// @pre validate(scene) passed and scene.follower.kind == Network.
+  /// The mechanism of a scene: its network, or a rigid / elastic_bar follower as a
+  /// one-contact mechanism (src/mechanism_follower.cpp).
+  /// @pre validate(scene) passed.
   /// @throws std::invalid_argument on a mass matrix that is not positive definite.
   explicit Mechanism(const Scene& scene);
 
@@ -144,9 +151,17 @@ class Mechanism final : public MechanicalSystem {
   double damping_power(const double* v) const override;
 
  private:
+  /// A rigid or elastic_bar follower: FollowerModel's M, C, K, f₀ and q(0), contact row e₀ᵀ.
+  void build_follower(const Scene& scene);
+  /// After M_, K_, C_, f0_, q0_: the LDLᵀ of M and the shifted force origin.
+  void factor_and_origin();
   SparseMatrix M_, K_, C_;
   Eigen::SimplicialLDLT<SparseMatrix> Mldlt_;
   Eigen::VectorXd f0_;
+  // r = f₀ − Kq − Cq̇ is evaluated as r₀ − K(q − q(0)) − Cq̇ with r₀ = f₀ − Kq(0): the same
+  // value, with round-off that scales with the motion since t = 0, not with |K||q| (a stiff
+  // bar at rest otherwise shows force noise of ~1e-7 of its preload).
+  Eigen::VectorXd r0_;
 };
 
 /// A user's follower as the system the network methods integrate (src/mechanism.cpp).

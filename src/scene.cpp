@@ -196,6 +196,7 @@ const std::vector<Field>& fields() {
     v.push_back(F_ENUM(solver, linear_solver, kLinSolNames));
     v.push_back(ruled(F_REAL(solver, max_step), Rule::Ge, 0));
     v.push_back(ruled(F_REAL(solver, initial_step), Rule::Ge, 0));
+    v.push_back(F_ENUM(solver, stack, kStackNames));
 
     v.push_back(ruled(F_REAL(run, t_end), Rule::Gt, 0));
     v.push_back(ruled(F_REAL(run, output_dt), Rule::Ge, 0));

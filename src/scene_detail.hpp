@@ -53,6 +53,8 @@ inline constexpr EnumName<Integrator> kIntegratorNames[] = {{Integrator::ArkodeE
                                                      {Integrator::Ida, "ida"}};
 inline constexpr EnumName<LinearSolverKind> kLinSolNames[] = {
     {LinearSolverKind::Auto, "auto"}, {LinearSolverKind::Dense, "dense"}, {LinearSolverKind::Klu, "klu"}};
+inline constexpr EnumName<StackKind> kStackNames[] = {
+    {StackKind::Auto, "auto"}, {StackKind::Follower, "follower"}, {StackKind::Mechanism, "mechanism"}};
 inline constexpr EnumName<ElementKind> kElementNames[] = {{ElementKind::Spring, "spring"},
                                                    {ElementKind::Dashpot, "dashpot"},
                                                    {ElementKind::Bar, "bar"},

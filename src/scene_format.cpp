@@ -37,6 +37,7 @@ const char* to_string(LeeStepKind v) { return enum_to_string(kLeeStepNames, v); 
 const char* to_string(PenaltyLaw v) { return enum_to_string(kPenaltyNames, v); }
 const char* to_string(Integrator v) { return enum_to_string(kIntegratorNames, v); }
 const char* to_string(LinearSolverKind v) { return enum_to_string(kLinSolNames, v); }
+const char* to_string(StackKind v) { return enum_to_string(kStackNames, v); }
 const char* to_string(ElementKind v) { return enum_to_string(kElementNames, v); }
 const char* to_string(ContactPointKind v) { return enum_to_string(kContactPointNames, v); }
 const char* to_string(StopSide v) { return enum_to_string(kStopSideNames, v); }
@@ -53,6 +54,7 @@ bool parse_enum(std::string_view s, LeeStepKind* out) { return enum_parse(kLeeSt
 bool parse_enum(std::string_view s, PenaltyLaw* out) { return enum_parse(kPenaltyNames, s, out); }
 bool parse_enum(std::string_view s, Integrator* out) { return enum_parse(kIntegratorNames, s, out); }
 bool parse_enum(std::string_view s, LinearSolverKind* out) { return enum_parse(kLinSolNames, s, out); }
+bool parse_enum(std::string_view s, StackKind* out) { return enum_parse(kStackNames, s, out); }
 bool parse_enum(std::string_view s, ElementKind* out) { return enum_parse(kElementNames, s, out); }
 bool parse_enum(std::string_view s, ContactPointKind* out) { return enum_parse(kContactPointNames, s, out); }
 bool parse_enum(std::string_view s, StopSide* out) { return enum_parse(kStopSideNames, s, out); }

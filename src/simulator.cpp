@@ -186,8 +186,30 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   } else {
     model_ = build_model(scene_);
     detail::check_start(scene_, *model_);
+    if (runs_on_mechanism(scene_)) mech_ = std::make_shared<const Mechanism>(scene_);
   }
   add_designer_columns();
+}
+
+bool Simulator::runs_on_mechanism(const Scene& sc) {
+  if (sc.follower.kind == FollowerKind::Network) return true;
+  const bool classic = sc.contact.model == ContactModel::Lee && sc.contact.lee_step == LeeStepKind::Classic;
+  const bool ida = sc.solver.integrator == Integrator::Ida;
+  switch (sc.solver.stack) {
+    case StackKind::Follower: return false;
+    case StackKind::Auto: return false;
+    case StackKind::Mechanism:
+      if (ida)
+        throw SceneError(sc.source, 0, "solver.stack", "mechanism",
+                         "runs on arkode-erk, arkode-dirk or cvode-bdf (solver.integrator = ida: use "
+                         "solver.stack = \"follower\" or \"auto\")");
+      if (classic)
+        throw SceneError(sc.source, 0, "solver.stack", "mechanism",
+                         "runs Lee's located step (contact.lee_step = classic: use solver.stack = "
+                         "\"follower\" or \"auto\")");
+      return true;
+  }
+  return false;
 }
 
 void Simulator::add_designer_columns() {
@@ -225,7 +247,7 @@ Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
     Summary sum = method->run();
     detail::describe_tolerance(scene_, sum);
     sum.warnings = warnings_;
-    sum.verdict = detail::make_verdict(scene_, mech_.get(), sum.events);
+    sum.verdict = detail::make_verdict(scene_, mech_->single_follower() ? nullptr : mech_.get(), sum.events);
     sum.verdict_text = detail::verdict_one_line(sum.verdict);
     return sum;
   }

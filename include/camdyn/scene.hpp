@@ -30,6 +30,7 @@ enum class LeeStepKind { Located, Classic };
 enum class PenaltyLaw { Linear, HuntCrossley };
 enum class Integrator { ArkodeErk, ArkodeDirk, CvodeBdf, Ida };
 enum class LinearSolverKind { Auto, Dense, Klu };
+enum class StackKind { Auto, Follower, Mechanism };
 
 const char* to_string(CamProfileKind v);    // "points" | "lift" | "circle" | "law" | "arc"
 const char* to_string(FollowerFace v);      // "flat" | "knife_edge" | "roller" | "point"
@@ -42,6 +43,7 @@ const char* to_string(LeeStepKind v);           // "located" | "classic"
 const char* to_string(PenaltyLaw v);        // "linear" | "hunt_crossley"
 const char* to_string(Integrator v);        // "arkode-erk" | "arkode-dirk" | "cvode-bdf" | "ida"
 const char* to_string(LinearSolverKind v);  // "auto" | "dense" | "klu"
+const char* to_string(StackKind v);         // "auto" | "follower" | "mechanism"
 
 bool parse_enum(std::string_view s, CamProfileKind* out);
 bool parse_enum(std::string_view s, FollowerFace* out);
@@ -54,6 +56,7 @@ bool parse_enum(std::string_view s, LeeStepKind* out);
 bool parse_enum(std::string_view s, PenaltyLaw* out);
 bool parse_enum(std::string_view s, Integrator* out);
 bool parse_enum(std::string_view s, LinearSolverKind* out);
+bool parse_enum(std::string_view s, StackKind* out);
 
 /// The cam: profile and drive.
 struct CamSpec {
@@ -205,6 +208,14 @@ struct SolverSpec {
   double max_step = 0.0;
   /// First step [time], ≥ 0; 0 = automatic.
   double initial_step = 0.0;
+  /// Which step loop runs a rigid or elastic_bar follower (issue 23, docs/one_mechanism.md):
+  ///  mechanism: the follower built as a one-contact Mechanism (sparse M, C, K, contact row
+  ///             T = e₀ᵀ) and run by the network methods and engines — the one stack every
+  ///             network and user follower runs on;
+  ///  follower:  the single-follower stack (FollowerModel, src/engines.cpp);
+  ///  auto:      mechanism wherever that stack has the method (ida and contact.lee_step =
+  ///             "classic" run on the follower stack). Networks always run on the mechanism.
+  StackKind stack = StackKind::Auto;
 };
 
 /// What to run and what to write.

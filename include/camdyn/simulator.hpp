@@ -307,11 +307,15 @@ class Simulator {
   /// The scene's plausibility warnings (scene_warnings(), camdyn/scene_warnings.hpp), known
   /// before the run; run() copies them into Summary::warnings.
   const std::vector<std::string>& warnings() const { return warnings_; }
+  /// true: the scene runs on the one-mechanism stack (a network always; a rigid or
+  /// elastic_bar follower as solver.stack decides, SceneSpec docs).
+  /// @throws SceneError (solver.stack = "mechanism" with ida or contact.lee_step = classic).
+  static bool runs_on_mechanism(const Scene& scene);
 
  private:
   Scene scene_;
   std::shared_ptr<const FollowerModel> model_;      // rigid, elastic_bar
-  std::shared_ptr<const class MechanicalSystem> mech_;  // network or a user's follower
+  std::shared_ptr<const class MechanicalSystem> mech_;  // network, user's follower, or on the mechanism stack
   std::vector<std::string> extra_columns_;
   std::vector<std::string> warnings_;
   void add_designer_columns();

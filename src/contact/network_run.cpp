@@ -37,11 +37,14 @@ NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
   // The base circle, so that a cam contact's gap sees the lift X_C − X_base
   // (cam_lift_base, include/camdyn/initial_state.hpp: cam.base_radius for a lift table,
   // min over θ of X_C otherwise).
-  if (sc.cam.profile == CamProfileKind::Lift || mk_.cam_contacts() > 0) x_base_ = cam_lift_base(cam_, sc.cam);
+  // A single follower's gap sees the cam's X_C itself (u_c = q₀, as on the follower stack).
+  if (!mk_.single_follower() && (sc.cam.profile == CamProfileKind::Lift || mk_.cam_contacts() > 0))
+    x_base_ = cam_lift_base(cam_, sc.cam);
 }
 
 std::vector<std::string> NetworkRun::extra_columns(const MechanicalSystem& mech) {
   std::vector<std::string> c;
+  if (mech.single_follower()) return c;  // the standard columns show its one contact
   for (const MechanismContact& k : mech.contacts()) {
     c.push_back("F_" + k.name);
     c.push_back("gap_" + k.name);
@@ -358,7 +361,7 @@ void NetworkRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
   r.work_cam = W;
   r.dissipated = D;
   r.extra.reserve(3 * m_ + 2 * mk_.node_names().size());
-  for (int j = 0; j < m_; ++j) {
+  for (int j = 0; j < m_ && !mk_.single_follower(); ++j) {
     r.extra.push_back(F[j]);
     r.extra.push_back(gap(j, y, cm));
     r.extra.push_back(active[j] ? 1.0 : 0.0);
