@@ -195,9 +195,7 @@ Mechanism::Mechanism(const Scene& scene) {
     L_.setFromTriplets(tl.begin(), tl.end());
   }
 
-  Mldlt_.compute(M_);
-  if (Mldlt_.info() != Eigen::Success || !(Mldlt_.vectorD().minCoeff() > 0.0))
-    throw std::invalid_argument("network: the mass matrix is not positive definite (a node without mass)");
+  factor_mass();
 
   // ---- contacts
   for (const ContactPointSpec& cs : net.contacts) {
@@ -237,7 +235,9 @@ Mechanism::Mechanism(const Scene& scene) {
     contacts_.push_back(std::move(c));
   }
   finish_contacts([&](const double* b, double* x) {
-    Eigen::Map<Eigen::VectorXd>(x, n_) = Mldlt_.solve(Eigen::Map<const Eigen::VectorXd>(b, n_));
+    Eigen::Map<Eigen::VectorXd> X(x, n_);
+    X = Eigen::Map<const Eigen::VectorXd>(b, n_);
+    solve_mass(X);
   });
   force_scale_ = f0_.size() ? f0_.cwiseAbs().maxCoeff() : 0.0;
 
@@ -291,15 +291,75 @@ bool Mechanism::acceleration_jacobian(double, const double*, const double*, Eige
   return true;
 }
 
+void Mechanism::factor_mass() {
+  M_.makeCompressed();
+  K_.makeCompressed();  // acceleration() walks K's and C's columns
+  if (damped()) C_.makeCompressed();
+  bool diag = true, tri = true;
+  for (int j = 0; j < M_.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(M_, j); it; ++it) {
+      if (it.value() == 0.0) continue;
+      diag &= it.row() == j;
+      tri &= std::abs(long(it.row()) - long(j)) <= 1;
+    }
+  const char* bad = "the mass matrix is not positive definite (a node without mass)";
+  if (diag || tri) {  // LDLᵀ of a tridiagonal SPD matrix: no pivoting, no fill
+    mass_dinv_.resize(n_);
+    mass_l_ = Eigen::VectorXd::Zero(n_);
+    double d_prev = 0.0;
+    for (int j = 0; j < n_; ++j) {
+      const double b = j > 0 && !diag ? M_.coeff(j, j - 1) : 0.0;
+      if (j > 0) mass_l_[j] = b / d_prev;
+      const double d = M_.coeff(j, j) - mass_l_[j] * b;
+      if (!(d > 0.0)) throw std::invalid_argument(bad);
+      mass_dinv_[j] = 1.0 / d;
+      d_prev = d;
+    }
+    mass_pattern_ = diag ? MassPattern::Diagonal : MassPattern::Tridiagonal;
+  }
+  Mldlt_.compute(M_);  // also for the general pattern's callers (Jacobians)
+  if (Mldlt_.info() != Eigen::Success || !(Mldlt_.vectorD().minCoeff() > 0.0)) throw std::invalid_argument(bad);
+}
+
+void Mechanism::solve_mass(Eigen::Ref<Eigen::VectorXd> x) const {
+  switch (mass_pattern_) {
+    case MassPattern::Diagonal:
+      x.array() *= mass_dinv_.array();
+      return;
+    case MassPattern::Tridiagonal:
+      for (int i = 1; i < n_; ++i) x[i] -= mass_l_[i] * x[i - 1];
+      x[n_ - 1] *= mass_dinv_[n_ - 1];
+      for (int i = n_ - 2; i >= 0; --i) x[i] = x[i] * mass_dinv_[i] - mass_l_[i + 1] * x[i + 1];
+      return;
+    case MassPattern::General:
+      x = Mldlt_.solve(Eigen::VectorXd(x));
+      return;
+  }
+}
+
 void Mechanism::acceleration(double, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
                              bool homogeneous) const {
-  Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
+  // One pass over K's columns (no temporaries): a = r₀ − K(q − q(0)) − Cv, then M⁻¹ in place.
   Eigen::Map<Eigen::VectorXd> A(a, n_);
-  Eigen::VectorXd r;
-  if (homogeneous) r = -(K_ * Q);
-  else r = r0_ - K_ * (Q - q0_);
-  if (damped()) r.noalias() -= C_ * V;
-  A = Mldlt_.solve(r);
+  const long* outer = K_.outerIndexPtr();
+  const long* inner = K_.innerIndexPtr();
+  const double* val = K_.valuePtr();
+  if (homogeneous) A.setZero();
+  else A = r0_;
+  for (int j = 0; j < n_; ++j) {
+    const double dq = homogeneous ? q[j] : q[j] - q0_[j];
+    if (dq != 0.0)
+      for (long p = outer[j]; p < outer[j + 1]; ++p) a[inner[p]] -= val[p] * dq;
+  }
+  if (damped()) {
+    const long* co = C_.outerIndexPtr();
+    const long* ci = C_.innerIndexPtr();
+    const double* cv = C_.valuePtr();
+    for (int j = 0; j < n_; ++j)
+      if (v[j] != 0.0)
+        for (long p = co[j]; p < co[j + 1]; ++p) a[ci[p]] -= cv[p] * v[j];
+  }
+  solve_mass(A);
   if (F.size()) A.noalias() += MinvTt_ * F;
 }
 

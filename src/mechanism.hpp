@@ -162,6 +162,12 @@ class Mechanism final : public MechanicalSystem {
   // value, with round-off that scales with the motion since t = 0, not with |K||q| (a stiff
   // bar at rest otherwise shows force noise of ~1e-7 of its preload).
   Eigen::VectorXd r0_;
+  /// x ← M⁻¹x in place: diagonal M by its inverse diagonal, tridiagonal M (a chain: the
+  /// single bar) by two O(n) passes of its LDLᵀ, any other pattern by the sparse LDLᵀ.
+  void solve_mass(Eigen::Ref<Eigen::VectorXd> x) const;
+  void factor_mass();  // after M_: picks the solve above; @throws std::invalid_argument
+  enum class MassPattern { Diagonal, Tridiagonal, General } mass_pattern_ = MassPattern::General;
+  Eigen::VectorXd mass_dinv_, mass_l_;  // 1/D, and L's subdiagonal (tridiagonal)
 };
 
 /// A user's follower as the system the network methods integrate (src/mechanism.cpp).

@@ -43,9 +43,7 @@ void Mechanism::build_follower(const Scene& scene) {
     const CamDrive drive(scene.cam);
     v0_[0] = cam.motion(drive.theta(0.0), drive.omega(0.0), drive.omega_dot(0.0)).Xdot;
   }
-  Mldlt_.compute(M_);
-  if (Mldlt_.info() != Eigen::Success || !(Mldlt_.vectorD().minCoeff() > 0.0))
-    throw std::invalid_argument("follower: the mass matrix is not positive definite");
+  factor_mass();
   r0_ = f0_ - K_ * q0_;
   L_.resize(0, n_);
 
@@ -61,7 +59,9 @@ void Mechanism::build_follower(const Scene& scene) {
   c.penalty_damping = scene.contact.penalty_damping;
   contacts_.push_back(std::move(c));
   finish_contacts([&](const double* b, double* x) {
-    Eigen::Map<Eigen::VectorXd>(x, n_) = Mldlt_.solve(Eigen::Map<const Eigen::VectorXd>(b, n_));
+    Eigen::Map<Eigen::VectorXd> X(x, n_);
+    X = Eigen::Map<const Eigen::VectorXd>(b, n_);
+    solve_mass(X);
   });
   force_scale_ = std::abs(f.spring_preload());
   single_follower_ = true;

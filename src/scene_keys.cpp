@@ -122,7 +122,7 @@ const KeyDoc kDocs[] = {
     {"solver.initial_step", "time", "First step; 0 = automatic."},
     {"solver.stack", "—", "Step loop of a `rigid` or `elastic_bar` follower: `mechanism` (built as a one-contact "
                           "mechanism and run by the methods and engines of networks), `follower` (the "
-                          "single-follower stack), `auto` (mechanism except ida and contact.lee_step = classic)."},
+                          "single-follower stack), `auto` (the follower stack for now; docs/one_mechanism.md)."},
     // [run]
     {"run.t_end", "time", "Final time."},
     {"run.revolutions", "rev", "Length of the run in camshaft revolutions, instead of `run.t_end` (giving both is an "

@@ -213,8 +213,9 @@ struct SolverSpec {
   ///             T = e₀ᵀ) and run by the network methods and engines — the one stack every
   ///             network and user follower runs on;
   ///  follower:  the single-follower stack (FollowerModel, src/engines.cpp);
-  ///  auto:      mechanism wherever that stack has the method (ida and contact.lee_step =
-  ///             "classic" run on the follower stack). Networks always run on the mechanism.
+  ///  auto:      the follower stack for now (docs/one_mechanism.md §4 lists what the
+  ///             mechanism stack still lacks before it becomes the default). Networks and
+  ///             user followers always run on the mechanism stack.
   StackKind stack = StackKind::Auto;
 };
 

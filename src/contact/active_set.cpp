@@ -110,5 +110,22 @@ ContactLcpResult solve_contact_lcp(const Eigen::MatrixXd& W, const Eigen::Vector
   return r;
 }
 
+void project_on_set(const Eigen::MatrixXd& MinvTt, const Eigen::MatrixXd& W, const std::vector<int>& set,
+                    const Eigen::VectorXd& g, const Eigen::VectorXd& gd, Eigen::VectorXd& y) {
+  const int k = int(set.size()), n = int(MinvTt.rows());
+  if (k == 0) return;
+  Eigen::MatrixXd Wss(k, k), B(n, k);
+  Eigen::MatrixXd rhs(k, 2);
+  for (int a = 0; a < k; ++a) {
+    B.col(a) = MinvTt.col(set[a]);
+    rhs(a, 0) = g[set[a]];
+    rhs(a, 1) = gd[set[a]];
+    for (int b = 0; b < k; ++b) Wss(a, b) = W(set[a], set[b]);
+  }
+  const Eigen::MatrixXd lam = Wss.completeOrthogonalDecomposition().solve(rhs);
+  y.head(n).noalias() -= B * lam.col(0);
+  y.tail(n).noalias() -= B * lam.col(1);
+}
+
 }  // namespace detail
 }  // namespace camdyn

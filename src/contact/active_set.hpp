@@ -20,6 +20,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace camdyn {
 namespace detail {
@@ -33,6 +34,13 @@ struct ContactLcpResult {
 /// Solve the LCP F ≥ 0, W F + b ≥ 0, Fᵀ(W F + b) = 0 with the smallest ‖F‖.
 /// @pre W square symmetric positive semidefinite, b of its size.
 ContactLcpResult solve_contact_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b);
+
+/// Put a state on the held set's manifold g_S = 0, ġ_S = 0, M-orthogonally:
+///   q ← q − M⁻¹T_Sᵀ W_SS⁺ g_S,   v ← v − M⁻¹T_Sᵀ W_SS⁺ ġ_S
+/// (W_SS⁺: minimal-norm least squares, for dependent sets). `MinvTt` = M⁻¹Tᵀ (n × m),
+/// `W` = T M⁻¹ Tᵀ, `g`, `gd` the gaps and their rates over all m contacts; y = [q; v].
+void project_on_set(const Eigen::MatrixXd& MinvTt, const Eigen::MatrixXd& W, const std::vector<int>& set,
+                    const Eigen::VectorXd& g, const Eigen::VectorXd& gd, Eigen::VectorXd& y);
 
 }  // namespace detail
 }  // namespace camdyn

@@ -26,6 +26,7 @@
 #include <functional>
 #include <stdexcept>
 
+#include "active_set.hpp"
 #include "lee_step_tools.hpp"
 #include "network_run.hpp"
 #include "run_context.hpp"  // StepFailure, IterationFailure, fmt
@@ -278,6 +279,11 @@ class NetworkLee final : public NetworkRun {
     const StepData& s = *dense_;
     interpolate(s, to, yi_);
     const CamMotion cm = cam_at(to);
+    if (!s.set.empty()) {  // held rows on the held contacts (the step ends are)
+      Eigen::VectorXd g = Eigen::VectorXd::Zero(m_), gd = g;
+      for (int j : s.set) g[j] = gap(j, yi_, cm), gd[j] = gap_rate(j, yi_, cm);
+      project_on_set(mk_.MinvTt(), mk_.W(), s.set, g, gd, yi_);
+    }
     Eigen::VectorXd F = held_forces(to, yi_, cm, s.set);
     for (int j : s.set) F[j] = unilateral_ ? std::max(F[j], 0.0) : F[j];
     std::vector<char> act(m_, 0);

@@ -1,0 +1,195 @@
+// Issue 23 — a rigid or elastic_bar follower built as a one-contact Mechanism and run by
+// the network methods and engines (solver.stack = "mechanism"), checked against
+// independent truth: case A's closed form, the follower stack's event-driven method at
+// tight tolerance (a second formulation), the follower model's M* and the history's
+// columns.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "camdyn/cam.hpp"
+#include "camdyn/model.hpp"
+#include "camdyn/simulator.hpp"
+#include "../src/mechanism.hpp"
+
+namespace camdyn {
+namespace {
+
+// Case A (rigid, always in contact): u = X_C(θ(t)), F = m Ẍ_C + k δ₀ + k (X_C − X_C(0)).
+struct CaseAErrors {
+  double u = 0, F = 0, Fpeak = 0, min_gap = INFINITY;
+};
+CaseAErrors case_a_errors(const Scene& s, const RunResult& r) {
+  const Cam cam(s.cam);
+  const CamDrive drive(s.cam);
+  const double X0 = cam.evaluate(drive.theta(0)).X_C, k = s.spring.stiffness;
+  CaseAErrors e;
+  for (const HistoryRow& row : r.rows) {
+    const CamMotion m = cam.motion(drive.theta(row.t), drive.omega(row.t), drive.omega_dot(row.t));
+    const double F = s.follower.mass * m.Xddot + k * s.spring.precompression + k * (m.X - X0);
+    e.u = std::max(e.u, std::abs(row.u_c - m.X));
+    e.F = std::max(e.F, std::abs(row.contact_force - F));
+    e.Fpeak = std::max(e.Fpeak, std::abs(F));
+    e.min_gap = std::min(e.min_gap, row.gap);
+  }
+  return e;
+}
+
+class MechanismStackCaseA : public ::testing::TestWithParam<Integrator> {};
+
+TEST_P(MechanismStackCaseA, LeeMatchesTheClosedFormWithTheFollowerStacksBounds) {
+  // The bounds of LeeCaseA.MatchesClosedFormWithDefaultTolerances (test_lee.cpp).
+  Scene s = paper_case("A");
+  s.solver.stack = StackKind::Mechanism;
+  s.solver.integrator = GetParam();
+  const RunResult r = simulate(s);
+  ASSERT_TRUE(r.summary.finished) << r.summary.message;
+  const CaseAErrors e = case_a_errors(s, r);
+  std::printf("%s: |u err| %.3e, |F err|/peak %.3e, min gap %.3e; %s\n", to_string(GetParam()), e.u, e.F / e.Fpeak,
+              e.min_gap, r.summary.BriefReport().c_str());
+  EXPECT_LE(e.u, 1e-7);
+  EXPECT_LE(e.F / e.Fpeak, 1e-5);
+  EXPECT_GE(e.min_gap, -(1e-8 + 1e-12));  // tol_u of a rigid follower
+  EXPECT_EQ(r.summary.separations, 0);
+  EXPECT_EQ(r.summary.impacts, 0);
+  EXPECT_NE(r.summary.model.contact.find("one-contact mechanism"), std::string::npos) << r.summary.model.ToString();
+}
+
+INSTANTIATE_TEST_SUITE_P(Engines, MechanismStackCaseA,
+                         ::testing::Values(Integrator::ArkodeErk, Integrator::ArkodeDirk, Integrator::CvodeBdf),
+                         [](const auto& i) {
+                           std::string n = to_string(i.param);
+                           for (char& c : n)
+                             if (c == '-') c = '_';
+                           return n;
+                         });
+
+// A7: one separation and one impact per revolution. The reference is the follower stack's
+// event-driven method at rtol 1e-11 (another formulation, another code path).
+TEST(MechanismStack, A7EventsAgreeWithTheFollowerStacksEventMethod) {
+  Scene ref = paper_case("A");  // examples/case_A7.toml: case A at 7 rev/s
+  ref.cam.speed_rev_s = 7.0;
+  ref.run.t_end = 0.1;
+  ref.solver.stack = StackKind::Follower;
+  ref.contact.model = ContactModel::Event;
+  ref.solver.rtol = 1e-11;
+  const RunResult R = simulate(ref);
+  ASSERT_TRUE(R.summary.finished) << R.summary.message;
+  ASSERT_EQ(R.summary.events.size(), 2u);
+  for (ContactModel m : {ContactModel::Lee, ContactModel::Event})
+    for (Integrator e : {Integrator::ArkodeErk, Integrator::ArkodeDirk}) {
+      Scene s = ref;
+      s.solver.stack = StackKind::Mechanism;
+      s.contact.model = m;
+      s.solver.integrator = e;
+      s.solver.rtol = 1e-9;  // contact.tol_u stays 1e-8 (a rigid follower's default)
+      const RunResult r = simulate(s);
+      const std::string what = std::string(to_string(m)) + " on " + to_string(e);
+      ASSERT_TRUE(r.summary.finished) << what << ": " << r.summary.message;
+      ASSERT_EQ(r.summary.events.size(), R.summary.events.size()) << what;
+      for (size_t i = 0; i < R.summary.events.size(); ++i) {
+        const ContactEvent &a = r.summary.events[i], &b = R.summary.events[i];
+        std::printf("%s: %s at %.12f (reference %.12f), v %.9g (%.9g)\n", what.c_str(), a.kind.c_str(), a.t, b.t,
+                    a.impact_velocity, b.impact_velocity);
+        EXPECT_EQ(a.kind, b.kind) << what;
+        EXPECT_NEAR(a.t, b.t, 1e-8) << what;
+        EXPECT_NEAR(a.impact_velocity, b.impact_velocity, 1e-6 * std::abs(b.impact_velocity) + 1e-9) << what;
+      }
+    }
+}
+
+// The one-contact mechanism's algebra against the follower model's: W = T M⁻¹ Tᵀ = M*
+// (a rigid follower: 1/m), the unknowns and the free acceleration.
+TEST(MechanismStack, OneContactMechanismHasTheFollowerModelsMassAndForces) {
+  for (const char* c : {"A", "B1"}) {
+    Scene s = paper_case(c);
+    s.follower.mass_matrix = MassMatrixKind::Consistent;
+    resolve_defaults(s);
+    const Mechanism mech(s);
+    const auto fm = build_model(s);
+    ASSERT_TRUE(mech.single_follower());
+    ASSERT_EQ(mech.n(), fm->n()) << c;
+    ASSERT_EQ(mech.m(), 1);
+    EXPECT_NEAR(mech.W()(0, 0), fm->mstar(), 1e-12 * fm->mstar()) << c;
+    if (fm->rigid()) EXPECT_NEAR(mech.W()(0, 0), 1.0 / s.follower.mass, 1e-15) << c;
+    // Free acceleration at a displaced, moving state: a = M⁻¹(f₀ − Kq − Cv).
+    Eigen::VectorXd q = fm->initial_displacement(), v(fm->n()), a(fm->n()), r(fm->n()), a_ref(fm->n());
+    for (int i = 0; i < fm->n(); ++i) {
+      q[i] += 1e-3 * std::sin(1.0 + i);
+      v[i] = 0.1 * std::cos(2.0 + i);
+    }
+    mech.acceleration(0.0, q.data(), v.data(), Eigen::VectorXd(), a.data());
+    fm->internal_force(q.data(), v.data(), r.data());
+    fm->solve_mass(r.data(), a_ref.data());
+    EXPECT_LE((a - a_ref).cwiseAbs().maxCoeff(), 1e-9 * a_ref.cwiseAbs().maxCoeff()) << c;
+    EXPECT_NEAR(mech.kinetic_energy(v.data()), fm->kinetic_energy(v.data()), 1e-12 * fm->kinetic_energy(v.data()));
+  }
+}
+
+// B1 (elastic bar, always in contact) on the two stacks: the contact force at every row
+// within the tolerance's reach of each other (the follower stack at rtol 1e-10 as the
+// reference), the same history columns.
+TEST(MechanismStack, B1ForceAgreesWithTheFollowerStackAndKeepsItsColumns) {
+  Scene ref = paper_case("B1");
+  ref.run.t_end = 0.05;
+  ref.solver.rtol = 1e-10;
+  ref.solver.stack = StackKind::Follower;
+  const RunResult R = simulate(ref);
+  ASSERT_TRUE(R.summary.finished) << R.summary.message;
+  Scene s = ref;
+  s.solver.rtol = 1e-7;
+  s.solver.stack = StackKind::Mechanism;
+  const Simulator sim(s);
+  EXPECT_TRUE(sim.extra_columns().empty());
+  const RunResult r = simulate(s);
+  ASSERT_TRUE(r.summary.finished) << r.summary.message;
+  ASSERT_EQ(r.rows.size(), R.rows.size());
+  double dF = 0, Fmax = 0, du = 0;
+  for (size_t i = 0; i < r.rows.size(); ++i) {
+    ASSERT_EQ(r.rows[i].t, R.rows[i].t);
+    ASSERT_TRUE(r.rows[i].extra.empty());
+    dF = std::max(dF, std::abs(r.rows[i].contact_force - R.rows[i].contact_force));
+    du = std::max(du, std::abs(r.rows[i].u_c - R.rows[i].u_c));
+    Fmax = std::max(Fmax, std::abs(R.rows[i].contact_force));
+  }
+  std::printf("B1 mechanism vs follower (rtol 1e-10): |dF|/Fmax %.3e, |du| %.3e\n", dF / Fmax, du);
+  EXPECT_LE(dF / Fmax, 1e-4);
+  EXPECT_LE(du, 1e-6);
+}
+
+TEST(MechanismStack, RefusesWhatItDoesNotRunWithExactMessages) {
+  struct Case {
+    Integrator e;
+    ContactModel m;
+    LeeStepKind k;
+    const char* msg;
+  };
+  const Case cases[] = {
+      {Integrator::Ida, ContactModel::Holonomic, LeeStepKind::Located,
+       "runs on arkode-erk, arkode-dirk or cvode-bdf (solver.integrator = ida: use "
+       "solver.stack = \"follower\" or \"auto\")"},
+      {Integrator::ArkodeErk, ContactModel::Lee, LeeStepKind::Classic,
+       "runs Lee's located step (contact.lee_step = classic: use solver.stack = "
+       "\"follower\" or \"auto\")"},
+  };
+  for (const Case& c : cases) {
+    Scene s = paper_case("A");
+    s.solver.stack = StackKind::Mechanism;
+    s.solver.integrator = c.e;
+    s.contact.model = c.m;
+    s.contact.lee_step = c.k;
+    try {
+      Simulator sim(s);
+      ADD_FAILURE() << "no error for " << c.msg;
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.key(), "solver.stack");
+      EXPECT_EQ(e.value(), "mechanism");
+      EXPECT_EQ(e.rule(), c.msg);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace camdyn
