@@ -114,6 +114,13 @@ void project_on_set(const Eigen::MatrixXd& MinvTt, const Eigen::MatrixXd& W, con
                     const Eigen::VectorXd& g, const Eigen::VectorXd& gd, Eigen::VectorXd& y) {
   const int k = int(set.size()), n = int(MinvTt.rows());
   if (k == 0) return;
+  if (k == 1) {  // one held contact (a single follower, a valve on its seat): W_jj > 0
+    const int j = set[0];
+    if (!(W(j, j) > 0.0)) return;
+    y.head(n).noalias() -= (g[j] / W(j, j)) * MinvTt.col(j);
+    y.tail(n).noalias() -= (gd[j] / W(j, j)) * MinvTt.col(j);
+    return;
+  }
   Eigen::MatrixXd Wss(k, k), B(n, k);
   Eigen::MatrixXd rhs(k, 2);
   for (int a = 0; a < k; ++a) {

@@ -81,8 +81,13 @@ std::shared_ptr<SparseNewton> NetworkRun::sparse_newton() const {
 }
 
 CamMotion NetworkRun::cam_at(double t) const {
+  // The last few times asked for are asked again (a row: its state, forces, energies).
+  for (const CamCache& c : cam_cache_)
+    if (c.t == t) return c.m;
   CamMotion m = cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
   m.X -= x_base_;
+  cam_cache_[cam_next_] = {t, m};
+  cam_next_ = (cam_next_ + 1) % kCamCache;
   return m;
 }
 double NetworkRun::gap(int j, const Eigen::VectorXd& y, const CamMotion& cm) const {

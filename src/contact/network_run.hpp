@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 #include <atomic>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
@@ -170,6 +171,14 @@ class NetworkRun {
   double v_impact_ref_ = 0.0;  // first approach velocity (sticking threshold)
   double last_progress_ = 0;
   std::vector<std::unique_ptr<OdeEngine>> engines_;  // for the statistics
+  // cam_at's last results (the cam is evaluated once per time, not once per use)
+  struct CamCache {
+    double t = NAN;
+    CamMotion m;
+  };
+  static constexpr int kCamCache = 4;
+  mutable CamCache cam_cache_[kCamCache];
+  mutable int cam_next_ = 0;
 };
 
 /// The network method a scene asks for (contact.model: lee | penalty | event | holonomic).
