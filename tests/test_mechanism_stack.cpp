@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "camdyn/cam.hpp"
+#include "camdyn/designer.hpp"
 #include "camdyn/model.hpp"
 #include "camdyn/simulator.hpp"
 #include "../src/mechanism.hpp"
@@ -188,6 +189,38 @@ TEST(MechanismStack, RefusesWhatItDoesNotRunWithExactMessages) {
       EXPECT_EQ(e.value(), "mechanism");
       EXPECT_EQ(e.rule(), c.msg);
     }
+  }
+}
+
+// The force margin between rows and step ends (Summary::min_contact_force): the lift-table
+// cam below its jump speed, Lee on the mechanism stack, one revolution with no output rows
+// (output_dt = 0: rows at the step ends only), against the closed form
+// min_θ F_req(θ, ω) = m h″ω² + kδ₀ + k (h(θ) − h(0)) on a 0.01° grid — the bound of
+// Designer.LiftCamMarginMatchesClosedForm (test_sweep.cpp), 1e-5 of the preload.
+TEST(MechanismStack, ForceMarginInsideStepsMatchesTheClosedForm) {
+  const Scene base = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/lift_cam.toml");
+  for (double speed : {3.0, 6.0, 8.5}) {
+    Scene s = base;
+    s.solver.stack = StackKind::Mechanism;
+    s.cam.speed_rev_s = speed;
+    s.run.t_end = 1.0 / speed;
+    s.run.output_dt = 0;
+    s.solver.rtol = 1e-7;
+    const Cam cam(s.cam);
+    const double w = 2 * M_PI * speed, h0 = cam.evaluate(0).X_C;
+    double closed = 1e300;
+    for (int i = 0; i < 36000; ++i) {
+      const CamPoint p = cam.evaluate(2 * M_PI * i / 36000);
+      closed = std::min(closed, p.d2X_dtheta2 * w * w + 3500 + 500 * (p.X_C - h0));
+    }
+    const Summary r = Simulator(s).run();
+    ASSERT_TRUE(r.finished) << r.message;
+    std::printf("%g rev/s: min force %.9g, closed form %.9g (%.2e)\n", speed, r.min_contact_force, closed,
+                r.min_contact_force - closed);
+    EXPECT_EQ(r.separations, 0);
+    EXPECT_NEAR(r.min_contact_force, closed, 1e-5 * 3500) << speed << " rev/s";
+    EXPECT_NEAR(required_contact_force(s, r.min_force_theta_deg * M_PI / 180), closed, 1e-5 * 3500)
+        << speed << " rev/s, at " << r.min_force_theta_deg << " deg";
   }
 }
 

@@ -22,12 +22,14 @@
 //   step (network_lee_cvode.cpp).
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
 
 #include "active_set.hpp"
 #include "lee_step_tools.hpp"
+#include "switch_search.hpp"
 #include "network_run.hpp"
 #include "run_context.hpp"  // StepFailure, IterationFailure, fmt
 
@@ -36,96 +38,13 @@ namespace detail {
 namespace {
 
 
-// Golden-section search for the smallest f on [a, b] (n iterations): the better inner
-// point and its value.
-struct Sample {
-  double x, f;
-};
-Sample golden_min(const std::function<double(double)>& f, double a, double b, int n) {
-  const double gr = 0.6180339887498949;
-  double c = b - gr * (b - a), d = a + gr * (b - a);
-  double fc = f(c), fd = f(d);
-  for (int i = 0; i < n; ++i) {
-    if (fc < fd) {
-      b = d; d = c; fd = fc; c = b - gr * (b - a); fc = f(c);
-    } else {
-      a = c; c = d; fc = fd; d = a + gr * (b - a); fd = f(d);
-    }
-  }
-  return fc < fd ? Sample{c, fc} : Sample{d, fd};
-}
-
-// f(lo) ≥ 0 > f(hi): the fall through zero, bisected to round-off in time (step h ending
-// at t1); returns the first point found below zero.
-double bisect_fall(const std::function<double(double)>& f, double lo, double hi, double h, double t1) {
-  for (int i = 0; i < 100 && (hi - lo) * h > 4e-16 * std::max(1.0, std::abs(t1)); ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (f(mid) >= 0.0 ? lo : hi) = mid;
-  }
-  return hi;
-}
-
-// First x ∈ (0, 1] where f falls below −thr: a sign change between K + 1 samples, or a
-// sampled minimum refined by golden section (grazing). −1 if none; else the root of f = 0
-// after the last point where f ≥ 0 (bisection to round-off in time h).
-double first_below(const std::function<double(double)>& f, double f0, double f1, double thr, double h,
-                   double t1) {
-  constexpr int K = 8;
-  double s[K + 1];
-  s[0] = f0;
-  s[K] = f1;
-  for (int k = 1; k < K; ++k) s[k] = f(double(k) / K);
-  double lo = -1, hi = -1;
-  for (int k = 1; k <= K; ++k) {
-    if (s[k] < -thr) {
-      lo = double(k - 1) / K;
-      hi = double(k) / K;
-      break;
-    }
-    if (k < K && s[k] <= s[k - 1] && s[k] <= s[k + 1] &&
-        s[k] < thr + std::abs(s[k - 1] - s[k]) + std::abs(s[k + 1] - s[k])) {
-      const Sample m = golden_min(f, double(k - 1) / K, double(k + 1) / K, 40);
-      if (m.f < -thr) {
-        lo = double(k - 1) / K;
-        hi = m.x;
-        break;
-      }
-    }
-  }
-  if (lo < 0) return -1.0;
-  if (f(lo) < 0) return lo;
-  return bisect_fall(f, lo, hi, h, t1);
-}
-
-// For a gap that starts a round-off below zero while opening: the first x where it falls
-// below zero after rising to its highest (16 samples, the highest refined by golden
-// section: a bounce shorter than a sample), bisected to round-off in time; −1 if it never
-// reaches zero or does not fall back.
-double reclosing(const std::function<double(double)>& f, double h, double t1) {
-  constexpr int K = 16;
-  int kmax = 0;
-  double fmax = f(0.0);
-  for (int k = 1; k <= K; ++k) {
-    const double v = f(double(k) / K);
-    if (v > fmax) {
-      fmax = v;
-      kmax = k;
-    }
-  }
-  const Sample m = golden_min([&f](double x) { return -f(x); }, std::max(0.0, double(kmax - 1) / K),
-                              std::min(1.0, double(kmax + 1) / K), 60);
-  if (-m.f < 0.0) return -1.0;
-  // the first sample after the highest point where the gap is below zero
-  for (int k = int(std::floor(m.x * K)) + 1; k <= K; ++k)
-    if (f(double(k) / K) < 0.0) return bisect_fall(f, std::max(m.x, double(k - 1) / K), double(k) / K, h, t1);
-  return -1.0;
-}
-
 class NetworkLee final : public NetworkRun {
  public:
   NetworkLee(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
              const std::atomic<bool>* stop)
       : NetworkRun(sc, std::move(mech), obs, stop) {
+    samples_.resize(m_);
+    least_ = Eigen::VectorXd::Constant(m_, INFINITY);
     OdeSystem sys;
     sys.size = 2 * n_;
     sys.rhs = [this](double t, const double* y, double* yd) { rhs(t, y, yd); };
@@ -291,6 +210,33 @@ class NetworkLee final : public NetworkRun {
     const StepEnergy e = shape_energy(s, to);
     emit_row_at(to, yi_, F, act, s.W0 + e.work, s.D0 + e.dissipated);
     return true;
+  }
+
+  // The least force of held contact j inside the accepted step s (the force margin of a
+  // follower that floats, Summary::min_contact_force, ContactResult::min_force): the
+  // switch search's samples, and where their interior minimum is below the least force so
+  // far, golden section on the step's own interpolant — a minimum between the rows or the
+  // step ends, not the grid's (the follower stack samples its held force inside the step
+  // as well).
+  std::vector<std::array<double, kSwitchSamples + 1>> samples_;
+  Eigen::VectorXd least_;  // per contact, the least held force so far
+  void least_force_inside(const StepData& s, int j) {
+    const auto& f = samples_[j];
+    int k = 1;
+    for (int i = 2; i < kSwitchSamples; ++i)
+      if (f[i] < f[k]) k = i;
+    if (!(f[k] < least_[j]) || !(f[k] <= f[k - 1] && f[k] <= f[k + 1])) return;
+    const double hs = s.t1 - s.t0;
+    auto force = [&](double x) {
+      const double tau = s.t0 + x * hs;
+      interpolate(s, tau, yi_);
+      return held_forces(tau, yi_, cam_at(tau), s.set)[j];
+    };
+    const Sample m = golden_min(force, double(k - 1) / kSwitchSamples, double(k + 1) / kSwitchSamples, 30);
+    const double tau = s.t0 + m.x * hs, F = std::max(m.f, 0.0), th = drive_.theta(tau);
+    least_[j] = std::min(least_[j], F);
+    if (!in_take_up(tau)) sample_contact(j, F, angle_deg_mod360(th));
+    if (j == mk_.primary()) designer_.sample_force(tau, th, F);
   }
 
   StepSizeMemory steps_;  // the step-size controller (lee_step_tools.hpp)
@@ -474,7 +420,7 @@ class NetworkLee final : public NetworkRun {
             held_forces(tau, yi_, cam_at(tau), set, &mg);
             return mg[j];
           };
-          const double x = first_below(f, F_[j], margin_a[j], F_thr, hs, t1);
+          const double x = first_below(f, F_[j], margin_a[j], F_thr, hs, t1, samples_[j].data());
           if (x >= 0.0 && x < x_first) {
             x_first = x;
             who = j;
@@ -541,6 +487,8 @@ class NetworkLee final : public NetworkRun {
         continue;
       }
       // accept
+      if (unilateral_)
+        for (int j : set) least_force_inside(s, j);
       if (obs_) obs_->on_lee_shape(t_, hs, set.empty() ? 0.0 : F0_[set[0]], set.empty() ? 0.0 : F1_[set[0]],
                                    set.empty() ? 0.0 : Fc_[set[0]], 0.0);
       s.W0 = work_;
