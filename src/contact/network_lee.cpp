@@ -192,17 +192,22 @@ class NetworkLee final : public NetworkRun {
     return e;
   }
   Eigen::VectorXd yq_;
+  // The step's interpolant at tau put on its held contacts (g = ġ = 0, as the step ends
+  // are): rows, the least force and the first tensile force inside a step.
+  void held_state_at(const StepData& s, double tau, Eigen::VectorXd& y) {
+    interpolate(s, tau, y);
+    if (s.set.empty()) return;
+    const CamMotion cm = cam_at(tau);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(m_), gd = g;
+    for (int j : s.set) g[j] = gap(j, y, cm), gd[j] = gap_rate(j, y, cm);
+    project_on_set(mk_.MinvTt(), mk_.W(), s.set, g, gd, y);
+  }
   StepData* dense_ = nullptr;
   bool dense_row_at(double to) override {
     if (!dense_ || !(to > dense_->t0)) return false;
     const StepData& s = *dense_;
-    interpolate(s, to, yi_);
+    held_state_at(s, to, yi_);
     const CamMotion cm = cam_at(to);
-    if (!s.set.empty()) {  // held rows on the held contacts (the step ends are)
-      Eigen::VectorXd g = Eigen::VectorXd::Zero(m_), gd = g;
-      for (int j : s.set) g[j] = gap(j, yi_, cm), gd[j] = gap_rate(j, yi_, cm);
-      project_on_set(mk_.MinvTt(), mk_.W(), s.set, g, gd, yi_);
-    }
     Eigen::VectorXd F = held_forces(to, yi_, cm, s.set);
     for (int j : s.set) F[j] = unilateral_ ? std::max(F[j], 0.0) : F[j];
     std::vector<char> act(m_, 0);
@@ -222,14 +227,18 @@ class NetworkLee final : public NetworkRun {
   Eigen::VectorXd least_;  // per contact, the least held force so far
   void least_force_inside(const StepData& s, int j) {
     const auto& f = samples_[j];
+    least_[j] = std::min({least_[j], f[0], f[kSwitchSamples]});  // the step ends are sampled anyway
     int k = 1;
     for (int i = 2; i < kSwitchSamples; ++i)
       if (f[i] < f[k]) k = i;
-    if (!(f[k] < least_[j]) || !(f[k] <= f[k - 1] && f[k] <= f[k + 1])) return;
+    // Below the least so far by more than the interpolant's own error (rtol of the force):
+    // a flat minimum at a step end (a symmetric cam's θ = 0) is not moved inside the step.
+    const double margin = sc_.solver.rtol * std::abs(least_[j]);
+    if (!(f[k] < least_[j] - margin) || !(f[k] <= f[k - 1] && f[k] <= f[k + 1])) return;
     const double hs = s.t1 - s.t0;
     auto force = [&](double x) {
       const double tau = s.t0 + x * hs;
-      interpolate(s, tau, yi_);
+      held_state_at(s, tau, yi_);
       return held_forces(tau, yi_, cam_at(tau), s.set)[j];
     };
     const Sample m = golden_min(force, double(k - 1) / kSwitchSamples, double(k + 1) / kSwitchSamples, 30);
@@ -237,6 +246,21 @@ class NetworkLee final : public NetworkRun {
     least_[j] = std::min(least_[j], F);
     if (!in_take_up(tau)) sample_contact(j, F, angle_deg_mod360(th));
     if (j == mk_.primary()) designer_.sample_force(tau, th, F);
+  }
+
+  // A bilateral contact (holonomic) whose force turns tensile inside the accepted step:
+  // Summary::first_tensile_time where it crosses zero (bisection on the held interpolant).
+  void first_tensile_inside(const StepData& s, int j) {
+    if (sum_.first_tensile_time >= 0 || !(s.F0[j] >= 0.0 && s.F1[j] < 0.0)) return;
+    const double hs = s.t1 - s.t0;
+    auto force = [&](double x) {
+      const double tau = s.t0 + x * hs;
+      held_state_at(s, tau, yi_);
+      return held_forces(tau, yi_, cam_at(tau), s.set)[j];
+    };
+    const double x = bisect_fall(force, 0.0, 1.0, hs, s.t1);
+    sum_.first_tensile_time = s.t0 + x * hs;
+    record_event(EventKind::Tensile, j, 0.0, 0.0, sum_.first_tensile_time);
   }
 
   StepSizeMemory steps_;  // the step-size controller (lee_step_tools.hpp)
@@ -489,6 +513,8 @@ class NetworkLee final : public NetworkRun {
       // accept
       if (unilateral_)
         for (int j : set) least_force_inside(s, j);
+      else
+        for (int j : set) first_tensile_inside(s, j);
       if (obs_) obs_->on_lee_shape(t_, hs, set.empty() ? 0.0 : F0_[set[0]], set.empty() ? 0.0 : F1_[set[0]],
                                    set.empty() ? 0.0 : Fc_[set[0]], 0.0);
       s.W0 = work_;

@@ -484,6 +484,11 @@ void NetworkRun::after_step(double h, double dW, double P_prev, double P_end, do
     sum_.max_contact_force = std::max(sum_.max_contact_force, F_[j]);
   }
   check_complementarity(cm);
+  for (int j = 0; j < m_ && !unilateral_ && sum_.first_tensile_time < 0; ++j)
+    if (active_[j] && F_[j] < 0.0) {  // a bilateral contact pulls: where a follower would leave
+      sum_.first_tensile_time = t_;
+      record_event(EventKind::Tensile, j, 0.0);
+    }
   const int p = mk_.primary();
   const MechanismContact& c = mk_.contacts()[p];
   Eigen::VectorXd a;
@@ -553,6 +558,12 @@ Summary NetworkRun::run() {
     if (gap(j, y_, cm0) <= gtol && gap_rate(j, y_, cm0) <= gtol) active_[j] = 1;
   settle_active(cm0);
   prepare_start();
+  for (int j = 0; j < m_; ++j)  // the start's forces are samples of the least force too
+    if (active_[j]) {
+      const double th = drive_.theta(0.0);
+      if (!in_take_up(0.0)) sample_contact(j, F_[j], angle_deg_mod360(th));
+      if (j == mk_.primary()) designer_.sample_force(0.0, th, F_[j]);
+    }
   V0_ = potential(0.0, y_);
   E0_ = mk_.kinetic_energy(y_.data() + n_) + V0_;
   emit_row();
@@ -579,6 +590,7 @@ Summary NetworkRun::run() {
   for (const auto& e : engines_) {
     sum_.rhs_evals += e->stats().rhs_evals;
     sum_.lin_setups += e->stats().lin_setups;
+    sum_.lin_analyses += e->stats().lin_analyses;
     sum_.engine_restarts += e->stats().reinits;
   }
   sum_.cpu_seconds = clock.cpu();
