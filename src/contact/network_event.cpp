@@ -35,10 +35,27 @@ NetworkEvent::NetworkEvent(const Scene& sc, std::shared_ptr<const MechanicalSyst
     sn->held = &set_;
     sys.newton = sn;
   }
-  sys.max_order = max_order;
+  bdf_order(sc, *mech_, max_order, sys);
   engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
   eng_ = engines_.back().get();
   eng_->set_projection([this](double t, const double* y, double* corr) { project(t, y, corr); });
+}
+
+// On a single follower run as a one-contact Mechanism, the follower stack's policy: an
+// elastic bar is undamped and stiff, its fast modes sit on the imaginary axis where BDF
+// orders 3–5 are not A-stable, so CVODE stays at BDF ≤ 2 at rtol > 1e-8 (B1, 0.1 s, lee at
+// rtol 1e-6: 66 431 steps at order ≤ 4 — steps collapsed to resolve the bar's top mode —,
+// 14 046 at ≤ 2, the follower stack's Lee on CVODE 15 829); at rtol ≤ 1e-8 its steps
+// resolve those modes anyway and orders up to 5 pay, with CVODE's stability-limit
+// detection (B1, 20 ms at rtol 1e-9: 51 338 steps at ≤ 2, 13 430 at ≤ 4 or 5). A rigid
+// follower has no stiff mode: `network_order`.
+void NetworkEvent::bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys) {
+  sys.max_order = network_order;
+  sys.stability_limit_detection = false;
+  if (!mech.single_follower() || mech.n() == 1) return;
+  const bool tight = sc.solver.rtol <= 1e-8;
+  sys.max_order = tight ? 5 : 2;
+  sys.stability_limit_detection = tight;
 }
 
 void NetworkEvent::restart() {
@@ -167,7 +184,7 @@ void NetworkEvent::run_method() {
     const double P_end = dissipation_power(t_, y_);
     for (int j = 0; j < m_; ++j)  // a released contact that has opened: the normal root
       if (fresh_[std::size_t(j)] && !active_[j] && gap(j, y_, cm) > fresh_thr_) fresh_[std::size_t(j)] = 0;
-    bool changed = false;
+    bool changed = false, released_only = false;
     if (eng_->hit_root() && unilateral_) {
       std::vector<int> closing;
       bool released = false;
@@ -175,7 +192,7 @@ void NetworkEvent::run_method() {
         if (eng_->root_info()[j] >= 0) continue;  // only downward crossings act
         if (active_[j]) {
           active_[j] = 0;
-          fresh_[std::size_t(j)] = 1;
+          fresh_[std::size_t(j)] = !continue_on_release_;
           ++sum_.separations;
           record_event(EventKind::Separation, j, 0.0);
           released = true;
@@ -198,6 +215,7 @@ void NetworkEvent::run_method() {
       else if (released)
         settle_active(cm);
       changed = !closing.empty() || released;
+      released_only = closing.empty() && released;
     } else if (eng_->hit_root()) {  // bilateral: a contact that closes stays closed
       std::vector<int> closing;
       for (int j = 0; j < m_; ++j)
@@ -209,7 +227,17 @@ void NetworkEvent::run_method() {
     }
     for (int j : set_)
       if (active_[j] && unilateral_) F_[j] = std::max(F_[j], 0.0);
-    if (changed) {
+    if (changed && released_only && continue_on_release_) {
+      // A release alone: the contact leaves where its force has reached zero, so the
+      // right-hand side is continuous there and CVODE's history stays valid: it goes on
+      // from its own step end (the next advance returns it) with the smaller held set.
+      // A restart there began again at order 1, whose first steps' error (h²|g̈|/2 in the
+      // gap, of the order of rtol·|q|) put the follower of A7 1.9e-7 into the cam 14 µs
+      // after its separation (the issue-28 check at 10 tol_u = 1e-7 stopped the run).
+      // The just released contact gets the normal impact root at once (no fresh_ band).
+      set_ = active_list();
+      set_metric();
+    } else if (changed) {
       restart();  // projects onto the new active set
     } else if (eng_->hit_root() && !set_.empty()) {
       // a root that changed nothing: the interpolated state, put on the closed contacts

@@ -24,7 +24,9 @@ namespace detail {
 
 class NetworkEvent : public NetworkRun {
  public:
-  /// max_order: cvode-bdf's largest BDF order (0: CVODE's default 5).
+  /// max_order: cvode-bdf's largest BDF order on a network (0: CVODE's default 5). A
+  /// single follower (MechanicalSystem::single_follower()) has the follower stack's order
+  /// policy instead (network_event.cpp: NetworkEvent::bdf_order).
   NetworkEvent(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                const std::atomic<bool>* stop, int max_order = 0);
 
@@ -41,6 +43,10 @@ class NetworkEvent : public NetworkRun {
   double held_work(double ta, double tb);
   /// corr = P(y) − y: y put on the active set's g = 0, ġ = 0, M-orthogonally.
   void project(double t, const double* y, double* corr);
+
+  /// cvode-bdf's order limits for `sys`: `network_order` on a network; on a single
+  /// follower the follower stack's policy (event.cpp, lee_multistep.cpp).
+  static void bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys);
 
   OdeEngine* eng_;
   std::vector<int> set_;  // the active set the right-hand side uses
@@ -62,6 +68,8 @@ class NetworkEvent : public NetworkRun {
   double gamma_p_ = 0.0;  // 0: the metric M
   Eigen::SimplicialLDLT<SparseMatrix> S_ldlt_;
 
+  // cvode-bdf: a release alone does not restart the engine (network_event.cpp, run_method).
+  bool continue_on_release_ = sc_.solver.integrator == Integrator::CvodeBdf;
   Eigen::VectorXd yv_, yg_;
   double gap_thr_ = 1e-3 * sc_.contact.tol_u;
   // A contact released where its force reaches zero leaves at zero gap, speed and
@@ -69,7 +77,11 @@ class NetworkEvent : public NetworkRun {
   // release, of order rtol·|q| + atol — above gap_thr_ at tight tol_u (a user follower on
   // cvode-bdf at rtol 1e-10, tol_u 1e-11: 20 "impacts" of ~1e-11 m/s 3e-10 s apart). Its
   // root sits at −fresh_thr_ until its gap has once exceeded fresh_thr_ (the sign of its
-  // root function does not change at the switch).
+  // root function does not change at the switch). Not on cvode-bdf, which does not restart
+  // at a release (continue_on_release_): its gap after the release carries no restart's
+  // error, and the guard hid real re-contacts inside the band (B2 on the mechanism stack,
+  // rtol 1e-6: a flight of 8 µs and 1.2e-8 m after a separation, re-impact at 0.01 m/s,
+  // ran 1e-6 m = 10 tol_u into the cam before the root at −fresh_thr_ ≈ −2e-5 m).
   double fresh_thr_ = 10.0 * (sc_.solver.rtol * std::max(cam_.lift(), mk_.q0().cwiseAbs().maxCoeff()) +
                               sc_.solver.atol);
   std::vector<char> fresh_ = std::vector<char>(std::size_t(m_), 0);
