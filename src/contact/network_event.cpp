@@ -145,6 +145,11 @@ void NetworkEvent::run_method() {
   eng_->set_roots(m_, [this](double t, const double* y, double* g) {
     const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
     yv_ = Y;
+    if (on_manifold_roots_ && !set_.empty()) {  // see the header: on_manifold_roots_
+      rc_.resize(2 * n_);
+      project(t, yv_.data(), rc_.data());
+      yv_ += rc_;
+    }
     const CamMotion cm = cam_at(t);
     Eigen::VectorXd F;  // the separation function of the active contacts (force units)
     if (!set_.empty()) held_forces(t, yv_, cm, set_, &F);
@@ -167,6 +172,11 @@ void NetworkEvent::run_method() {
     stiff_metric(h);  // for the next steps' projections
     t_ = t1;
     y_ = y1;
+    if (on_manifold_roots_ && eng_->hit_root() && !set_.empty()) {  // the root's state too
+      rc_.resize(2 * n_);
+      project(t_, y_.data(), rc_.data());
+      y_ += rc_;
+    }
     const CamMotion cm = cam_at(t_);
     F_ = held_forces(t_, y_, cm, set_);
     if (m_) F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());

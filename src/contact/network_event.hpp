@@ -70,7 +70,17 @@ class NetworkEvent : public NetworkRun {
 
   // cvode-bdf: a release alone does not restart the engine (network_event.cpp, run_method).
   bool continue_on_release_ = sc_.solver.integrator == Integrator::CvodeBdf;
-  Eigen::VectorXd yv_, yg_;
+  // cvode-bdf: the root functions, and the state at a root, are evaluated on CVODE's
+  // interpolant put on the held contacts' manifold (project()). The raw interpolant is not
+  // on it: the held contacts' cam motion enters CVODE's step through the projection only,
+  // which its error test does not see, so one step may carry the held nodes across a whole
+  // rise (examples/ohc_roller_finger.toml: one step of 8.8 ms from the end of the dwell
+  // over the cycloidal rise, the finger up to 8.9 mm off the cam on the raw interpolant).
+  // There the lash's closing was found on the raw interpolant with no closing speed,
+  // ignored, and the run stopped at 20 ms with the finger 8.9 mm into the valve; on the
+  // manifold the lash closes at the event method's time (to 1e-15 s).
+  bool on_manifold_roots_ = sc_.solver.integrator == Integrator::CvodeBdf;
+  Eigen::VectorXd yv_, yg_, rc_;
   double gap_thr_ = 1e-3 * sc_.contact.tol_u;
   // A contact released where its force reaches zero leaves at zero gap, speed and
   // (nearly) acceleration: for a while its gap is the integration error of the steps after the
