@@ -165,7 +165,7 @@ void NetworkEvent::run_method() {
   Eigen::VectorXd y1(2 * n_);
   const double gap_thr = gap_thr_;
   while (t_ < sc_.run.t_end * (1 - 1e-15)) {
-    const double tout = step_target();
+    const double horizon = step_horizon(), tout = stop_before(horizon);
     const double P_prev = dissipation_power(t_, y_);
     const double t1 = eng_->advance(tout, y1);
     const double h = t1 - t_;
@@ -249,6 +249,8 @@ void NetworkEvent::run_method() {
       set_metric();
     } else if (changed) {
       restart();  // projects onto the new active set
+    } else if (restart_at_breaks_ && !eng_->hit_root() && t_ == tout && tout < horizon && !set_.empty()) {
+      restart();  // a cam breakpoint under held contacts (see the header)
     } else if (eng_->hit_root() && !set_.empty()) {
       // a root that changed nothing: the interpolated state, put on the closed contacts
       // (a copy: the engine goes on from its own step end)

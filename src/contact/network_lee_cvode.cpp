@@ -58,7 +58,7 @@ class NetworkLeeCvode final : public NetworkEvent {
   Eigen::VectorXd corr_;
 
   bool land() const { return sc_.run.land_on_output || out_dt() <= 0.0; }
-  double step_target() override { return land() ? next_stop_time() : stop_before(sc_.run.t_end); }
+  double step_horizon() override { return land() ? next_output_time() : sc_.run.t_end; }
 
   void after_advance(double t_prev, double P_prev) override {
     rows_.clear();
