@@ -249,8 +249,9 @@ void NetworkEvent::run_method() {
       set_metric();
     } else if (changed) {
       restart();  // projects onto the new active set
-    } else if (restart_at_breaks_ && !eng_->hit_root() && t_ == tout && tout < horizon && !set_.empty()) {
-      restart();  // a cam breakpoint under held contacts (see the header)
+    } else if (restart_at_breaks_ && !eng_->hit_root() && t_ == tout && tout < horizon && !set_.empty() &&
+               int(set_.size()) < n_) {
+      restart();  // a cam breakpoint under held contacts, with unknowns they leave free (header)
     } else if (eng_->hit_root() && !set_.empty()) {
       // a root that changed nothing: the interpolated state, put on the closed contacts
       // (a copy: the engine goes on from its own step end)
