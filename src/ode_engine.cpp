@@ -445,6 +445,7 @@ class CvodeOde final : public EngineBase {
       if (sys_.jacobian) check(CVodeSetJacFn(mem, &EngineBase::jac_cb), "CVodeSetJacFn");
     }
     if (sys_.max_order > 0) check(CVodeSetMaxOrd(mem, sys_.max_order), "CVodeSetMaxOrd");
+    if (sys_.stability_limit_detection) check(CVodeSetStabLimDet(mem, SUNTRUE), "CVodeSetStabLimDet");
   }
   ~CvodeOde() override { mem_.reset(); }  // CVodeFree before the solver and matrix it uses
   const char* name() const override { return "cvode-bdf"; }

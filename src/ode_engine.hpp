@@ -73,6 +73,9 @@ struct OdeSystem {
   /// cvode-bdf only: the largest BDF order (0: CVODE's default 5). Orders ≥ 3 are not
   /// A-stable: an undamped stiff system (a chain of stiff springs and bars) wants ≤ 2.
   int max_order = 0;
+  /// cvode-bdf only: CVODE's BDF stability-limit detection (CVodeSetStabLimDet), which
+  /// lowers the order where orders ≥ 3 go unstable on lightly damped stiff modes.
+  bool stability_limit_detection = false;
 };
 
 class OdeEngine {

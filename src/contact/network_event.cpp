@@ -35,10 +35,27 @@ NetworkEvent::NetworkEvent(const Scene& sc, std::shared_ptr<const MechanicalSyst
     sn->held = &set_;
     sys.newton = sn;
   }
-  sys.max_order = max_order;
+  bdf_order(sc, *mech_, max_order, sys);
   engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
   eng_ = engines_.back().get();
   eng_->set_projection([this](double t, const double* y, double* corr) { project(t, y, corr); });
+}
+
+// On a single follower run as a one-contact Mechanism, the follower stack's policy: an
+// elastic bar is undamped and stiff, its fast modes sit on the imaginary axis where BDF
+// orders 3–5 are not A-stable, so CVODE stays at BDF ≤ 2 at rtol > 1e-8 (B1, 0.1 s, lee at
+// rtol 1e-6: 66 431 steps at order ≤ 4 — steps collapsed to resolve the bar's top mode —,
+// 14 046 at ≤ 2, the follower stack's Lee on CVODE 15 829); at rtol ≤ 1e-8 its steps
+// resolve those modes anyway and higher orders pay, up to 5 with CVODE's stability-limit
+// detection (B1, 20 ms at rtol 1e-9: 51 338 steps at ≤ 2, 13 430 at ≤ 4, 14 029 at ≤ 5
+// with the detection). A rigid follower has no stiff mode: `network_order`.
+void NetworkEvent::bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys) {
+  sys.max_order = network_order;
+  sys.stability_limit_detection = false;
+  if (!mech.single_follower() || mech.n() == 1) return;
+  const bool tight = sc.solver.rtol <= 1e-8;
+  sys.max_order = tight ? 5 : 2;
+  sys.stability_limit_detection = tight;
 }
 
 void NetworkEvent::restart() {
@@ -128,6 +145,11 @@ void NetworkEvent::run_method() {
   eng_->set_roots(m_, [this](double t, const double* y, double* g) {
     const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
     yv_ = Y;
+    if (on_manifold_roots_ && !set_.empty()) {  // see the header: on_manifold_roots_
+      rc_.resize(2 * n_);
+      project(t, yv_.data(), rc_.data());
+      yv_ += rc_;
+    }
     const CamMotion cm = cam_at(t);
     Eigen::VectorXd F;  // the separation function of the active contacts (force units)
     if (!set_.empty()) held_forces(t, yv_, cm, set_, &F);
@@ -143,13 +165,18 @@ void NetworkEvent::run_method() {
   Eigen::VectorXd y1(2 * n_);
   const double gap_thr = gap_thr_;
   while (t_ < sc_.run.t_end * (1 - 1e-15)) {
-    const double tout = step_target();
+    const double horizon = step_horizon(), tout = stop_before(horizon);
     const double P_prev = dissipation_power(t_, y_);
     const double t1 = eng_->advance(tout, y1);
     const double h = t1 - t_;
     stiff_metric(h);  // for the next steps' projections
     t_ = t1;
     y_ = y1;
+    if (on_manifold_roots_ && eng_->hit_root() && !set_.empty()) {  // the root's state too
+      rc_.resize(2 * n_);
+      project(t_, y_.data(), rc_.data());
+      y_ += rc_;
+    }
     const CamMotion cm = cam_at(t_);
     F_ = held_forces(t_, y_, cm, set_);
     if (m_) F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
@@ -167,7 +194,7 @@ void NetworkEvent::run_method() {
     const double P_end = dissipation_power(t_, y_);
     for (int j = 0; j < m_; ++j)  // a released contact that has opened: the normal root
       if (fresh_[std::size_t(j)] && !active_[j] && gap(j, y_, cm) > fresh_thr_) fresh_[std::size_t(j)] = 0;
-    bool changed = false;
+    bool changed = false, released_only = false;
     if (eng_->hit_root() && unilateral_) {
       std::vector<int> closing;
       bool released = false;
@@ -175,7 +202,7 @@ void NetworkEvent::run_method() {
         if (eng_->root_info()[j] >= 0) continue;  // only downward crossings act
         if (active_[j]) {
           active_[j] = 0;
-          fresh_[std::size_t(j)] = 1;
+          fresh_[std::size_t(j)] = !continue_on_release_;
           ++sum_.separations;
           record_event(EventKind::Separation, j, 0.0);
           released = true;
@@ -198,6 +225,7 @@ void NetworkEvent::run_method() {
       else if (released)
         settle_active(cm);
       changed = !closing.empty() || released;
+      released_only = closing.empty() && released;
     } else if (eng_->hit_root()) {  // bilateral: a contact that closes stays closed
       std::vector<int> closing;
       for (int j = 0; j < m_; ++j)
@@ -209,8 +237,21 @@ void NetworkEvent::run_method() {
     }
     for (int j : set_)
       if (active_[j] && unilateral_) F_[j] = std::max(F_[j], 0.0);
-    if (changed) {
+    if (changed && released_only && continue_on_release_) {
+      // A release alone: the contact leaves where its force has reached zero, so the
+      // right-hand side is continuous there and CVODE's history stays valid: it goes on
+      // from its own step end (the next advance returns it) with the smaller held set.
+      // A restart there began again at order 1, whose first steps' error (h²|g̈|/2 in the
+      // gap, of the order of rtol·|q|) put the follower of A7 1.9e-7 into the cam 14 µs
+      // after its separation (the issue-28 check at 10 tol_u = 1e-7 stopped the run).
+      // The just released contact gets the normal impact root at once (no fresh_ band).
+      set_ = active_list();
+      set_metric();
+    } else if (changed) {
       restart();  // projects onto the new active set
+    } else if (restart_at_breaks_ && !eng_->hit_root() && t_ == tout && tout < horizon && !set_.empty() &&
+               int(set_.size()) < n_) {
+      restart();  // a cam breakpoint under held contacts, with unknowns they leave free (header)
     } else if (eng_->hit_root() && !set_.empty()) {
       // a root that changed nothing: the interpolated state, put on the closed contacts
       // (a copy: the engine goes on from its own step end)

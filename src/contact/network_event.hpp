@@ -24,15 +24,17 @@ namespace detail {
 
 class NetworkEvent : public NetworkRun {
  public:
-  /// max_order: cvode-bdf's largest BDF order (0: CVODE's default 5).
+  /// max_order: cvode-bdf's largest BDF order on a network (0: CVODE's default 5). A
+  /// single follower (MechanicalSystem::single_follower()) has the follower stack's order
+  /// policy instead (network_event.cpp: NetworkEvent::bdf_order).
   NetworkEvent(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                const std::atomic<bool>* stop, int max_order = 0);
 
  protected:
   void run_method() override;
-  /// The time the next step may not pass (the event method: the next output time or cam
-  /// breakpoint).
-  virtual double step_target() { return next_stop_time(); }
+  /// The time the next step may not pass apart from the cam's breakpoints (the event
+  /// method: the next output time); the step goes to stop_before(step_horizon()).
+  virtual double step_horizon() { return next_output_time(); }
   /// Called once per step just after the engine returned (t_, y_ the step's end or root,
   /// the engine's interpolant valid over [t_prev, t_]), before any switch is applied.
   /// P_prev: the dissipated power at t_prev.
@@ -41,6 +43,10 @@ class NetworkEvent : public NetworkRun {
   double held_work(double ta, double tb);
   /// corr = P(y) − y: y put on the active set's g = 0, ġ = 0, M-orthogonally.
   void project(double t, const double* y, double* corr);
+
+  /// cvode-bdf's order limits for `sys`: `network_order` on a network; on a single
+  /// follower the follower stack's policy (event.cpp, lee_multistep.cpp).
+  static void bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys);
 
   OdeEngine* eng_;
   std::vector<int> set_;  // the active set the right-hand side uses
@@ -62,14 +68,43 @@ class NetworkEvent : public NetworkRun {
   double gamma_p_ = 0.0;  // 0: the metric M
   Eigen::SimplicialLDLT<SparseMatrix> S_ldlt_;
 
-  Eigen::VectorXd yv_, yg_;
+  // cvode-bdf: a release alone does not restart the engine (network_event.cpp, run_method).
+  bool continue_on_release_ = sc_.solver.integrator == Integrator::CvodeBdf;
+  // cvode-bdf: the root functions, and the state at a root, are evaluated on CVODE's
+  // interpolant put on the held contacts' manifold (project()). The raw interpolant is not
+  // on it: the held contacts' cam motion enters CVODE's step through the projection only,
+  // which its error test does not see, so one step may carry the held nodes across a whole
+  // rise (examples/ohc_roller_finger.toml: one step of 8.8 ms from the end of the dwell
+  // over the cycloidal rise, the finger up to 8.9 mm off the cam on the raw interpolant).
+  // There the lash's closing was found on the raw interpolant with no closing speed,
+  // ignored, and the run stopped at 20 ms with the finger 8.9 mm into the valve; on the
+  // manifold the lash closes at the event method's time (to 1e-15 s).
+  bool on_manifold_roots_ = sc_.solver.integrator == Integrator::CvodeBdf;
+  // cvode-bdf: a step that lands on a cam breakpoint with contacts held restarts CVODE
+  // there. The held nodes follow the cam through the acceleration level, which BDF samples
+  // at the step's end only, and their drift is corrected by the projection, which CVODE's
+  // error test does not see: after a dwell (history all at rest) the first step took
+  // CVODE's dwell step size across the next law segment, and a cycloidal segment, whose
+  // acceleration is zero at both ends, looked like rest to the error test
+  // (examples/ohv_roller_lifter.toml: one step of 7 ms over the rise; the pushrod behind
+  // the lifter was integrated against a lifter at rest, the lash closed 5.2e-6 s early).
+  // Restarted at the joint, CVODE's first step and order grow from the segment's own
+  // motion. Not where the held contacts fix every unknown (a rigid follower held on the
+  // cam: its state is the projection's, exact; examples/law_roller.toml on the mechanism
+  // stack took 774 steps for two revolutions with the restarts, 32 without, same rows).
+  bool restart_at_breaks_ = sc_.solver.integrator == Integrator::CvodeBdf;
+  Eigen::VectorXd yv_, yg_, rc_;
   double gap_thr_ = 1e-3 * sc_.contact.tol_u;
   // A contact released where its force reaches zero leaves at zero gap, speed and
   // (nearly) acceleration: for a while its gap is the integration error of the steps after the
   // release, of order rtol·|q| + atol — above gap_thr_ at tight tol_u (a user follower on
   // cvode-bdf at rtol 1e-10, tol_u 1e-11: 20 "impacts" of ~1e-11 m/s 3e-10 s apart). Its
   // root sits at −fresh_thr_ until its gap has once exceeded fresh_thr_ (the sign of its
-  // root function does not change at the switch).
+  // root function does not change at the switch). Not on cvode-bdf, which does not restart
+  // at a release (continue_on_release_): its gap after the release carries no restart's
+  // error, and the guard hid real re-contacts inside the band (B2 on the mechanism stack,
+  // rtol 1e-6: a flight of 8 µs and 1.2e-8 m after a separation, re-impact at 0.01 m/s,
+  // ran 1e-6 m = 10 tol_u into the cam before the root at −fresh_thr_ ≈ −2e-5 m).
   double fresh_thr_ = 10.0 * (sc_.solver.rtol * std::max(cam_.lift(), mk_.q0().cwiseAbs().maxCoeff()) +
                               sc_.solver.atol);
   std::vector<char> fresh_ = std::vector<char>(std::size_t(m_), 0);

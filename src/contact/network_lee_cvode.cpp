@@ -14,11 +14,14 @@
 //   displacement and     every step's corrected state is put on g_A = 0, ġ_A = 0
 //   velocity levels      M-orthogonally, through CVODE's projection (CVodeSetProjFn), which
 //                        carries the correction into its Nordsieck history;
-//   switches             CVODE's rootfinding on its interpolant: a held contact separates
-//                        where its force (its complementarity margin) reaches zero, an open
-//                        one impacts where its gap reaches zero; the impact law is the
-//                        Newton law on every contact taking part (network_run.cpp:
-//                        resolve_impact). CVODE restarts only there.
+//   switches             CVODE's rootfinding on its interpolant put on the held contacts'
+//                        manifold: a held contact separates where its force (its
+//                        complementarity margin) reaches zero, an open one impacts where its
+//                        gap reaches zero; the impact law is the Newton law on every contact
+//                        taking part (network_run.cpp: resolve_impact). CVODE restarts only
+//                        at impacts and at cam breakpoints under held contacts that leave
+//                        unknowns free; a separation alone keeps its history
+//                        (network_event.hpp).
 //
 // This is the held-contact machinery of the network event method (network_event.hpp),
 // which Lee's three levels and this one coincide with once the levels are solved inside
@@ -58,7 +61,7 @@ class NetworkLeeCvode final : public NetworkEvent {
   Eigen::VectorXd corr_;
 
   bool land() const { return sc_.run.land_on_output || out_dt() <= 0.0; }
-  double step_target() override { return land() ? next_stop_time() : stop_before(sc_.run.t_end); }
+  double step_horizon() override { return land() ? next_output_time() : sc_.run.t_end; }
 
   void after_advance(double t_prev, double P_prev) override {
     rows_.clear();
