@@ -179,25 +179,14 @@ class NetworkLee final : public NetworkRun {
     const double h = s.t1 - s.t0, len = tb - s.t0;
     StepEnergy e;
     if (len <= 0) return e;
-    (void)h;
     Eigen::VectorXd F(m_);
     for (int i = 0; i < 5; ++i) {
-      const double tau = s.t0 + 0.5 * len * (1.0 + xg[i]);
-      held_state_at(s, tau, yq_);
+      const double tau = s.t0 + 0.5 * len * (1.0 + xg[i]), x = (tau - s.t0) / h;
       if (!s.set.empty()) {
-        // the held contacts' pointwise force on the step's state put on them (the force
-        // that keeps them closed, exact for a rigid follower), not the applied shape: the
-        // cam's work is ∫ F Ẋ_C, and the shape's F differs from it by the step's error
-        // while the follower's velocity inside the step is not Ẋ_C (case A at rtol 1e-3:
-        // an energy residual of 0.65 J against 1e-8 J)
-        const CamMotion cm = cam_at(tau);
-        F = held_forces(tau, yq_, cm, s.set);
-        for (int j : s.set) {
-          if (unilateral_) F[j] = std::max(F[j], 0.0);
-          sum_.max_contact_force = std::max(sum_.max_contact_force, F[j]);
-        }
-        e.work += 0.5 * len * wg[i] * cam_power(F, cm);
+        F = s.s0 + (s.s1 - s.s0) * x + s.sc * (4.0 * x * (1.0 - x));
+        e.work += 0.5 * len * wg[i] * cam_power(F, cam_at(tau));
       }
+      interpolate(s, tau, yq_);
       e.dissipated += 0.5 * len * wg[i] * dissipation_power(tau, yq_);
     }
     return e;
