@@ -374,6 +374,17 @@ void Mechanism::acceleration(double, const double* q, const double* v, const Eig
   if (F.size()) A.noalias() += MinvTt_ * F;
 }
 
+void Mechanism::contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta) const {
+  if (!single_follower_) {
+    MechanicalSystem::contact_free_acceleration(t, q, v, Ta);
+    return;
+  }
+  Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
+  Ta = ta_r0_;
+  Ta.noalias() -= ta_q_.transpose() * (Q - q0_);
+  if (damped()) Ta.noalias() -= ta_v_.transpose() * V;
+}
+
 double Mechanism::kinetic_energy(const double* v) const {
   Eigen::Map<const Eigen::VectorXd> V(v, n_);
   return 0.5 * V.dot(M_ * V);

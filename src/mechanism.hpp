@@ -88,6 +88,13 @@ class MechanicalSystem {
   /// engines use its sparse M, C, K instead); false if not available.
   virtual bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
                                      Eigen::MatrixXd& dadv) const = 0;
+  /// T a_free: the contacts' accelerations without contact forces, T M⁻¹ r(t, q, v)
+  /// (m entries). Default: acceleration() then T·a.
+  virtual void contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta) const {
+    Eigen::VectorXd a(n_);
+    acceleration(t, q, v, Eigen::VectorXd(), a.data());
+    Ta = T_ * a;
+  }
   virtual double kinetic_energy(const double* v) const = 0;
   /// Up to a constant.
   virtual double potential_energy(const double* q) const = 0;
@@ -145,6 +152,9 @@ class Mechanism final : public MechanicalSystem {
                     bool homogeneous = false) const override;
   bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
                              Eigen::MatrixXd& dadv) const override;
+  /// A single follower: z_jᵀr₀ − (K z_j)ᵀ(q − q(0)) − (C z_j)ᵀv with z_j = M⁻¹T_jᵀ, O(n)
+  /// without a mass solve (as FollowerModel::contact_acceleration); networks: the default.
+  void contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta) const override;
   double kinetic_energy(const double* v) const override;
   /// ½qᵀKq − f₀ᵀq (up to a constant).
   double potential_energy(const double* q) const override;
@@ -168,6 +178,9 @@ class Mechanism final : public MechanicalSystem {
   void factor_mass();  // after M_: picks the solve above; @throws std::invalid_argument
   enum class MassPattern { Diagonal, Tridiagonal, General } mass_pattern_ = MassPattern::General;
   Eigen::VectorXd mass_dinv_, mass_l_;  // 1/D, and L's subdiagonal (tridiagonal)
+  // contact_free_acceleration's linear forms (single follower): z_jᵀr₀, K z_j, C z_j
+  Eigen::VectorXd ta_r0_;
+  Eigen::MatrixXd ta_q_, ta_v_;
 };
 
 /// A user's follower as the system the network methods integrate (src/mechanism.cpp).

@@ -64,6 +64,9 @@ void Mechanism::build_follower(const Scene& scene) {
     solve_mass(X);
   });
   force_scale_ = std::abs(f.spring_preload());
+  ta_r0_ = MinvTt_.transpose() * r0_;  // contact_free_acceleration's linear forms
+  ta_q_ = K_ * MinvTt_;
+  if (damped()) ta_v_ = C_ * MinvTt_;
   single_follower_ = true;
   desc_ = f.description();
   desc_.sparse = true;

@@ -114,13 +114,13 @@ Eigen::VectorXd NetworkRun::held_forces(double t, const Eigen::VectorXd& y, cons
   if (margin) *margin = Eigen::VectorXd::Zero(m_);
   if (ok) *ok = true;
   if (set.empty()) return F;
-  Eigen::VectorXd a0;
-  acceleration(t, y, F, a0);  // free acceleration
+  Eigen::VectorXd Ta;
+  mk_.contact_free_acceleration(t, y.data(), y.data() + n_, Ta);  // T a_free
   const int k = int(set.size());
   Eigen::MatrixXd Wss(k, k);
   Eigen::VectorXd b(k);  // the gap accelerations without contact forces
   for (int i = 0; i < k; ++i) {
-    b[i] = mk_.contacts()[set[i]].t.dot(a0) - cam_acc(set[i], cm);
+    b[i] = Ta[set[i]] - cam_acc(set[i], cm);
     for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(set[i], set[l]);
   }
   if (!unilateral_) {  // holonomic: every contact held, pulls allowed
