@@ -75,5 +75,5 @@ for s in '#contacts.seat.restitution=0.3' '#elements[1].preload=300' '#nodes.val
 done
 
 cd "$OUT"
-exec ./fuzz_scene corpus -max_total_time="$SECONDS_TO_RUN" -max_len=8192 -timeout=10 \
+exec ./fuzz_scene corpus -max_total_time="$SECONDS_TO_RUN" -max_len=8192 -timeout="${FUZZ_TIMEOUT:-10}" \
   -rss_limit_mb=2048 -artifact_prefix="$OUT/artifacts/" -print_final_stats=1 "$@"
