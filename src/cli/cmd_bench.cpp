@@ -20,6 +20,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The progress lines of the bench and the tolerance sweep: stderr, flushed per line.
+void log_line(const std::string& line) {
+  std::fprintf(stderr, "%s\n", line.c_str());
+  std::fflush(stderr);
+}
+
 /// `camdyn bench --tolerance-sweep`: scene names A, A7, B1, B2 (t_end 0.1 unless --t-end),
 /// stiff, ohc and ohv (examples/ohc_bucket_tappet.toml, examples/ohv_pushrod_train.toml:
 /// one revolution), or scene files; none: all of them.
@@ -59,10 +65,7 @@ int cmd_tolerance_sweep(const BenchOpts& o) {
   to.t_end = o.t_end;
   to.out_dir = o.out;
   if (!o.quiet)
-    to.log = [](const std::string& line) {
-      std::fprintf(stderr, "%s\n", line.c_str());
-      std::fflush(stderr);
-    };
+    to.log = log_line;
   const ToleranceSweepResult res = run_tolerance_sweep(to);  // SceneError: exit 2
   int bad = 0;
   for (const auto& c : res.checks) bad += c.monotone ? 0 : 1;
@@ -119,10 +122,7 @@ int cmd_bench(const BenchOpts& o) {
   bo.out_dir = o.out;
   ensure_output_dir(o.out);
   if (!o.quiet)
-    bo.log = [](const std::string& line) {
-      std::fprintf(stderr, "%s\n", line.c_str());
-      std::fflush(stderr);
-    };
+    bo.log = log_line;
 
   BenchResult res;
   try {
