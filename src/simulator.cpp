@@ -197,7 +197,7 @@ bool Simulator::runs_on_mechanism(const Scene& sc) {
   const bool ida = sc.solver.integrator == Integrator::Ida;
   switch (sc.solver.stack) {
     case StackKind::Follower: return false;
-    case StackKind::Auto: return false;  // docs/one_mechanism.md §5: what keeps the default here
+    case StackKind::Auto: return !ida && !classic;
     case StackKind::Mechanism:
       if (ida)
         throw SceneError(sc.source, 0, "solver.stack", "mechanism",
