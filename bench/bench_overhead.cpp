@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
       if (kinds.find(to_string(kind)) == std::string::npos) continue;
       Scene s = paper_case(name);
       s.contact.lee_step = kind;
+      s.solver.stack = StackKind::Follower;  // the replay is of the follower stack's located step
       s.solver.integrator = integ;
       if (std::string(name) != "A") s.run.t_end = t_elastic;
       Simulator sim(s);

@@ -64,6 +64,7 @@ TEST(ContactRegistry, ATinyMethodIsOneClassAndOneRegistryEntry) {
   s.title = "tiny bilateral";
   s.run.t_end = 0.2;
   s.run.output_dt = 1e-3;
+  s.solver.stack = StackKind::Follower;  // the registry holds the follower stack's RunContext methods
   const RunResult r = simulate(s);
   ASSERT_TRUE(r.summary.finished) << r.summary.message;
   EXPECT_EQ(r.summary.steps, 200);  // its fixed 1 ms steps: the tiny method ran
@@ -85,6 +86,7 @@ TEST(ContactRegistry, ATinyMethodIsOneClassAndOneRegistryEntry) {
   Scene lee = paper_case("A");
   lee.run.t_end = 0.2;
   lee.run.output_dt = 1e-3;
+  lee.solver.stack = StackKind::Follower;
   const RunResult rl = simulate(lee);
   ASSERT_TRUE(rl.summary.finished);
   EXPECT_NE(rl.summary.steps, 200);

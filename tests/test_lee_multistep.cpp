@@ -162,6 +162,7 @@ TEST(LeeMultistep, StiffBarLooseToleranceStaysHeld) {
   s.follower.youngs_modulus = 5e8;
   s.follower.elements = 200;
   s.solver.integrator = Integrator::CvodeBdf;
+  s.solver.stack = StackKind::Follower;  // the follower stack's Lee inside CVODE (lee_multistep.cpp)
   s.run.t_end = 0.05;
   s.run.output_dt = 1e-4;
   s.contact.model = ContactModel::Event;

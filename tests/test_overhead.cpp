@@ -114,6 +114,7 @@ TEST(LeeOverhead, ReplayOfTheLocatedStepReproducesTheRun) {
     Scene s = paper_case(std::string(name) == "A7" ? "A" : name);
     if (std::string(name) == "A7") s.cam.speed_rev_s = 7.0;
     s.run.t_end = std::string(name) == "A7" ? 0.2 : 0.01;
+    s.solver.stack = StackKind::Follower;  // LeeStep records come from the follower stack's located step
     Simulator sim(s);
     LeeStepRecorder rec;
     const Summary sum = sim.run(&rec);
