@@ -114,7 +114,7 @@ const KeyDoc kDocs[] = {
     {"contact.penalty_exponent", "—", "Hunt–Crossley exponent n."},
     // [solver]
     {"solver.integrator", "—", "`arkode-erk` (Dormand–Prince 5(4)), `arkode-dirk` (SDIRK, mass matrix), "
-                               "`cvode-bdf` (BDF), `ida` (the held contact as a DAE; needs contact.model = holonomic)."},
+                               "`cvode-bdf` (BDF), `ida` (the held contacts as a DAE, any mechanism; needs contact.model = holonomic)."},
     {"solver.rtol", "—", "Relative local error tolerance."},
     {"solver.atol", "length", "Absolute local error tolerance."},
     {"solver.linear_solver", "—", "`auto` (dense for ≤ 16 unknowns, KLU beyond), `dense` or `klu`."},
@@ -122,7 +122,8 @@ const KeyDoc kDocs[] = {
     {"solver.initial_step", "time", "First step; 0 = automatic."},
     {"solver.stack", "—", "Step loop of a `rigid` or `elastic_bar` follower: `mechanism` (built as a one-contact "
                           "mechanism and run by the methods and engines of networks), `follower` (the "
-                          "single-follower stack), `auto` (the follower stack for now; docs/one_mechanism.md)."},
+                          "single-follower stack, kept for comparison; not with `ida`), `auto` (the mechanism; the follower stack "
+                          "for contact.lee_step = classic; docs/one_mechanism.md)."},
     // [run]
     {"run.t_end", "time", "Final time."},
     {"run.revolutions", "rev", "Length of the run in camshaft revolutions, instead of `run.t_end` (giving both is an "

@@ -175,10 +175,6 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   validate(scene_);
   check_tolerances(scene_);
   if (scene_.follower.kind == FollowerKind::Network) {
-    if (scene_.solver.integrator == Integrator::Ida)
-      throw SceneError(scene_.source, 0, "solver.integrator", "ida",
-                       "a network runs on arkode-erk, arkode-dirk or cvode-bdf (ida: single-follower "
-                       "holonomic scenes only)");
     mech_ = std::make_shared<const Mechanism>(scene_);
     extra_columns_ = detail::NetworkRun::extra_columns(*mech_);
     detail::check_start(scene_, *mech_, false);
@@ -196,13 +192,14 @@ bool Simulator::runs_on_mechanism(const Scene& sc) {
   const bool classic = sc.contact.model == ContactModel::Lee && sc.contact.lee_step == LeeStepKind::Classic;
   const bool ida = sc.solver.integrator == Integrator::Ida;
   switch (sc.solver.stack) {
-    case StackKind::Follower: return false;
-    case StackKind::Auto: return !ida && !classic;
-    case StackKind::Mechanism:
+    case StackKind::Follower:
       if (ida)
-        throw SceneError(sc.source, 0, "solver.stack", "mechanism",
-                         "runs on arkode-erk, arkode-dirk or cvode-bdf (solver.integrator = ida: use "
-                         "solver.stack = \"follower\" or \"auto\")");
+        throw SceneError(sc.source, 0, "solver.stack", "follower",
+                         "solver.integrator = ida runs on the mechanism stack (use solver.stack = "
+                         "\"mechanism\" or \"auto\")");
+      return false;
+    case StackKind::Auto: return !classic;
+    case StackKind::Mechanism:
       if (classic)
         throw SceneError(sc.source, 0, "solver.stack", "mechanism",
                          "runs Lee's located step (contact.lee_step = classic: use solver.stack = "

@@ -439,18 +439,43 @@ TEST(TwoContacts, LeeEventAndPenaltyAgreeOnImpulsesAndEnergyCloses) {
   EXPECT_LT(c.sum.energy_residual, 1e-3 * W);
 }
 
-// A network on IDA is bad input (exit 2 from the CLI), not a failed run.
-TEST(NetworkInput, IdaIsRejected) {
-  Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_bucket_tappet.toml");
-  s.contact.model = ContactModel::Holonomic;
-  s.solver.integrator = Integrator::Ida;
-  try {
-    Simulator sim(s);
-    FAIL() << "no error";
-  } catch (const SceneError& e) {
-    EXPECT_EQ(e.key(), "solver.integrator");
-    EXPECT_EQ(e.rule(), "a network runs on arkode-erk, arkode-dirk or cvode-bdf (ida: single-follower holonomic "
-                        "scenes only)");
+// A network on IDA (holonomic): the held contacts as an index-2 GGL DAE, the cam contact's
+// closing by the Newton impact law and an IDA restart on the larger held set
+// (network_ida.cpp) — against the second formulation, Lee's located step with contacts
+// that never release (holonomic on arkode-erk): displacements, forces, the impact and the
+// first tensile time.
+TEST(NetworkIda, HolonomicAgreesWithLeeHolonomicOnErk) {
+  for (const char* ex : {"ohc_bucket_tappet", "ohv_pushrod_train"}) {
+    Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/" + ex + ".toml");
+    s.contact.model = ContactModel::Holonomic;
+    s.run.t_end = 0.015;
+    s.solver.integrator = Integrator::Ida;
+    const RunResult a = simulate(s);
+    s.solver.integrator = Integrator::ArkodeErk;
+    const RunResult b = simulate(s);
+    ASSERT_TRUE(a.summary.finished) << a.summary.message;
+    ASSERT_TRUE(b.summary.finished) << b.summary.message;
+    EXPECT_EQ(a.summary.integrator, "ida");
+    ASSERT_EQ(a.rows.size(), b.rows.size());
+    double du = 0, dF = 0, Fmax = 0;
+    for (size_t i = 0; i < a.rows.size(); ++i) {
+      ASSERT_EQ(a.rows[i].t, b.rows[i].t);
+      du = std::max(du, std::abs(a.rows[i].u_c - b.rows[i].u_c));
+      dF = std::max(dF, std::abs(a.rows[i].contact_force - b.rows[i].contact_force));
+      Fmax = std::max(Fmax, std::abs(b.rows[i].contact_force));
+    }
+    ASSERT_EQ(a.summary.events.size(), b.summary.events.size()) << ex;
+    ASSERT_GE(a.summary.events.size(), 2u) << ex;  // the lash closes, the seat turns tensile
+    double dt = 0;
+    for (size_t i = 0; i < a.summary.events.size(); ++i) {
+      EXPECT_EQ(a.summary.events[i].type, b.summary.events[i].type) << ex;
+      dt = std::max(dt, std::abs(a.summary.events[i].t - b.summary.events[i].t));
+    }
+    std::printf("%s: ida vs erk |du| %.2e m, |dF|/Fmax %.2e, events %zu, |dt| %.2e s\n", ex, du, dF / Fmax,
+                a.summary.events.size(), dt);
+    EXPECT_LT(du, 1e-10) << ex;          // measured 1.7e-14, 1.5e-14
+    EXPECT_LT(dF, 1e-6 * Fmax) << ex;    // measured 2.2e-12, 2.1e-9
+    EXPECT_LT(dt, 1e-9) << ex;           // measured 5e-16 … 1e-12
   }
 }
 

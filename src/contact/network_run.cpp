@@ -616,12 +616,16 @@ std::unique_ptr<NetworkRun> make_network_event(const Scene&, std::shared_ptr<con
                                                Observer*, const std::atomic<bool>*);
 std::unique_ptr<NetworkRun> make_network_lee_cvode(const Scene&, std::shared_ptr<const MechanicalSystem>,
                                                    Observer*, const std::atomic<bool>*);
+std::unique_ptr<NetworkRun> make_network_ida(const Scene&, std::shared_ptr<const MechanicalSystem>, Observer*,
+                                             const std::atomic<bool>*);
 
 // The network methods: Lee's located step (lee; holonomic = Lee with contacts that never
 // release; on cvode-bdf Lee's levels inside CVODE's own step, network_lee_cvode.cpp), the
-// penalty baseline, the event-driven method.
+// penalty baseline, the event-driven method; on ida (validated: holonomic only) the held
+// contacts as a DAE (network_ida.cpp).
 std::unique_ptr<NetworkRun> make_network_method(const Scene& scene, std::shared_ptr<const MechanicalSystem> mech,
                                                 Observer* obs, const std::atomic<bool>* stop) {
+  if (scene.solver.integrator == Integrator::Ida) return make_network_ida(scene, std::move(mech), obs, stop);
   switch (scene.contact.model) {
     case ContactModel::Lee:
     case ContactModel::Holonomic:

@@ -18,8 +18,6 @@ std::unique_ptr<RunContext> make_penalty(const Scene&, std::shared_ptr<const Fol
                                          Observer*, const std::atomic<bool>*);
 std::unique_ptr<RunContext> make_event_driven(const Scene&, std::shared_ptr<const FollowerModel>,
                                               Observer*, const std::atomic<bool>*);
-std::unique_ptr<RunContext> make_ida_holonomic(const Scene&, std::shared_ptr<const FollowerModel>,
-                                               Observer*, const std::atomic<bool>*);
 
 namespace {
 bool lee_located(const Scene& s) {
@@ -35,9 +33,6 @@ bool lee_classic(const Scene& s) {
   return s.contact.model == ContactModel::Lee && s.contact.lee_step == LeeStepKind::Classic;
 }
 bool penalty(const Scene& s) { return s.contact.model == ContactModel::Penalty; }
-bool ida_holonomic(const Scene& s) {  // validated: "ida" only with contact.model = "holonomic"
-  return s.solver.integrator == Integrator::Ida;
-}
 bool event_or_holonomic(const Scene& s) {
   return s.contact.model == ContactModel::Event || s.contact.model == ContactModel::Holonomic;
 }
@@ -48,7 +43,6 @@ std::vector<ContactMethodEntry>& registry() {
       {"lee (located step)", &lee_located, &make_lee_located},
       {"lee (classic step)", &lee_classic, &make_lee_classic},
       {"penalty", &penalty, &make_penalty},
-      {"holonomic (IDA, index-2 GGL DAE)", &ida_holonomic, &make_ida_holonomic},
       {"event-driven / holonomic", &event_or_holonomic, &make_event_driven},
   };
   return kMethods;
