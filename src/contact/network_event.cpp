@@ -91,7 +91,7 @@ void NetworkEvent::set_metric() {
 
 void NetworkEvent::stiff_metric(double h) {
   if (!stiff_metric_ || !(h > 0)) return;
-  const double g = std::exp2(std::round(std::log2(h)));  // on the grid 2^k: few factorisations
+  const double g = std::exp2(std::round(std::log2(h * metric_scale_)));  // on the grid 2^k: few factorisations
   if (g == gamma_p_) return;
   const auto& mech = static_cast<const Mechanism&>(mk_);
   SparseMatrix S = mech.M() + (g * g) * mech.K();

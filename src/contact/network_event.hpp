@@ -63,7 +63,17 @@ class NetworkEvent : public NetworkRun {
   // amplified it (error test failures at 1.7 ms). In S the modes faster than 1/γ — those
   // BDF treats as quasi-static — follow the correction statically (no strain added in
   // the stiff elements), the slow ones by their inertia.
+  // A single elastic follower (a one-contact mechanism) takes γ = 10⁶·h: every mode follows
+  // statically, the correction that changes the least strain (the follower stack's rigid
+  // translation of the bar, lee_multistep.cpp). With γ = h the bar's slow modes followed
+  // by their inertia, the corrections strained the first element, and the held force
+  // carried that strain: the stiff bar (E = 5e8, 200 elements, B2) on cvode-bdf at rtol
+  // 1e-2 / 1e-3 / 1e-4 had its row forces 2.3 / 2.6 / 1.5 % of the peak off the event
+  // method at rtol 1e-6 and its cam work 12 / 9.4 / 3.4 % high (energy residual 0.82 /
+  // 0.63 / 0.23 J of 6.59); with 10⁶·h 1.1 / 0.92 / 0.98 % and 7.0e-3 / 2.2e-3 / 2.3e-4 J
+  // (the follower stack: 0.73 / 0.83 / 0.89 %, 1.2e-4 / 1.3e-4 / 3.9e-5 J).
   void stiff_metric(double h);
+  const double metric_scale_ = mk_.single_follower() && mk_.n() > 1 ? 1e6 : 1.0;
   bool stiff_metric_ = sc_.solver.integrator == Integrator::CvodeBdf && dynamic_cast<const Mechanism*>(&mk_);
   double gamma_p_ = 0.0;  // 0: the metric M
   Eigen::SimplicialLDLT<SparseMatrix> S_ldlt_;
