@@ -2,8 +2,9 @@
 //
 //   M q̈ + K q = f₀,  N two-node bar elements, n = N + 1 nodes, 2n unknowns.
 //
-// CPU per step for N = 10², 10³, 10⁴, 10⁵ on each engine (arkode-erk, arkode-dirk with
-// KLU, cvode-bdf with our KLU Schur solver). With KLU the cost must grow linearly in N.
+// CPU per step for N = 10², 10³, 10⁴, 10⁵ on each engine of the mechanism (arkode-erk,
+// arkode-dirk and cvode-bdf with the sparse Schur complement on KLU, src/ode_engine.cpp).
+// With KLU the cost must grow linearly in N.
 // A plain timer program (one process, one run: ratios are measured together).
 //   usage: bench_engines [max_N=100000] [steps=200]
 #include <chrono>
@@ -11,8 +12,12 @@
 #include <cstdlib>
 #include <ctime>
 
+#include <algorithm>
+#include <memory>
+
 #include "camdyn/model.hpp"
-#include "engine.hpp"
+#include "mechanism.hpp"
+#include "ode_engine.hpp"
 
 using namespace camdyn;
 
@@ -31,11 +36,28 @@ int main(int argc, char** argv) {
         s.solver.rtol = 1e-6;
         s.solver.atol = 1e-9;
         s.contact.model = integ == Integrator::CvodeBdf ? ContactModel::Event : ContactModel::Lee;
-        auto model = build_model(s);
-        auto eng = make_engine(model, s.solver, s.contact.model == ContactModel::Lee, s.contact.tol_u);  // no contact force
-        const int n = model->n();
+        // The bar as a one-contact mechanism (src/mechanism_follower.cpp) on the engines
+        // every method runs on (src/ode_engine.cpp), no contact force.
+        const Mechanism mech(s);
+        const int n = mech.n();
+        OdeSystem sys;
+        sys.size = 2 * n;
+        sys.rhs = [&mech, n](double t, const double* y, double* yd) {
+          std::copy(y + n, y + 2 * n, yd);
+          mech.acceleration(t, y, y + n, Eigen::VectorXd(), yd + n);
+        };
+        auto sn = std::make_shared<SparseNewton>();
+        sn->M = &mech.M();
+        sn->K = &mech.K();
+        sn->C = mech.damped() ? &mech.C() : nullptr;
+        sn->T = mech.T();
+        sys.newton = sn;
+        sys.linear = true;
+        sys.max_order = 2;  // an undamped bar (as the methods' policy, network_event.cpp)
+        const bool native = integ == Integrator::CvodeBdf;
+        auto eng = OdeEngine::make(integ, s.solver, sys, /*trial=*/!native);
         Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n), y1(2 * n);
-        y.head(n) = model->initial_displacement();
+        y.head(n) = mech.q0();
         y[n] = 1.0;  // a velocity kick on the contact face
         // explicit: a stable step (ω_max h ≈ 0.5); implicit: 1e-5
         const double c = std::sqrt(1e7 / (1.0 / (3.0 * 24.0)));
@@ -43,7 +65,7 @@ int main(int argc, char** argv) {
         const std::clock_t c0 = std::clock();
         double t = 0;
         long taken = 0;
-        if (integ == Integrator::CvodeBdf) {
+        if (native) {
           eng->reinit(0.0, y);
           for (int i = 0; i < steps; ++i) t = eng->advance(1.0, y1);
           taken = eng->stats().steps;

@@ -10,8 +10,11 @@
 //   construction and the steps); median of R repeats (a Lee run over 5 s CPU is timed
 //   once, with its replay).
 //
+//   Lee's classic step only: it runs on the single-follower stack (solver.stack =
+//   "follower"), whose engines replay a step sequence; the located step runs on the
+//   mechanism since round 3 (issue 23) and reports no step ramps.
+//
 //   usage: bench_overhead [repeats=3] [t_end_elastic=0.05] [engines=arkode-erk,arkode-dirk,cvode-bdf]
-//                         [steps=located,classic]
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -35,17 +38,15 @@ int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
   const double t_elastic = argc > 2 ? std::atof(argv[2]) : 0.05;
   const std::string engines = argc > 3 ? argv[3] : "arkode-erk,arkode-dirk,cvode-bdf";
-  const std::string kinds = argc > 4 ? argv[4] : "located,classic";
   std::printf("| scene | t_end | engine | step | Lee CPU s | replay CPU s | ratio | Lee steps | "
               "mean it. u / v / a | u_c(end) replay − Lee |\n|---|---|---|---|---:|---:|---:|---:|---|---:|\n");
   for (const char* name : {"A", "B1", "B2"}) {
     for (Integrator integ : {Integrator::ArkodeErk, Integrator::ArkodeDirk, Integrator::CvodeBdf}) {
-     for (LeeStepKind kind : {LeeStepKind::Located, LeeStepKind::Classic}) {
+     for (LeeStepKind kind : {LeeStepKind::Classic}) {
       if (engines.find(to_string(integ)) == std::string::npos) continue;
-      if (kinds.find(to_string(kind)) == std::string::npos) continue;
       Scene s = paper_case(name);
       s.contact.lee_step = kind;
-      s.solver.stack = StackKind::Follower;  // the replay is of the follower stack's located step
+      s.solver.stack = StackKind::Follower;  // the classic step's stack
       s.solver.integrator = integ;
       if (std::string(name) != "A") s.run.t_end = t_elastic;
       Simulator sim(s);
@@ -59,12 +60,7 @@ int main(int argc, char** argv) {
         sum = sim.run(&rec);
         lee_cpu.push_back(double(std::clock() - c0) / CLOCKS_PER_SEC);
         if (k == 0) first = std::move(rec);
-        // Lee on cvode-bdf (elastic): natively, the force history given (no restarts but
-        // at impacts, as the run); the trial-step engines: the same steps and shapes.
-        const bool multistep = integ == Integrator::CvodeBdf && kind == LeeStepKind::Located &&
-                               s.follower.kind != FollowerKind::Rigid;
-        rep = multistep ? replay_force_history(sim.scene(), first.steps)
-                        : replay_lee_steps(sim.scene(), first.steps);
+        rep = replay_lee_steps(sim.scene(), first.steps);
         rep_cpu.push_back(rep.cpu_seconds);
         if (lee_cpu.back() > 5.0) break;
       }

@@ -91,41 +91,9 @@ class Engine {
   /// Engine's own proposal for the next step after step() (0 = no opinion).
   virtual double suggested_step() const { return 0.0; }
 
-  /// Native mode: restart from (t, y) with the solver's own error control.
-  virtual void reinit(double t, const Eigen::VectorXd& y) = 0;
-  /// One internal step toward tout (never past it). Returns the time reached; y_out holds
-  /// the state there.
-  virtual double advance(double tout, Eigen::VectorXd& y_out) = 0;
-
-  /// Native mode, multistep engines (CVODE): allow BDF orders up to q, with CVODE's BDF
-  /// stability-limit detection on (it lowers the order where orders ≥ 3, not A-stable,
-  /// would amplify an undamped stiff mode). No-op for the one-step engines.
-  virtual void set_max_order(int /*q*/) {}
-
   /// The force on node 0 from now on (borrowed: it must outlive its use; nullptr: F = 0).
-  /// A HeldContact makes the right-hand side hold node 0 on its path (acceleration level).
-  void set_contact(const ContactForce* force) {
-    contact_ = force;
-    held_ = dynamic_cast<const HeldContact*>(force);
-  }
+  void set_contact(const ContactForce* force) { contact_ = force; }
   const ContactForce* contact() const { return contact_; }
-
-  /// Native mode, held contact (set_contact with a HeldContact): on, every internal step's
-  /// corrected state is projected onto u₀ = X_C(t), u̇₀ = Ẋ_C(t) by a rigid translation
-  /// of the follower (no strain changes), and the projection enters the engine's history (CVODE's projection interface: no restart). Only the
-  /// multistep engine supports it. @throws std::logic_error on the other engines.
-  virtual void set_held_projection(bool /*on*/) {
-    throw std::logic_error(std::string("held projection: not supported by ") + name());
-  }
-  /// The held contact's force at state y with node 0 on the cam's c (u₀ = X_C, u̇₀ = Ẋ_C):
-  /// F = (Ẍ_C − e₀ᵀM⁻¹(f₀ − Kq − Cv)) / M*. Not thread-safe (a buffer per engine).
-  double held_force(const CamMotion& c, const double* y) const;
-
-  /// Rootfinding (native mode): one function g(t, y); direction −1, 0 or +1.
-  using RootFn = std::function<double(double t, const double* y)>;
-  virtual void set_root(RootFn fn, int direction) = 0;
-  /// After advance(): true if it stopped at a root of g.
-  bool hit_root() const { return hit_root_; }
 
   const EngineStats& stats() const { return stats_; }
 
@@ -142,14 +110,9 @@ class Engine {
   SolverSpec spec_;
   int n_;
   const ContactForce* contact_ = nullptr;
-  const HeldContact* held_ = nullptr;  // contact_ if it is a HeldContact
   EngineStats stats_;
   Eigen::VectorXd work_, local_error_;
-  RootFn root_fn_;
-  bool hit_root_ = false;
-  mutable Eigen::VectorXd held_y_;  // held_force's state with node 0 on the cam
   bool homogeneous_ = false;
-  static int root_callback(double t, const double* y, double* g, void* ud) noexcept;
 };
 
 /// Make the engine `solver` asks for. trial = true for Lee's trial steps (tighter CVODE

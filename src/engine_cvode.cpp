@@ -63,7 +63,6 @@ class CvodeEngine final : public Engine {
     // the state, for the penalty Jacobian) to the linear-system function.
     check_flag(CVodeSetLinearSolver(mem, sls_.ls(), sls_.placeholder()), "CVodeSetLinearSolver");
     check_flag(CVodeSetLinSysFn(mem, &CvodeEngine::linsys), "CVodeSetLinSysFn");
-    sls_.watch(&held_);
   }
   ~CvodeEngine() override {
     mem_.reset();  // CVodeFree before the linear solver it references
@@ -99,70 +98,11 @@ class CvodeEngine final : public Engine {
     CVodeGetCurrentStep(mem_.get(), &hcur_);
     return 0.0;
   }
-  void reinit(double t, const Eigen::VectorXd& y) override {
-    map(y_.get()) = y;
-    check_flag(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");
-    check_flag(CVodeSetInitStep(mem_.get(), spec_.initial_step), "CVodeSetInitStep");
-    check_flag(CVodeSetMinStep(mem_.get(), 0.0), "CVodeSetMinStep");  // native: no trial bound
-    ++stats_.reinits;
-  }
-  double advance(double tout, Eigen::VectorXd& y_out) override {
-    check_flag(CVodeSetStopTime(mem_.get(), tout), "CVodeSetStopTime");
-    double tret = 0;
-    const int flag = check_flag(CVode(mem_.get(), tout, y_.get(), &tret, CV_ONE_STEP), "CVode");
-    hit_root_ = flag == CV_ROOT_RETURN;
-    y_out = map(y_.get());
-    ++stats_.steps;
-    return tret;
-  }
-  void set_max_order(int q) override {
-    check_flag(CVodeSetMaxOrd(mem_.get(), q), "CVodeSetMaxOrd");
-    check_flag(CVodeSetStabLimDet(mem_.get(), q >= 3 ? SUNTRUE : SUNFALSE), "CVodeSetStabLimDet");
-  }
-  void set_held_projection(bool on) override {
-    if (on && !projection_set_) {
-      check_flag(CVodeSetProjFn(mem_.get(), &CvodeEngine::project), "CVodeSetProjFn");
-      // The error test keeps the unprojected estimate (node 0's drift included:
-      // conservative).
-      check_flag(CVodeSetProjErrEst(mem_.get(), SUNFALSE), "CVodeSetProjErrEst");
-      projection_set_ = true;
-    }
-    if (projection_set_) check_flag(CVodeSetProjFrequency(mem_.get(), on ? 1 : 0), "CVodeSetProjFrequency");
-  }
-  void set_root(RootFn fn, int direction) override {
-    root_fn_ = std::move(fn);
-    check_flag(CVodeRootInit(mem_.get(), root_fn_ ? 1 : 0, &CvodeEngine::g), "CVodeRootInit");
-    if (root_fn_) check_flag(CVodeSetRootDirection(mem_.get(), &direction), "CVodeSetRootDirection");
-  }
 
  private:
   static int f(double t, N_Vector y, N_Vector ydot, void* ud) {
     try {
       static_cast<CvodeEngine*>(ud)->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-      return 0;
-    } catch (...) {
-      return -1;
-    }
-  }
-  static int g(double t, N_Vector y, double* gout, void* ud) {
-    return root_callback(t, N_VGetArrayPointer(y), gout, ud);
-  }
-  // The held contact's displacement and velocity levels: the corrected state is put on
-  // u₀ = X_C, u̇₀ = Ẋ_C by translating the follower rigidly, c = (s·1, ŝ·1) with
-  // s = X_C − u₀, ŝ = Ẋ_C − u̇₀ — the correction that changes no strain and so no internal
-  // force. (Projecting along M⁻¹e₀, or moving node 0 alone, put the drift — up to
-  // rtol·|X_C| — into the first element's strain, k_e·s: on the stiff bar, k_e = 1.25e10,
-  // that gave force spikes and spurious separations at rtol ≥ 1e-4.) CVODE adds c to the
-  // step's correction and to its history.
-  static int project(double t, N_Vector ycur, N_Vector corr, double, N_Vector, void* ud) {
-    try {
-      auto* self = static_cast<CvodeEngine*>(ud);
-      const int n = self->n_;
-      const double* y = N_VGetArrayPointer(ycur);
-      const CamMotion c = self->held_->path(t);
-      Eigen::Map<Eigen::VectorXd> C(N_VGetArrayPointer(corr), 2 * n);
-      C.head(n).setConstant(c.X - y[0]);
-      C.tail(n).setConstant(c.Xdot - y[n]);
       return 0;
     } catch (...) {
       return -1;
@@ -185,7 +125,6 @@ class CvodeEngine final : public Engine {
   SchurLinearSolver sls_;
   std::unique_ptr<void, CvDel> mem_;
   double hcur_ = 0, first_h_ = 0;
-  bool projection_set_ = false;
 };
 
 }  // namespace

@@ -70,7 +70,6 @@ class SchurSolver {
     dFdq_ = dFdq;
     dFdv_ = dFdv;
     factored_ = true;
-    z_valid_ = false;
     ++stats_.lin_setups;
     if (m_.rigid()) {
       s_rigid_ = m_.m_rigid() + g * (m_.c_rigid() - dFdv) + g * g * (m_.k_rigid() - dFdq);
@@ -87,44 +86,22 @@ class SchurSolver {
     lu_.factor(S_);
   }
   // x = (I − γJ)⁻¹ b, in place on b (length 2n).
-  //
-  // Held contact (a HeldContact set): v̇ = P M⁻¹(f₀ − Kq − Cv) + M⁻¹e₀Ẍ_C/M* with
-  // P = I − M⁻¹e₀e₀ᵀ/M*, so J's velocity rows are P M⁻¹[−K, −C] and e₀ᵀP = 0. The
-  // system becomes S x_v = M b_v − γK b_u + e₀λ with x_v,0 = b_v,0 (node 0's velocity
-  // row is the identity): bordered with z = S⁻¹e₀ (one solve per factorisation),
-  // x_v = w + λz, w = S⁻¹(M b_v − γK b_u), λ = (b_v,0 − w₀)/z₀.
-  void solve(double* b, bool held = false) {
+  void solve(double* b) {
     const long n = n_;
     double* bu = b;
     double* bv = b + n;
     if (m_.rigid()) {
-      if (held) {  // q̈ = Ẍ_C(t): x_v = b_v
-        bu[0] += g_ * bv[0];
-        return;
-      }
       const double rhs = m_.m_rigid() * bv[0] - g_ * (m_.k_rigid() - dFdq_) * bu[0];
       bv[0] = rhs / s_rigid_;
       bu[0] += g_ * bv[0];
       return;
     }
-    const double bv0 = bv[0];
     Eigen::Map<Eigen::VectorXd> U(bu, n), V(bv, n);
     rhs_.noalias() = m_.M() * V;
     rhs_.noalias() -= g_ * (m_.K() * U);
     rhs_[0] += g_ * dFdq_ * U[0];
     lu_.solve(rhs_.data());
     V = rhs_;
-    if (held) {
-      if (!z_valid_) {
-        z_.setZero(n);
-        z_[0] = 1.0;
-        lu_.solve(z_.data());
-        z_valid_ = true;
-      }
-      const double lambda = (bv0 - V[0]) / z_[0];
-      V += lambda * z_;
-      V[0] = bv0;
-    }
     U += g_ * V;
   }
 
@@ -132,8 +109,7 @@ class SchurSolver {
   const FollowerModel& m_;
   long n_;
   EngineStats& stats_;
-  bool factored_ = false, z_valid_ = false;
-  Eigen::VectorXd z_;  // S⁻¹e₀ (held contact)
+  bool factored_ = false;
   double g_ = 0, dFdq_ = 0, dFdv_ = 0, s_rigid_ = 1;
   SparseMatrix S_;
   Eigen::VectorXd rhs_;
@@ -148,7 +124,7 @@ class SchurLinearSolver {
   SchurLinearSolver(const FollowerModel& m, bool dense, EngineStats& stats, SUNContext ctx)
       : schur_(m, dense, stats), n_(m.n()),
         cls_(ctx, [this] { schur_.setup(gamma_, dFdq_, dFdv_); },
-             [this](double* x) { schur_.solve(x, held_ && *held_); }) {}
+             [this](double* x) { schur_.solve(x); }) {}
   SUNLinearSolver ls() { return cls_.ls(); }
   SUNMatrix placeholder() { return cls_.placeholder(); }
   // From the linear-system function: the system I − γJ at (t, y) under the contact force f.
@@ -159,16 +135,11 @@ class SchurLinearSolver {
       dFdq_ = dFdv_ = 0.0;
     gamma_ = gamma;
   }
-  /// Where each solve reads whether the contact is held (the engine's held contact, or
-  /// null): the held contact's system has the same S, bordered (SchurSolver::solve), so
-  /// a phase switch needs no new factorisation.
-  void watch(const HeldContact* const* held) { held_ = held; }
 
  private:
   SchurSolver schur_;
   long n_;
   double gamma_ = 0, dFdq_ = 0, dFdv_ = 0;
-  const HeldContact* const* held_ = nullptr;
   detail::CustomLinearSolver cls_;
 };
 

@@ -65,31 +65,6 @@ void Engine::rhs(double t, const double* y, double* ydot) {
   rhs_unscaled(t, y, ydot);
   std::copy(ydot + n_, ydot + 2 * n_, work_.data());
   model_->solve_mass(work_.data(), ydot + n_);
-  if (held_) {
-    // v̇ = a_free + M⁻¹e₀ F with F = (Ẍ_C − a_free,0) / M*: node 0 accelerates with the cam.
-    const double F = (held_->path(t).Xddot - ydot[n_]) / model_->mstar();
-    Eigen::Map<Eigen::VectorXd>(ydot + n_, n_) += F * model_->contact_column();
-  }
-}
-
-double Engine::held_force(const CamMotion& c, const double* y) const {
-  // node 0 on the cam: the state the projection gives (an interpolated state between step
-  // ends is off the cam by the integration error, which the stiff first element would
-  // turn into force: k_e·δ)
-  held_y_.resize(2 * n_);
-  std::copy(y, y + 2 * n_, held_y_.data());
-  held_y_[0] = c.X;
-  held_y_[n_] = c.Xdot;
-  return (c.Xddot - model_->contact_acceleration(held_y_.data(), held_y_.data() + n_, 0.0)) / model_->mstar();
-}
-
-int Engine::root_callback(double t, const double* y, double* g, void* ud) noexcept {
-  try {
-    g[0] = static_cast<Engine*>(ud)->root_fn_(t, y);
-    return 0;
-  } catch (...) {
-    return -1;
-  }
 }
 
 double Engine::wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const {
@@ -133,25 +108,6 @@ class ErkEngine final : public Engine {
     local_error_ = map(ele_.get());
     return wrms(local_error_, y);
   }
-  void reinit(double t, const Eigen::VectorXd& y) override {
-    map(y_.get()) = y;
-    check_flag(ERKStepReset(mem_.get(), t, y_.get()), "ERKStepReset");
-    check_flag(ERKStepSetInitStep(mem_.get(), spec_.initial_step), "ERKStepSetInitStep");
-  }
-  double advance(double tout, Eigen::VectorXd& y_out) override {
-    check_flag(ERKStepSetStopTime(mem_.get(), tout), "ERKStepSetStopTime");
-    double tret = 0;
-    const int flag = check_flag(ERKStepEvolve(mem_.get(), tout, y_.get(), &tret, ARK_ONE_STEP), "ERKStepEvolve");
-    hit_root_ = flag == ARK_ROOT_RETURN;
-    y_out = map(y_.get());
-    ++stats_.steps;
-    return tret;
-  }
-  void set_root(RootFn fn, int direction) override {
-    root_fn_ = std::move(fn);
-    check_flag(ERKStepRootInit(mem_.get(), root_fn_ ? 1 : 0, &ErkEngine::g), "ERKStepRootInit");
-    if (root_fn_) check_flag(ERKStepSetRootDirection(mem_.get(), &direction), "ERKStepSetRootDirection");
-  }
 
  private:
   static int f(double t, N_Vector y, N_Vector ydot, void* ud) {
@@ -161,9 +117,6 @@ class ErkEngine final : public Engine {
     } catch (...) {
       return -1;
     }
-  }
-  static int g(double t, N_Vector y, double* gout, void* ud) {
-    return root_callback(t, N_VGetArrayPointer(y), gout, ud);
   }
   bool trial_;
   ContextHolder ctx_;
@@ -225,25 +178,6 @@ class DirkEngine final : public Engine {
     local_error_ = map(ele_.get());
     return wrms(local_error_, y);
   }
-  void reinit(double t, const Eigen::VectorXd& y) override {
-    map(y_.get()) = y;
-    check_flag(ARKStepReset(mem_.get(), t, y_.get()), "ARKStepReset");
-    check_flag(ARKStepSetInitStep(mem_.get(), spec_.initial_step), "ARKStepSetInitStep");
-  }
-  double advance(double tout, Eigen::VectorXd& y_out) override {
-    check_flag(ARKStepSetStopTime(mem_.get(), tout), "ARKStepSetStopTime");
-    double tret = 0;
-    const int flag = check_flag(ARKStepEvolve(mem_.get(), tout, y_.get(), &tret, ARK_ONE_STEP), "ARKStepEvolve");
-    hit_root_ = flag == ARK_ROOT_RETURN;
-    y_out = map(y_.get());
-    ++stats_.steps;
-    return tret;
-  }
-  void set_root(RootFn fn, int direction) override {
-    root_fn_ = std::move(fn);
-    check_flag(ARKStepRootInit(mem_.get(), root_fn_ ? 1 : 0, &DirkEngine::g), "ARKStepRootInit");
-    if (root_fn_) check_flag(ARKStepSetRootDirection(mem_.get(), &direction), "ARKStepSetRootDirection");
-  }
 
  private:
   static int fi(double t, N_Vector y, N_Vector ydot, void* ud) {
@@ -264,9 +198,6 @@ class DirkEngine final : public Engine {
     } catch (...) {
       return -1;
     }
-  }
-  static int g(double t, N_Vector y, double* gout, void* ud) {
-    return root_callback(t, N_VGetArrayPointer(y), gout, ud);
   }
 
   bool trial_;
@@ -289,10 +220,7 @@ std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, 
     case Integrator::CvodeBdf:
       return engine_detail::make_cvode_engine(std::move(model), solver, lsk, trial, tol_u);
     case Integrator::Ida:
-      // The DAE engine (ida_engine.cpp) integrates the held contact itself; the runner
-      // still wants an Engine for its bookkeeping (no contact force): an ERK engine in
-      // native mode that is never stepped.
-      return std::make_unique<ErkEngine>(std::move(model), solver, false);
+      break;  // ida runs on the mechanism (src/ida_engine.cpp)
   }
   throw std::invalid_argument("unknown integrator");
 }

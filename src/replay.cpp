@@ -50,47 +50,4 @@ ReplayResult replay_lee_steps(const Scene& scene, const std::vector<LeeStep>& st
   return r;
 }
 
-ReplayResult replay_force_history(const Scene& scene, const std::vector<LeeStep>& steps) {
-  const auto model = build_model(scene);
-  const int n = model->n();
-  Eigen::VectorXd y = initial_state(scene, *model), y1(2 * n);
-  std::vector<double> T, F, t_imp, P;
-  for (const LeeStep& s : steps) {
-    if (T.empty()) {
-      T.push_back(s.t0);
-      F.push_back(s.F0);
-    }
-    T.push_back(s.t0 + s.h);
-    F.push_back(s.F1);
-    if (s.impulse != 0.0) {
-      t_imp.push_back(s.t0 + s.h);
-      P.push_back(s.impulse);
-    }
-  }
-  ReplayResult r;
-  if (T.empty()) return r;
-  const std::clock_t c0 = std::clock();
-  const auto engine = make_engine(model, scene.solver, /*trial=*/false);
-  if (scene.solver.rtol <= 1e-8) engine->set_max_order(5);  // the run's policy
-  ForceTable law;
-  law.t = &T;
-  law.F = &F;
-  engine->set_contact(&law);
-  const Eigen::VectorXd& col0 = model->contact_column();  // Δv of a unit impulse
-  double t = T.front();
-  engine->reinit(t, y);
-  for (size_t k = 0; k <= t_imp.size(); ++k) {
-    const double stop = k < t_imp.size() ? t_imp[k] : T.back();
-    while (t < stop) t = engine->advance(stop, y);
-    if (k < t_imp.size()) {
-      y.tail(n) += P[k] * col0;
-      engine->reinit(t, y);
-    }
-  }
-  r.cpu_seconds = double(std::clock() - c0) / CLOCKS_PER_SEC;
-  r.engine_steps = engine->stats().steps;
-  r.y = std::move(y);
-  return r;
-}
-
 }  // namespace camdyn

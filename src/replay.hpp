@@ -43,10 +43,4 @@ struct ReplayResult {
 /// mode, StepRamp, src/contact_force.hpp). @pre scene resolved and validated (Simulator::scene()).
 ReplayResult replay_lee_steps(const Scene& scene, const std::vector<LeeStep>& steps);
 
-/// The multistep engine's replay (Lee on cvode-bdf, lee_multistep.cpp): the engine
-/// integrates natively, under its own error control, the force history through the
-/// steps' end forces (piecewise linear, ForceTable), restarted only where
-/// an impulse is applied (as the run was). @pre scene resolved and validated.
-ReplayResult replay_force_history(const Scene& scene, const std::vector<LeeStep>& steps);
-
 }  // namespace camdyn

@@ -1,12 +1,11 @@
-// camdyn (private) — the run machinery shared by every contact method, and the registry
-// that makes the method a scene asks for.
+// camdyn (private) — the single-follower stack's run machinery (solver.stack = "follower"),
+// kept for Lee's classic step (src/contact/lee_classic.cpp, the bench's comparison), and
+// the shared step-size, output-time and run-ending helpers of every method.
 //
-//   scene → FollowerModel (only the effects asked for) → Engine (SUNDIALS) + contact
-//   method (a RunContext subclass, one file each under src/contact/) → HistoryRow stream
-//   (Observer) + Summary.
+//   scene → FollowerModel → Engine (SUNDIALS, src/engines.cpp) + Lee's classic step (a
+//   RunContext subclass, registry src/contact/registry.cpp) → HistoryRow stream + Summary.
 //
-// Adding a contact method: one file under src/contact/ with a subclass of RunContext that
-// implements run_method(), and one line in the registry (src/contact/registry.cpp).
+// Every other method and engine runs on the mechanism (src/contact/network_run.hpp).
 #pragma once
 
 #include <atomic>
@@ -24,7 +23,6 @@
 #include "cam_stops.hpp"
 #include "camdyn/simulator.hpp"
 #include "designer_stats.hpp"
-#include "cam_joints.hpp"
 #include "engine.hpp"
 
 namespace camdyn {
@@ -166,7 +164,6 @@ class RunContext {
       F_ = (cm0.Xddot - a_free) / m_.mstar();
       if (!bilateral_ && F_ < 0.0) F_ = 0.0;
     }
-    prepare_start(cm0, touching);
     V0_ = potential();
     E0_ = m_.kinetic_energy(y_.data() + n_) + V0_;
     emit_row();
@@ -199,12 +196,6 @@ class RunContext {
  protected:
   /// The method's loop over accepted steps from (t_, y_, F_, contact_) to t_end.
   virtual void run_method() = 0;
-  /// Method-specific start after the common initial state (e.g. the penalty baseline
-  /// starts in its own equilibrium). Default: nothing.
-  virtual void prepare_start(const CamMotion& /*cm0*/, bool /*touching*/) {}
-  /// Dense output: write the row at output time `to` inside the step just accepted and
-  /// return true; false (default): the row is the step-end state (steps land on outputs).
-  virtual bool dense_row_at(double /*to*/) { return false; }
 
   double out_dt() const { return sc_.run.output_dt; }
   double next_output_time() const { return output_time(sc_, next_out_); }
@@ -214,8 +205,6 @@ class RunContext {
   // The cam's motion at t; the last two values are kept (a step asks for its ends and its
   // midpoint several times).
   CamMotion cam_at(double t) const {
-    CamMotion j;  // on a C0 joint: before it, or after it once its impact is resolved
-    if (!joints_.empty() && joints_.at(cam_, t, t == joint_t_ ? 1 : -1, &j)) return j;
     for (int i = 0; i < 2; ++i)
       if (cam_cache_t_[i] == t) return cam_cache_[i];
     cam_cache_slot_ ^= 1;
@@ -233,17 +222,12 @@ class RunContext {
   // Energy bookkeeping of the history columns (all methods):
   //   work_cam   W = ∫ F Ẋ_C dt         the cam's work on the follower through the contact
   //   kinetic    T = ½ vᵀ M v
-  //   potential  V = ½ qᵀ K q − f₀ᵀ q (strain + return spring) + V_p(s) (penalty spring)
-  //   dissipated D = ∫ vᵀ C v dt + ∫ (F − F_el) ŝ dt (penalty damper) + impact losses
+  //   potential  V = ½ qᵀ K q − f₀ᵀ q (strain + return spring)
+  //   dissipated D = ∫ vᵀ C v dt
   // and W = ΔT + ΔV + D is the balance checked by the stability suite.
-  double potential() const { return m_.potential_energy(y_.data()) + contact_potential(); }
-  // Power dissipated at the current state: damping, plus the contact's own (the penalty
-  // damper's; zero for the other methods, whose contact losses are impacts).
-  double dissipation_power() const { return m_.damping_power(y_.data() + n_) + contact_dissipation(); }
-  /// A method whose contact stores energy (penalty: V_p(s)) and dissipates power (its
-  /// damper's (F − F_el)·ŝ) at the current state reports them here.
-  virtual double contact_potential() const { return 0.0; }
-  virtual double contact_dissipation() const { return 0.0; }
+  double potential() const { return m_.potential_energy(y_.data()); }
+  // Power dissipated at the current state (damping).
+  double dissipation_power() const { return m_.damping_power(y_.data() + n_); }
 
   void emit_row() { emit_row_at(t_, y_, F_, contact_, potential(), work_, dissipated_); }
   void emit_row_at(double t, const Eigen::VectorXd& y, double F, bool contact, double V,
@@ -317,7 +301,7 @@ class RunContext {
       while (!observer_stop_ && next_out_ * out_dt() <= t_ * (1 + 1e-12) + 1e-300 && next_out_ * out_dt() <= sc_.run.t_end * (1 + 1e-12)) {
         const double to = double(next_out_) * out_dt();
         ++next_out_;
-        if (!(to < t_ && dense_row_at(to))) emit_row();  // inside the step: dense output
+        emit_row();  // steps land on the output times
       }
       if (!observer_stop_ && t_ >= sc_.run.t_end && last_row_t_ < t_) emit_row();
     }
@@ -335,37 +319,6 @@ class RunContext {
         obs_->on_progress(t_, sc_.run.t_end, sum_.steps);
       }
     }
-  }
-
-  // A held follower on a C0 joint of the cam (cam_joints.hpp) at t_: the cam's velocity
-  // jumps to Ẋ⁺. Faster (Δ = Ẋ⁺ − u̇₀ > 0, or a bilateral contact): a plastic impact of the
-  // cam on node 0, impulse P = Δ/M* (Δv = M⁻¹e₀P), u̇₀ = Ẋ⁺ after it; the cam's work P·Ẋ⁺
-  // and the loss ½Δ²/M* are booked, the impact recorded, and the contact stays held if
-  // the acceleration level's force is compressive. Slower: the cam leaves the follower (a
-  // separation). Afterwards cam_at(t_) is the motion after the joint. Returns true if the
-  // state changed (a restarting engine must be reinitialised).
-  bool cam_joint_impact() {
-    CamMotion r;
-    if (!contact_ || joints_.empty() || t_ == joint_t_ || !joints_.at(cam_, t_, 1, &r)) return false;
-    joint_t_ = t_;
-    const double Ms = m_.mstar(), dv = r.Xdot - y_[n_];
-    if (!(std::abs(dv) > 1e-12 * (std::abs(r.Xdot) + std::abs(y_[n_])))) return false;
-    if (dv > 0.0 || bilateral_) {
-      const double P = dv / Ms;
-      y_.tail(n_) += P * m_.contact_column();
-      y_[n_] = r.Xdot;
-      work_ += P * r.Xdot;
-      dissipated_ += 0.5 * dv * dv / Ms;
-      ++sum_.impacts;
-      record_event(EventKind::Impact, dv, P);
-      F_ = (r.Xddot - m_.contact_acceleration(y_.data(), y_.data() + n_, 0.0)) / Ms;
-      if (bilateral_ || F_ > 0.0) return true;
-    }
-    ++sum_.separations;
-    record_event(EventKind::Separation, 0.0);
-    contact_ = false;
-    F_ = 0.0;
-    return true;
   }
 
   // Designer results (designer_stats.hpp) at an accepted state: the step end, and the
@@ -405,11 +358,6 @@ class RunContext {
            adaptive_simpson(g, m, b, fm, frm, fb, Sr, 0.5 * tol, depth - 1);
   }
 
-  // The free phase of the natively stepping methods (src/contact/free_flight.hpp).
-  class FreeFlight;
-  friend class FreeFlight;
-
-  double v_impact_ref_ = 0.0;
   Eigen::VectorXd rbuf_;  // full_acceleration's right-hand side
   Eigen::VectorXd y_prev_, hq_, hv_, ha_, hb_;  // Lee's contact-work quadrature and interpolation
 
@@ -419,8 +367,6 @@ class RunContext {
   Cam cam_;
   CamDrive drive_;
   CamStops stops_{sc_, cam_};
-  CamJoints joints_{sc_, cam_};
-  double joint_t_ = -INFINITY;  // the time of the last C0 joint resolved (cam_joint_impact)
   Observer* obs_;
   const std::atomic<bool>* stop_;
   std::string stop_reason_ = "stopped by caller";

@@ -190,12 +190,12 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
 bool Simulator::runs_on_mechanism(const Scene& sc) {
   if (sc.follower.kind == FollowerKind::Network) return true;
   const bool classic = sc.contact.model == ContactModel::Lee && sc.contact.lee_step == LeeStepKind::Classic;
-  const bool ida = sc.solver.integrator == Integrator::Ida;
   switch (sc.solver.stack) {
     case StackKind::Follower:
-      if (ida)
+      if (!classic)
         throw SceneError(sc.source, 0, "solver.stack", "follower",
-                         "solver.integrator = ida runs on the mechanism stack (use solver.stack = "
+                         "runs Lee's classic step only (contact.model = \"lee\", contact.lee_step = "
+                         "\"classic\"); every other method runs on the mechanism (use solver.stack = "
                          "\"mechanism\" or \"auto\")");
       return false;
     case StackKind::Auto: return !classic;

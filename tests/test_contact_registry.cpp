@@ -1,5 +1,7 @@
-// Contact methods are pluggable: a method is a RunContext subclass (one file) plus one
-// registry entry. This test defines a tiny method outside the library — a bilateral
+// The single-follower stack's methods are pluggable (solver.stack = "follower", Lee's
+// classic step; every other method is a NetworkRun subclass on the mechanism, one line in
+// make_network_method): a method is a RunContext subclass (one file) plus one registry
+// entry. This test defines a tiny method outside the library — a bilateral
 // contact that never separates: fixed steps, the two-parameter force shape solved with
 // Lee's constants of the contact mass M* (exact for a rigid follower), the acceleration
 // level's force at each step end — registers it, and checks it against the closed form of
@@ -64,7 +66,8 @@ TEST(ContactRegistry, ATinyMethodIsOneClassAndOneRegistryEntry) {
   s.title = "tiny bilateral";
   s.run.t_end = 0.2;
   s.run.output_dt = 1e-3;
-  s.solver.stack = StackKind::Follower;  // the registry holds the follower stack's RunContext methods
+  s.solver.stack = StackKind::Follower;  // the registry of the single-follower stack (classic step)
+  s.contact.lee_step = LeeStepKind::Classic;
   const RunResult r = simulate(s);
   ASSERT_TRUE(r.summary.finished) << r.summary.message;
   EXPECT_EQ(r.summary.steps, 200);  // its fixed 1 ms steps: the tiny method ran
@@ -82,11 +85,12 @@ TEST(ContactRegistry, ATinyMethodIsOneClassAndOneRegistryEntry) {
   std::printf("tiny bilateral method, case A: max |Δu_c| %.3e, max |ΔF|/F_max %.3e\n", du, dF / Fmax);
   EXPECT_LT(du, s.contact.tol_u);  // the iteration stops within tol_u
   EXPECT_LT(dF, 1e-8 * Fmax);
-  // Scenes it does not select still run the registry's methods (Lee's located step).
+  // Scenes it does not select still run the registry's methods (Lee's classic step).
   Scene lee = paper_case("A");
   lee.run.t_end = 0.2;
   lee.run.output_dt = 1e-3;
   lee.solver.stack = StackKind::Follower;
+  lee.contact.lee_step = LeeStepKind::Classic;
   const RunResult rl = simulate(lee);
   ASSERT_TRUE(rl.summary.finished);
   EXPECT_NE(rl.summary.steps, 200);

@@ -156,13 +156,15 @@ namespace {
 // the held phase must stay held (no spurious separation) and its force stay within a few
 // per cent of the event-driven held bar at rtol 1e-6 — a projection that moved node 0
 // alone (or along M⁻¹e₀) turned that drift into first-element strain, force spikes of
-// 1e4–1e9 and separations here. The energy balances.
+// 1e4–1e9 and separations here; the projection puts the corrections on the static shape
+// (network_event.hpp: metric_scale_). The energy balances to 2e-3 of the work: measured
+// 1.1e-3 / 3.4e-4 / 3.5e-5 of W at rtol 1e-2 / 1e-3 / 1e-4 (the single-follower stack,
+// removed in round 3, had 1.9e-5 … 6e-6 with a rigid translation of the bar, bound 1e-4).
 TEST(LeeMultistep, StiffBarLooseToleranceStaysHeld) {
   Scene s = paper_case("B2");
   s.follower.youngs_modulus = 5e8;
   s.follower.elements = 200;
   s.solver.integrator = Integrator::CvodeBdf;
-  s.solver.stack = StackKind::Follower;  // the follower stack's Lee inside CVODE (lee_multistep.cpp)
   s.run.t_end = 0.05;
   s.run.output_dt = 1e-4;
   s.contact.model = ContactModel::Event;
@@ -172,44 +174,6 @@ TEST(LeeMultistep, StiffBarLooseToleranceStaysHeld) {
   ASSERT_EQ(ref.summary.separations, 0);
   const double peak = peak_force(ref);
   s.contact.model = ContactModel::Lee;
-  for (double rtol : {1e-2, 1e-3, 1e-4}) {
-    s.solver.rtol = rtol;
-    const RunResult r = simulate(s);
-    ASSERT_TRUE(r.summary.finished) << r.summary.message;
-    const double d = max_force_diff(r, ref);
-    std::printf("rtol %.0e: %ld steps, %ld separations, max force %.6g (event rtol 1e-6: %.6g), "
-                "max |F − F_event| %.3g of the peak\n",
-                rtol, r.summary.steps, r.summary.separations, r.summary.max_contact_force, peak, d / peak);
-    EXPECT_EQ(r.summary.separations, 0) << rtol;
-    EXPECT_LT(std::abs(r.summary.max_contact_force - peak), 0.02 * peak) << rtol;
-    EXPECT_LT(d, 0.05 * peak) << rtol;
-    // the contact work from step-end forces only (an interpolated midpoint made it 34 % low
-    // at rtol 1e-2): W = ΔT + ΔV + D to 1e-4 of W
-    EXPECT_LT(r.summary.energy_residual, 1e-4 * std::abs(r.rows.back().work_cam)) << rtol;
-  }
-}
-
-// The same stiff bar on the mechanism stack (the default: Lee inside CVODE's step on a
-// one-contact mechanism, network_lee_cvode.cpp), whose projection puts the corrections on
-// the static shape (network_event.hpp: metric_scale_): held, the force bounds above. The
-// energy balance is looser than the follower stack's 1e-4 of W: measured 1.1e-3 / 3.4e-4 /
-// 3.5e-5 of W at rtol 1e-2 / 1e-3 / 1e-4 (the follower stack 1.9e-5 … 6e-6) — bound 2e-3.
-TEST(LeeMultistep, StiffBarLooseToleranceStaysHeldOnTheMechanismStack) {
-  Scene s = paper_case("B2");
-  s.follower.youngs_modulus = 5e8;
-  s.follower.elements = 200;
-  s.solver.integrator = Integrator::CvodeBdf;
-  s.run.t_end = 0.05;
-  s.run.output_dt = 1e-4;
-  s.contact.model = ContactModel::Event;
-  s.solver.rtol = 1e-6;
-  s.solver.stack = StackKind::Follower;  // the reference: the follower stack's event method
-  const RunResult ref = simulate(s);
-  ASSERT_TRUE(ref.summary.finished) << ref.summary.message;
-  ASSERT_EQ(ref.summary.separations, 0);
-  const double peak = peak_force(ref);
-  s.contact.model = ContactModel::Lee;
-  s.solver.stack = StackKind::Mechanism;
   for (double rtol : {1e-2, 1e-3, 1e-4}) {
     s.solver.rtol = rtol;
     const RunResult r = simulate(s);

@@ -1,6 +1,7 @@
-// camdyn — the registry of contact methods: which scene runs which method.
-// Adding a method: its file under src/contact/ (a RunContext subclass and a factory) and
-// one line in kMethods below.
+// camdyn — the registry of the single-follower stack's contact methods (solver.stack =
+// "follower"): Lee's classic step, kept for comparison (bench: the located step's gain).
+// Every other method runs on the mechanism (src/contact/network_run.cpp,
+// make_network_method). Adding a method here: a RunContext subclass and one line in kMethods.
 #include <stdexcept>
 
 #include "run_context.hpp"
@@ -8,42 +9,17 @@
 namespace camdyn {
 namespace detail {
 
-std::unique_ptr<RunContext> make_lee_located(const Scene&, std::shared_ptr<const FollowerModel>,
-                                             Observer*, const std::atomic<bool>*);
-std::unique_ptr<RunContext> make_lee_multistep(const Scene&, std::shared_ptr<const FollowerModel>,
-                                               Observer*, const std::atomic<bool>*);
 std::unique_ptr<RunContext> make_lee_classic(const Scene&, std::shared_ptr<const FollowerModel>,
                                              Observer*, const std::atomic<bool>*);
-std::unique_ptr<RunContext> make_penalty(const Scene&, std::shared_ptr<const FollowerModel>,
-                                         Observer*, const std::atomic<bool>*);
-std::unique_ptr<RunContext> make_event_driven(const Scene&, std::shared_ptr<const FollowerModel>,
-                                              Observer*, const std::atomic<bool>*);
 
 namespace {
-bool lee_located(const Scene& s) {
-  return s.contact.model == ContactModel::Lee && s.contact.lee_step == LeeStepKind::Located;
-}
-// Lee's located step on cvode-bdf for an elastic follower: the three levels inside
-// CVODE's step (lee_multistep.cpp). A rigid follower keeps the located step (its held
-// state is exact and the step map affine: no restarts to save).
-bool lee_multistep(const Scene& s) {
-  return lee_located(s) && s.solver.integrator == Integrator::CvodeBdf && s.follower.kind != FollowerKind::Rigid;
-}
 bool lee_classic(const Scene& s) {
   return s.contact.model == ContactModel::Lee && s.contact.lee_step == LeeStepKind::Classic;
-}
-bool penalty(const Scene& s) { return s.contact.model == ContactModel::Penalty; }
-bool event_or_holonomic(const Scene& s) {
-  return s.contact.model == ContactModel::Event || s.contact.model == ContactModel::Holonomic;
 }
 
 std::vector<ContactMethodEntry>& registry() {
   static std::vector<ContactMethodEntry> kMethods{
-      {"lee (located step, multistep engine)", &lee_multistep, &make_lee_multistep},
-      {"lee (located step)", &lee_located, &make_lee_located},
       {"lee (classic step)", &lee_classic, &make_lee_classic},
-      {"penalty", &penalty, &make_penalty},
-      {"event-driven / holonomic", &event_or_holonomic, &make_event_driven},
   };
   return kMethods;
 }
