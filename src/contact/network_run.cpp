@@ -495,7 +495,9 @@ NetworkRun::StepEnergy NetworkRun::step_energy(
   StepEnergy e;
   const double h = t1 - t0;
   if (!(h > 0)) return e;
-  Eigen::VectorXd y(2 * n_), F(m_);
+  Eigen::VectorXd &y = se_y_, &F = se_F_;
+  y.resize(2 * n_);
+  F.resize(m_);
   for (int g = 0; g < 3; ++g) {
     const double tau = t0 + 0.5 * h * (1.0 + xg[g]);
     state(tau, y);

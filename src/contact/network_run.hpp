@@ -167,6 +167,7 @@ class NetworkRun {
   std::vector<char> active_;
   Eigen::VectorXd sys_y_, sys_F_;  // contact_system()'s buffers
   mutable Eigen::VectorXd hf_ta_;  // held_forces' T a_free
+  mutable Eigen::VectorXd se_y_, se_F_;  // step_energy's state and forces
   double x_base_ = 0.0;     // the base circle's X_C: cam_at() returns the lift X_C − x_base_
   bool unilateral_ = true;
   bool observer_stop_ = false;  // an observer returned ObserverAction::Stop  // false: contact.separation = false or holonomic (never release)
