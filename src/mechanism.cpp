@@ -371,7 +371,10 @@ void Mechanism::acceleration(double, const double* q, const double* v, const Eig
         for (long p = co[j]; p < co[j + 1]; ++p) a[ci[p]] -= cv[p] * v[j];
   }
   solve_mass(A);
-  if (F.size()) A.noalias() += MinvTt_ * F;
+  if (F.size() == 1)  // one contact: the product's own operations, without the matrix-vector kernel
+    A.noalias() += MinvTt_.col(0) * F[0];
+  else if (F.size())
+    A.noalias() += MinvTt_ * F;
 }
 
 void Mechanism::contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta) const {

@@ -99,6 +99,8 @@ class MechanicalSystem {
   /// Up to a constant.
   virtual double potential_energy(const double* q) const = 0;
   virtual double damping_power(const double* v) const = 0;
+  /// false: damping_power is zero for every v (a quadrature of it may skip the state).
+  virtual bool dissipative() const { return true; }
 
  protected:
   /// T_, MinvTt_ (through solve), W_, primary_ from contacts_.
@@ -159,6 +161,7 @@ class Mechanism final : public MechanicalSystem {
   /// ½qᵀKq − f₀ᵀq (up to a constant).
   double potential_energy(const double* q) const override;
   double damping_power(const double* v) const override;
+  bool dissipative() const override { return damped(); }
 
  private:
   /// A rigid or elastic_bar follower: FollowerModel's M, C, K, f₀ and q(0), contact row e₀ᵀ.

@@ -114,12 +114,16 @@ void SparseNewtonSolver::solve(double* b) {
       for (int i = 0; i < k; ++i) G.row(i) = sys_.T.row((*held)[std::size_t(i)]) * Z_;
       G_.compute(G);
     }
-    Eigen::VectorXd r(k);
+    Eigen::VectorXd& r = r_;
+    r.resize(k);
     for (int i = 0; i < k; ++i) {
       const auto t = sys_.T.row((*held)[std::size_t(i)]);
       r[i] = t.dot(V) - t.dot(rhs_);
     }
-    rhs_.noalias() += Z_ * G_.solve(r);
+    if (k == 1)  // G⁻¹r = r/G (what the 1 × 1 LU gives), without its temporaries
+      rhs_.noalias() += Z_.col(0) * (r[0] / G_.matrixLU()(0, 0));
+    else
+      rhs_.noalias() += Z_ * G_.solve(r);
   }
   V = rhs_;
   U += g * V;

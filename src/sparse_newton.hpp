@@ -41,7 +41,7 @@ class SparseNewtonSolver {
   Eigen::VectorXd dFdg_, dFdgd_, dFdg_f_, dFdgd_f_;  // prepared / factorised
   double gamma_ = 0, gamma_f_ = -1;
   bool factored_ = false;
-  Eigen::VectorXd rhs_;
+  Eigen::VectorXd rhs_, r_;
   // bordering for the held set
   std::vector<int> held_f_;
   Eigen::MatrixXd Z_;

@@ -55,12 +55,37 @@ Candidate try_support(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, const 
 }
 }  // namespace
 
+// try_support on the whole set, then on the empty set, for one contact (the same
+// operations in the same order as the vector code, so the same bits).
+bool solve_contact_lcp1(double W, double b, double& F, double& w) {
+  {  // held: F = −b/W
+    const double f = -b / W, Fmax = std::abs(f);
+    const double r = W * f + b, sw = std::abs(b) + std::abs(W) * Fmax + 1e-300;
+    if (std::isfinite(f) && f >= -kRel * Fmax && std::abs(r) <= kRel * sw) {
+      F = std::max(f, 0.0);
+      w = 0.0;
+      return true;
+    }
+  }
+  // open: F = 0, w = b
+  const double r = W * 0.0 + b, sw = std::abs(b) + std::abs(W) * 0.0 + 1e-300;
+  F = 0.0;
+  w = r;
+  return r >= -kRel * sw;
+}
+
 ContactLcpResult solve_contact_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b) {
   const int k = int(b.size());
   ContactLcpResult r;
   if (k == 0) {
     r.F = r.w = Eigen::VectorXd();
     r.ok = true;
+    return r;
+  }
+  if (k == 1) {
+    r.F.resize(1);
+    r.w.resize(1);
+    r.ok = solve_contact_lcp1(W(0, 0), b[0], r.F[0], r.w[0]);
     return r;
   }
   std::vector<int> all(k);

@@ -35,6 +35,11 @@ struct ContactLcpResult {
 /// @pre W square symmetric positive semidefinite, b of its size.
 ContactLcpResult solve_contact_lcp(const Eigen::MatrixXd& W, const Eigen::VectorXd& b);
 
+/// The LCP of one contact (k = 1), without allocations, with solve_contact_lcp's
+/// arithmetic (which calls it for k = 1): F ≥ 0, w = W F + b; returns false if the contact
+/// jams (no bounded solution; F = 0 then).
+bool solve_contact_lcp1(double W, double b, double& F, double& w);
+
 /// Put a state on the held set's manifold g_S = 0, ġ_S = 0, M-orthogonally:
 ///   q ← q − M⁻¹T_Sᵀ W_SS⁺ g_S,   v ← v − M⁻¹T_Sᵀ W_SS⁺ ġ_S
 /// (W_SS⁺: minimal-norm least squares, for dependent sets). `MinvTt` = M⁻¹Tᵀ (n × m),

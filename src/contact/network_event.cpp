@@ -26,7 +26,7 @@ NetworkEvent::NetworkEvent(const Scene& sc, std::shared_ptr<const MechanicalSyst
                            const std::atomic<bool>* stop, int max_order)
     : NetworkRun(sc, std::move(mech), obs, stop) {
   OdeSystem sys = contact_system([this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& F) {
-    F = held_forces(t, y, cam_at(t), set_);
+    held_forces_into(t, y, cam_at(t), set_, F);
   });
   // A Mechanism: the sparse Newton structure, bordered with the held contacts' rows (the
   // exact Jacobian of the acceleration level); a user's follower: SUNDIALS' difference
@@ -119,6 +119,13 @@ void NetworkEvent::project(double t, const double* y, double* corr) {
     pg_[i] = c.t.dot(Q) + c.g0 - (c.cam ? cm.X : 0.0);
     pgd_[i] = c.t.dot(V) - (c.cam ? cm.Xdot : 0.0);
   }
+  if (k == 1) {  // W_AA⁺g = g/W (what the 1 × 1 factorisation gives), without its temporaries
+    const double w = Waa_.matrixQTZ()(0, 0);
+    const double x = Waa_.rank() ? pg_[0] / w : 0.0, xd = Waa_.rank() ? pgd_[0] / w : 0.0;
+    C.head(n_).noalias() = -(MTa_.col(0) * x);
+    C.tail(n_).noalias() = -(MTa_.col(0) * xd);
+    return;
+  }
   C.head(n_).noalias() = -MTa_ * Waa_.solve(pg_);
   C.tail(n_).noalias() = -MTa_ * Waa_.solve(pgd_);
 }
@@ -151,8 +158,8 @@ void NetworkEvent::run_method() {
       yv_ += rc_;
     }
     const CamMotion cm = cam_at(t);
-    Eigen::VectorXd F;  // the separation function of the active contacts (force units)
-    if (!set_.empty()) held_forces(t, yv_, cm, set_, &F);
+    Eigen::VectorXd& F = rF_;  // the separation function of the active contacts (force units)
+    if (!set_.empty()) held_forces_into(t, yv_, cm, set_, rFh_, &F);
     // Offsets keep every function away from zero at a restart (SUNDIALS stops with
     // "root found at and very near t" on a function that stays at zero): a gap triggers
     // at −10⁻³ tol_u, an active contact's margin F − g̈/W_jj (its force while held, −its
@@ -188,7 +195,7 @@ void NetworkEvent::run_method() {
           if (set_.empty())
             F.setZero(m_);
           else
-            F = held_forces(tau, y, c, set_);
+            held_forces_into(tau, y, c, set_, F);
         });
     after_advance(t_ - h, P_prev);
     const double P_end = dissipation_power(t_, y_);

@@ -103,7 +103,7 @@ class NetworkEvent : public NetworkRun {
   // cam: its state is the projection's, exact; examples/law_roller.toml on the mechanism
   // stack took 774 steps for two revolutions with the restarts, 32 without, same rows).
   bool restart_at_breaks_ = sc_.solver.integrator == Integrator::CvodeBdf;
-  Eigen::VectorXd yv_, yg_, rc_;
+  Eigen::VectorXd yv_, yg_, rc_, rF_, rFh_;
   double gap_thr_ = 1e-3 * sc_.contact.tol_u;
   // A contact released where its force reaches zero leaves at zero gap, speed and
   // (nearly) acceleration: for a while its gap is the integration error of the steps after the

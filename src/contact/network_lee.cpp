@@ -106,6 +106,7 @@ class NetworkLee final : public NetworkRun {
   static constexpr int kSlots = 12;
   Responses cache_[kSlots];
   int next_slot_ = 0;
+  long resp_gen_ = 0;  // counts the computations of responses
   Responses& responses(double hs, const std::vector<int>& set) {
     Responses* r = nullptr;
     for (Responses& c : cache_)
@@ -120,6 +121,10 @@ class NetworkLee final : public NetworkRun {
       r->Ec.assign(m_, {});
       r->have.assign(m_, 0);
     }
+    bool all = true;
+    for (int j : set) all = all && r->have[j];
+    if (all) return *r;
+    ++resp_gen_;  // solve_step's factorisation of J is stale
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(2 * n_);
     const Eigen::VectorXd keep0 = F0_, keep1 = F1_, keepc = Fc_;
     for (int j : set) {
@@ -179,29 +184,36 @@ class NetworkLee final : public NetworkRun {
     const double h = s.t1 - s.t0, len = tb - s.t0;
     StepEnergy e;
     if (len <= 0) return e;
-    Eigen::VectorXd F(m_);
+    Eigen::VectorXd& F = Fq_;
+    const bool dissipative = mk_.dissipative();  // Lee's contacts dissipate nothing between impacts
     for (int i = 0; i < 5; ++i) {
       const double tau = s.t0 + 0.5 * len * (1.0 + xg[i]), x = (tau - s.t0) / h;
       if (!s.set.empty()) {
         F = s.s0 + (s.s1 - s.s0) * x + s.sc * (4.0 * x * (1.0 - x));
         e.work += 0.5 * len * wg[i] * cam_power(F, cam_at(tau));
       }
-      interpolate(s, tau, yq_);
-      e.dissipated += 0.5 * len * wg[i] * dissipation_power(tau, yq_);
+      if (dissipative) {
+        interpolate(s, tau, yq_);
+        e.dissipated += 0.5 * len * wg[i] * dissipation_power(tau, yq_);
+      }
     }
     return e;
   }
-  Eigen::VectorXd yq_;
+  Eigen::VectorXd yq_, Fq_;
   // The step's interpolant at tau put on its held contacts (g = ġ = 0, as the step ends
   // are): rows, the least force and the first tensile force inside a step.
   void held_state_at(const StepData& s, double tau, Eigen::VectorXd& y) {
     interpolate(s, tau, y);
     if (s.set.empty()) return;
     const CamMotion cm = cam_at(tau);
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(m_), gd = g;
+    Eigen::VectorXd &g = hg_, &gd = hgd_;
+    g.setZero(m_);
+    gd.setZero(m_);
     for (int j : s.set) g[j] = gap(j, y, cm), gd[j] = gap_rate(j, y, cm);
     project_on_set(mk_.MinvTt(), mk_.W(), s.set, g, gd, y);
   }
+  Eigen::VectorXd hg_, hgd_, hf_, mg_;
+  std::vector<char> in_set_;
   StepData* dense_ = nullptr;
   bool dense_row_at(double to) override {
     if (!dense_ || !(to > dense_->t0)) return false;
@@ -239,7 +251,8 @@ class NetworkLee final : public NetworkRun {
     auto force = [&](double x) {
       const double tau = s.t0 + x * hs;
       held_state_at(s, tau, yi_);
-      return held_forces(tau, yi_, cam_at(tau), s.set)[j];
+      held_forces_into(tau, yi_, cam_at(tau), s.set, hf_);
+      return hf_[j];
     };
     const Sample m = golden_min(force, double(k - 1) / kSwitchSamples, double(k + 1) / kSwitchSamples, 30);
     const double tau = s.t0 + m.x * hs, F = std::max(m.f, 0.0), th = drive_.theta(tau);
@@ -256,7 +269,8 @@ class NetworkLee final : public NetworkRun {
     auto force = [&](double x) {
       const double tau = s.t0 + x * hs;
       held_state_at(s, tau, yi_);
-      return held_forces(tau, yi_, cam_at(tau), s.set)[j];
+      held_forces_into(tau, yi_, cam_at(tau), s.set, hf_);
+      return hf_[j];
     };
     const double x = bisect_fall(force, 0.0, 1.0, hs, s.t1);
     sum_.first_tensile_time = s.t0 + x * hs;
@@ -286,30 +300,22 @@ class NetworkLee final : public NetworkRun {
     // affine step map: a one-step engine on a linear system; a user's nonlinear follower:
     // iterated with Lee's constants, which see only the contacts' inverse mass W.
     const bool affine = mk_.linear();
-    Eigen::VectorXd le = eng_->local_error();
-    Eigen::MatrixXd J(2 * k, 2 * k);
+    Eigen::VectorXd& le = le_;
+    le = eng_->local_error();
     Responses* R = mk_.linear() ? &responses(hs, set) : nullptr;
-    for (int i = 0; i < k; ++i) {
-      const Eigen::RowVectorXd& ti = mk_.contacts()[set[i]].t;
-      for (int l = 0; l < k; ++l) {
-        const int j = set[l];
-        if (R) {
-          J(2 * i, 2 * l) = ti.dot(R->D1[j].head(n_));
-          J(2 * i, 2 * l + 1) = ti.dot(R->Dc[j].head(n_));
-          J(2 * i + 1, 2 * l) = ti.dot(R->D1[j].tail(n_));
-          J(2 * i + 1, 2 * l + 1) = ti.dot(R->Dc[j].tail(n_));
-        } else {
-          const double w = mk_.W()(set[i], j);
-          J(2 * i, 2 * l) = w * hs * hs / 6.0;
-          J(2 * i, 2 * l + 1) = w * hs * hs / 3.0;
-          J(2 * i + 1, 2 * l) = w * hs / 2.0;
-          J(2 * i + 1, 2 * l + 1) = 2.0 * w * hs / 3.0;
-        }
-      }
+    // J depends on (hs, set) and the responses only: its factorisation is kept while
+    // none of them changes
+    if (!(J_h_ == hs && J_gen_ == resp_gen_ && J_set_ == set)) {
+      J_h_ = -1.0;
+      factor_shape_matrix(set, hs, R);
+      J_h_ = hs;
+      J_gen_ = resp_gen_;
+      J_set_ = set;
     }
-    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> lu(J);
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>& lu = J_lu_;
     const double tol_v = sc_.contact.tol_v > 0 ? sc_.contact.tol_v : sc_.contact.tol_u / hs;
-    Eigen::VectorXd r(2 * k);
+    Eigen::VectorXd &r = r_, &d = d_;
+    r.resize(2 * k);
     int it = 0;
     for (;;) {
       double rmax_u = 0, rmax_v = 0;
@@ -324,7 +330,7 @@ class NetworkLee final : public NetworkRun {
         ++sum_.iteration_failures;
         throw IterationFailure();
       }
-      const Eigen::VectorXd d = lu.solve(r);
+      d = lu.solve(r);
       if (!d.allFinite()) {
         ++sum_.iteration_failures;
         throw IterationFailure();
@@ -351,6 +357,36 @@ class NetworkLee final : public NetworkRun {
     sum_.level_v = sum_.level_u;
     return err;
   }
+  // The 2k × 2k matrix of the levels' responses to the shape parameters of `set` over a
+  // step of hs (exact responses R, or Lee's constants), factorised into J_lu_.
+  void factor_shape_matrix(const std::vector<int>& set, double hs, const Responses* R) {
+    const int k = int(set.size());
+    Eigen::MatrixXd J(2 * k, 2 * k);
+    for (int i = 0; i < k; ++i) {
+      const Eigen::RowVectorXd& ti = mk_.contacts()[set[i]].t;
+      for (int l = 0; l < k; ++l) {
+        const int j = set[l];
+        if (R) {
+          J(2 * i, 2 * l) = ti.dot(R->D1[j].head(n_));
+          J(2 * i, 2 * l + 1) = ti.dot(R->Dc[j].head(n_));
+          J(2 * i + 1, 2 * l) = ti.dot(R->D1[j].tail(n_));
+          J(2 * i + 1, 2 * l + 1) = ti.dot(R->Dc[j].tail(n_));
+        } else {
+          const double w = mk_.W()(set[i], j);
+          J(2 * i, 2 * l) = w * hs * hs / 6.0;
+          J(2 * i, 2 * l + 1) = w * hs * hs / 3.0;
+          J(2 * i + 1, 2 * l) = w * hs / 2.0;
+          J(2 * i + 1, 2 * l + 1) = 2.0 * w * hs / 3.0;
+        }
+      }
+    }
+    J_lu_.compute(J);
+  }
+  double J_h_ = -1.0;  // the step size, responses and set J_lu_ belongs to
+  long J_gen_ = -1;
+  std::vector<int> J_set_;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> J_lu_;
+  Eigen::VectorXd le_, r_, d_;
 
   void run_method() override {
     const int q = eng_->error_order();
@@ -433,16 +469,16 @@ class NetworkLee final : public NetworkRun {
       const double F_sep = std::min(rtol, 1e-6) * F_ref_;
       double x_first = 2.0;
       int who = -1;
-      std::vector<char> in_set(m_, 0);
+      std::vector<char>& in_set = in_set_;
+      in_set.assign(m_, 0);
       for (int j : set) in_set[j] = 1;
       if (unilateral_)
         for (int j : set) {
           auto f = [&](double x) {
             const double tau = s.t0 + x * hs;
             interpolate(s, tau, yi_);
-            Eigen::VectorXd mg;
-            held_forces(tau, yi_, cam_at(tau), set, &mg);
-            return mg[j];
+            held_forces_into(tau, yi_, cam_at(tau), set, hf_, &mg_);
+            return mg_[j];
           };
           const double x = first_below(f, F_[j], margin_a[j], F_thr, hs, t1, samples_[j].data());
           if (x >= 0.0 && x < x_first) {

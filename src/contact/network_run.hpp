@@ -85,6 +85,9 @@ class NetworkRun {
   Eigen::VectorXd held_forces(double t, const Eigen::VectorXd& y, const CamMotion& cm,
                               const std::vector<int>& set, Eigen::VectorXd* margin = nullptr,
                               bool* ok = nullptr) const;
+  /// held_forces into F (no allocation once F and margin have m entries).
+  void held_forces_into(double t, const Eigen::VectorXd& y, const CamMotion& cm, const std::vector<int>& set,
+                        Eigen::VectorXd& F, Eigen::VectorXd* margin = nullptr, bool* ok = nullptr) const;
   /// Active contacts as a list.
   std::vector<int> active_list() const;
   /// F_ from the acceleration level for the active set, releasing (with a separation
@@ -163,6 +166,8 @@ class NetworkRun {
   Eigen::VectorXd y_, F_;
   std::vector<char> active_;
   Eigen::VectorXd sys_y_, sys_F_;  // contact_system()'s buffers
+  mutable Eigen::VectorXd hf_ta_;  // held_forces' T a_free
+  mutable Eigen::VectorXd se_y_, se_F_;  // step_energy's state and forces
   double x_base_ = 0.0;     // the base circle's X_C: cam_at() returns the lift X_C − x_base_
   bool unilateral_ = true;
   bool observer_stop_ = false;  // an observer returned ObserverAction::Stop  // false: contact.separation = false or holonomic (never release)
@@ -176,9 +181,19 @@ class NetworkRun {
     double t = NAN;
     CamMotion m;
   };
-  static constexpr int kCamCache = 4;
+  // 16: a Lee step asks for its end, 7 switch samples and 5 quadrature points, and its
+  // end again afterwards (with 4 the end was evicted and evaluated twice)
+  static constexpr int kCamCache = 16;
   mutable CamCache cam_cache_[kCamCache];
   mutable int cam_next_ = 0;
+  // acceleration()'s last two results, keyed by (t, y, F): a step's end state is asked
+  // for again at the next step's start, by the step check and by its row
+  struct AccCache {
+    double t = NAN;
+    Eigen::VectorXd y, F, a;
+  };
+  mutable AccCache acc_cache_[2];
+  mutable int acc_last_ = 0;
 };
 
 /// The network method a scene asks for (contact.model: lee | penalty | event | holonomic).
