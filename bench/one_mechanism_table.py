@@ -5,16 +5,14 @@ Each row runs the same scene with the same method and engine through two configu
 interleaved (before, after, before, after, …) so that the machine's load falls on both
 alike, and keeps the best CPU time of each:
 
-  single followers (A, A7, B1, B2, stiff bar, B1 with 1000 elements):
-      before = solver.stack = "follower" (the single-follower stack: FollowerModel,
-               src/engines.cpp, src/contact/lee_located.cpp / lee_multistep.cpp)
-      after  = solver.stack = "mechanism" (the one-contact Mechanism on the network
-               methods and engines)
-  networks (OHC, OHV one revolution): before = --before-bin (an older camdyn CLI, e.g. one
-      built at a64233b, the start of issue 23), after = --bin.
+  before = --before-bin: an older camdyn CLI (e.g. one built at 8adb79a, where single
+           followers still ran on the single-follower stack — FollowerModel,
+           src/engines.cpp, lee_located.cpp / lee_multistep.cpp — deleted since),
+  after  = --bin (every scene on the mechanism);
+  rows: A, A7, B1, B2, the stiff bar, B1 with 1000 elements, OHC and OHV one revolution.
 
 Usage:
-  python3 bench/one_mechanism_table.py --bin build/camdyn [--before-bin OLD/camdyn]
+  python3 bench/one_mechanism_table.py --bin build/camdyn --before-bin OLD/camdyn
       [--reps 3] [--engines arkode-erk,arkode-dirk,cvode-bdf] [--rows A,A7,...] > table.md
 Prints a Markdown table: CPU s before / after, ratio after/before, steps, events, and
 whether the two runs agree (same number of impacts and separations; event times within
@@ -31,7 +29,7 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 EX = os.path.join(HERE, "..", "examples")
 
-# name, scene, overrides, single follower?
+# name, scene, overrides, single follower (unused: every row compares the two binaries)
 ROWS = [
     ("A", "case_A.toml", ["run.t_end=0.1"], True),
     ("A7", "case_A7.toml", ["run.t_end=0.1"], True),
@@ -62,7 +60,7 @@ def run(binary, scene, sets, out):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bin", required=True)
-    ap.add_argument("--before-bin", default=None)
+    ap.add_argument("--before-bin", required=True)
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--engines", default="arkode-erk,arkode-dirk,cvode-bdf")
     ap.add_argument("--method", default="lee")
@@ -77,12 +75,7 @@ def main():
             continue
         for eng in a.engines.split(","):
             base = sets + [f"solver.integrator={eng}", f"contact.model={a.method}"]
-            if single:
-                cfg = [(a.bin, base + ["solver.stack=follower"]), (a.bin, base + ["solver.stack=mechanism"])]
-            elif a.before_bin:
-                cfg = [(a.before_bin, base), (a.bin, base)]
-            else:
-                continue
+            cfg = [(a.before_bin, base), (a.bin, base)]
             best = [None, None]
             for _ in range(a.reps):
                 for k, (b, s) in enumerate(cfg):
