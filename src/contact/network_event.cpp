@@ -13,7 +13,9 @@
 // (the smallest correction in kinetic-energy metric):
 //   Δq = −M⁻¹T_Aᵀ W_AA⁺ g_A,   Δv = −M⁻¹T_Aᵀ W_AA⁺ ġ_A   (W_AA⁺: minimum-norm least squares)
 // — on cvode-bdf inside CVODE's step (CVodeSetProjFn), on arkode-erk / arkode-dirk after
-// the step, the stepper reset there (ode_engine.hpp: set_projection).
+// the step, the stepper reset there (ode_engine.hpp: set_projection); a root's state too.
+// Steps land on the cam's breakpoints and see the cam one-sided there (their own segment):
+// where its acceleration jumps under held contacts the engine restarts (enter_segment).
 #include "network_event.hpp"
 
 #include <algorithm>
