@@ -28,27 +28,17 @@ constexpr double kDeg = kPi / 180.0;
 constexpr double kM = 0.1, kK = 35000.0, kDelta0 = 0.00714285714285714, kH = 0.008;
 
 Scene rigid_law(const std::string& law, double speed_rev_s, Integrator integ, double t_end) {
-  Scene s = parse_scene(R"(
-[cam]
-profile = "law"
-follower_face = "point"
-law = ")" + law + R"("
-[follower]
-kind = "rigid"
-mass = 0.1
-[spring]
-stiffness = 35000.0
-precompression = 0.00714285714285714
-[contact]
-model = "event"
-[solver]
-stack = "mechanism"
-rtol = 1e-7
-atol = 1e-10
-[run]
-output_dt = 0.0
-)",
+  Scene s = parse_scene("[cam]\nprofile = \"law\"\nfollower_face = \"point\"\nlaw = \"" + law + "\"\n",
                         "breaks.toml");
+  s.follower.kind = FollowerKind::Rigid;
+  s.follower.mass = kM;
+  s.spring.stiffness = kK;
+  s.spring.precompression = kDelta0;
+  s.contact.model = ContactModel::Event;
+  s.solver.stack = StackKind::Mechanism;
+  s.solver.rtol = 1e-7;
+  s.solver.atol = 1e-10;
+  s.run.output_dt = 0.0;
   s.cam.speed_rev_s = speed_rev_s;
   s.solver.integrator = integ;
   s.run.t_end = t_end;
