@@ -13,11 +13,15 @@
 // (the smallest correction in kinetic-energy metric):
 //   Δq = −M⁻¹T_Aᵀ W_AA⁺ g_A,   Δv = −M⁻¹T_Aᵀ W_AA⁺ ġ_A   (W_AA⁺: minimum-norm least squares)
 // — on cvode-bdf inside CVODE's step (CVodeSetProjFn), on arkode-erk / arkode-dirk after
-// the step, the stepper reset there (ode_engine.hpp: set_projection).
+// the step, the stepper reset there (ode_engine.hpp: set_projection); a root's state too.
+// Steps land on the cam's breakpoints and see the cam one-sided there (their own segment):
+// where its acceleration jumps under held contacts the engine restarts (enter_segment).
 #include "network_event.hpp"
 
 #include <algorithm>
 #include <cmath>
+
+#include "cam_joints.hpp"  // one_sided_motion
 
 namespace camdyn {
 namespace detail {
@@ -60,7 +64,6 @@ void NetworkEvent::bdf_order(const Scene& sc, const MechanicalSystem& mech, int 
 
 void NetworkEvent::restart() {
   set_ = active_list();
-  for (int j : set_) fresh_[std::size_t(j)] = 0;
   const int k = int(set_.size());
   set_metric();
   // the state the engine starts from is on the active set's manifold too
@@ -166,20 +169,35 @@ void NetworkEvent::run_method() {
     // opening acceleration as a force once complementarity opens it) at −10⁻¹² of the
     // largest force so far.
     const double F_thr = 1e-12 * std::max(F_ref_, mk_.force_scale());
-    for (int j = 0; j < m_; ++j) g[j] = active_[j] ? F[j] + F_thr : gap(j, yv_, cm) + open_thr(j);
+    for (int j = 0; j < m_; ++j) g[j] = active_[j] ? F[j] + F_thr : gap(j, yv_, cm) + gap_thr_;
   });
+  // A start on a cam breakpoint (a law's first joint at θ = 0): the segment after it.
+  {
+    CamMotion m;
+    on_break_ = one_sided_motion(cam_, drive_, break_angles_, t_, 1, &m);
+  }
+  set_cam_window(on_break_ ? t_ : NAN, NAN);
   restart();
   Eigen::VectorXd y1(2 * n_);
   const double gap_thr = gap_thr_;
   while (t_ < sc_.run.t_end * (1 - 1e-15)) {
-    const double horizon = step_horizon(), tout = stop_before(horizon);
+    const double horizon = step_horizon(), tout = stop_before(horizon), t_brk = next_break_time();
+    // the step's cam: the segment after a breakpoint it starts from, the one before a
+    // breakpoint it lands on
+    set_cam_window(on_break_ ? t_ : NAN, tout == t_brk ? tout : NAN);
     const double P_prev = dissipation_power(t_, y_);
     const double t1 = eng_->advance(tout, y1);
     const double h = t1 - t_;
+    on_break_ = t1 == t_brk;
     stiff_metric(h);  // for the next steps' projections
     t_ = t1;
     y_ = y1;
-    if (on_manifold_roots_ && eng_->hit_root() && !set_.empty()) {  // the root's state too
+    // A root's state (interpolated inside the step) on the held contacts' g = 0, ġ = 0, as
+    // every step end is: a contact released there leaves the cam from exactly where it was
+    // held. ERK's interpolant of the held step is off that manifold by its interpolation
+    // error (case A7 at rtol 1e-11: the free flights started up to 6.1e-10 m off the
+    // rtol-1e-12 run, 2.5e-12 m with the projection).
+    if (eng_->hit_root() && !set_.empty()) {
       rc_.resize(2 * n_);
       project(t_, y_.data(), rc_.data());
       y_ += rc_;
@@ -199,8 +217,6 @@ void NetworkEvent::run_method() {
         });
     after_advance(t_ - h, P_prev);
     const double P_end = dissipation_power(t_, y_);
-    for (int j = 0; j < m_; ++j)  // a released contact that has opened: the normal root
-      if (fresh_[std::size_t(j)] && !active_[j] && gap(j, y_, cm) > fresh_thr_) fresh_[std::size_t(j)] = 0;
     bool changed = false, released_only = false;
     if (eng_->hit_root() && unilateral_) {
       std::vector<int> closing;
@@ -209,7 +225,6 @@ void NetworkEvent::run_method() {
         if (eng_->root_info()[j] >= 0) continue;  // only downward crossings act
         if (active_[j]) {
           active_[j] = 0;
-          fresh_[std::size_t(j)] = !continue_on_release_;
           ++sum_.separations;
           record_event(EventKind::Separation, j, 0.0);
           released = true;
@@ -224,7 +239,7 @@ void NetworkEvent::run_method() {
       // has just been released: it leaves at zero speed)
       const double v_eps = 1e-6 * v_impact_ref_;
       for (int j = 0; j < m_; ++j)
-        if (!active_[j] && eng_->root_info()[j] == 0 && gap(j, y_, cm) <= std::max(gap_thr, open_thr(j)) &&
+        if (!active_[j] && eng_->root_info()[j] == 0 && gap(j, y_, cm) <= gap_thr &&
             gap_rate(j, y_, cm) < -v_eps)
           closing.push_back(j);
       if (!closing.empty())
@@ -251,24 +266,38 @@ void NetworkEvent::run_method() {
       // A restart there began again at order 1, whose first steps' error (h²|g̈|/2 in the
       // gap, of the order of rtol·|q|) put the follower of A7 1.9e-7 into the cam 14 µs
       // after its separation (the issue-28 check at 10 tol_u = 1e-7 stopped the run).
-      // The just released contact gets the normal impact root at once (no fresh_ band).
       set_ = active_list();
       set_metric();
     } else if (changed) {
       restart();  // projects onto the new active set
-    } else if (restart_at_breaks_ && !eng_->hit_root() && t_ == tout && tout < horizon && !set_.empty() &&
-               int(set_.size()) < n_) {
-      restart();  // a cam breakpoint under held contacts, with unknowns they leave free (header)
-    } else if (eng_->hit_root() && !set_.empty()) {
-      // a root that changed nothing: the interpolated state, put on the closed contacts
-      // (a copy: the engine goes on from its own step end)
-      Eigen::VectorXd corr(2 * n_);
-      project(t_, y_.data(), corr.data());
-      y_ += corr;
-      F_ = held_forces(t_, y_, cm, set_);
-      if (m_) F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
     }
     after_step(h, dE.work, P_prev, changed ? P_end : NAN, dE.dissipated);
+    if (on_break_) enter_segment();
+  }
+}
+
+void NetworkEvent::enter_segment() {
+  const CamMotion left = cam_at(t_);  // the step just taken: the segment before t_
+  set_cam_window(t_, NAN);
+  const CamMotion right = cam_at(t_);
+  if (set_.empty()) return;
+  const double w = drive_.omega(t_);
+  const double scale = std::abs(left.Xddot) + std::abs(right.Xddot) + 1e-4 * cam_.lift() * w * w;
+  if (std::abs(right.Xddot - left.Xddot) > 1e-8 * scale) {
+    // The cam's acceleration jumps (a C1 joint, an arc cam's tangency point): the held
+    // contacts take the new segment's forces — those the new acceleration pulls off
+    // separate here — and the engine restarts, its first stage on the new segment (an
+    // explicit method's first stage is the last one's right-hand side, a BDF history the
+    // old segment's: their error estimate does not fall with h across a jump).
+    settle_active(right);
+    const double th = drive_.theta(t_);
+    if (!in_take_up(t_))
+      for (int j = 0; j < m_; ++j)
+        if (active_[j]) sample_contact(j, F_[j], angle_deg_mod360(th));
+    if (active_[mk_.primary()]) designer_.sample_force(t_, th, F_[mk_.primary()]);
+    restart();
+  } else if (restart_at_breaks_ && int(set_.size()) < n_) {
+    restart();  // a cam breakpoint under held contacts, with unknowns they leave free (header)
   }
 }
 

@@ -53,6 +53,11 @@ class NetworkEvent : public NetworkRun {
 
  private:
   void restart();
+  // After a step that landed on a cam breakpoint (t_): the next steps' cam is the segment
+  // after it; where its acceleration jumps, the held contacts take that segment's forces
+  // (releasing those it pulls off) and the engine restarts there.
+  void enter_segment();
+  bool on_break_ = false;  // t_ is on a cam breakpoint the last step landed on
   // The projection's metric for the active set: MTa_ = G⁻¹T_Aᵀ and W_AA = T_A G⁻¹ T_Aᵀ
   // with G = M, or G = S = M + γC + γ²K once stiff_metric() has a γ.
   void set_metric();
@@ -80,8 +85,8 @@ class NetworkEvent : public NetworkRun {
 
   // cvode-bdf: a release alone does not restart the engine (network_event.cpp, run_method).
   bool continue_on_release_ = sc_.solver.integrator == Integrator::CvodeBdf;
-  // cvode-bdf: the root functions, and the state at a root, are evaluated on CVODE's
-  // interpolant put on the held contacts' manifold (project()). The raw interpolant is not
+  // cvode-bdf: the root functions are evaluated on CVODE's interpolant put on the held
+  // contacts' manifold (project()); the state at a root is put there on every engine. The raw interpolant is not
   // on it: the held contacts' cam motion enters CVODE's step through the projection only,
   // which its error test does not see, so one step may carry the held nodes across a whole
   // rise (examples/ohc_roller_finger.toml: one step of 8.8 ms from the end of the dwell
@@ -105,20 +110,12 @@ class NetworkEvent : public NetworkRun {
   bool restart_at_breaks_ = sc_.solver.integrator == Integrator::CvodeBdf;
   Eigen::VectorXd yv_, yg_, rc_, rF_, rFh_;
   double gap_thr_ = 1e-3 * sc_.contact.tol_u;
-  // A contact released where its force reaches zero leaves at zero gap, speed and
-  // (nearly) acceleration: for a while its gap is the integration error of the steps after the
-  // release, of order rtol·|q| + atol — above gap_thr_ at tight tol_u (a user follower on
-  // cvode-bdf at rtol 1e-10, tol_u 1e-11: 20 "impacts" of ~1e-11 m/s 3e-10 s apart). Its
-  // root sits at −fresh_thr_ until its gap has once exceeded fresh_thr_ (the sign of its
-  // root function does not change at the switch). Not on cvode-bdf, which does not restart
-  // at a release (continue_on_release_): its gap after the release carries no restart's
-  // error, and the guard hid real re-contacts inside the band (B2 on the mechanism stack,
-  // rtol 1e-6: a flight of 8 µs and 1.2e-8 m after a separation, re-impact at 0.01 m/s,
-  // ran 1e-6 m = 10 tol_u into the cam before the root at −fresh_thr_ ≈ −2e-5 m).
-  double fresh_thr_ = 10.0 * (sc_.solver.rtol * std::max(cam_.lift(), mk_.q0().cwiseAbs().maxCoeff()) +
-                              sc_.solver.atol);
-  std::vector<char> fresh_ = std::vector<char>(std::size_t(m_), 0);
-  double open_thr(int j) const { return fresh_[std::size_t(j)] ? std::max(gap_thr_, fresh_thr_) : gap_thr_; }
+  // A contact released where its force reaches zero leaves the cam from the root's state
+  // put on the held set's manifold (g = ġ = 0 exactly), so its gap root is the normal one
+  // at once. (A band of 10 (rtol·|q| + atol) below the cam, for the interpolation error of
+  // an unprojected root state, hid real re-contacts: B2 on arkode-erk at rtol 1e-6, a
+  // flight of 8 µs after a separation, re-impact at 0.01 m/s, ran 2.1e-6 m into the cam
+  // — past the step check's 10 tol_u — inside the band of 2.4e-5 m.)
 
   // The projection onto the active set's g = 0, ġ = 0 (see the top): M⁻¹T_Aᵀ and the
   // factorisation of W_AA, made once per active set.

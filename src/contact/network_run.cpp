@@ -10,6 +10,7 @@
 
 #include "camdyn/initial_state.hpp"
 #include "active_set.hpp"
+#include "cam_joints.hpp"  // one_sided_motion
 #include "run_context.hpp"  // StepFailure, Clock, fmt
 
 namespace camdyn {
@@ -34,6 +35,7 @@ NetworkRun::NetworkRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
     sum_.contacts.back().name = c.name;
   }
   unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
+  if (sc.cam.land_on_breaks) break_angles_ = cam_.breakpoints();
   // The base circle, so that a cam contact's gap sees the lift X_C − X_base
   // (cam_lift_base, include/camdyn/initial_state.hpp: cam.base_radius for a lift table,
   // min over θ of X_C otherwise).
@@ -81,12 +83,22 @@ std::shared_ptr<SparseNewton> NetworkRun::sparse_newton() const {
 }
 
 CamMotion NetworkRun::cam_at(double t) const {
+  // At a breakpoint that starts (ends) the window: the segment after (before) it. Only the
+  // window's breakpoint ends can be within 1e-9 rad of θ(t) (steps land on breakpoints).
+  int side = 0;
+  if (!std::isnan(win_lo_) || !std::isnan(win_hi_)) {
+    const double dlo = std::isnan(win_lo_) ? INFINITY : std::abs(t - win_lo_);
+    const double dhi = std::isnan(win_hi_) ? INFINITY : std::abs(t - win_hi_);
+    side = dlo <= dhi ? 1 : -1;
+  }
   // The last few times asked for are asked again (a row: its state, forces, energies).
   for (const CamCache& c : cam_cache_)
-    if (c.t == t) return c.m;
-  CamMotion m = cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
+    if (c.t == t && c.side == side) return c.m;
+  CamMotion m;
+  if (!(side && one_sided_motion(cam_, drive_, break_angles_, t, side, &m)))
+    m = cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
   m.X -= x_base_;
-  cam_cache_[cam_next_] = {t, m};
+  cam_cache_[cam_next_] = {t, side, m};
   cam_next_ = (cam_next_ + 1) % kCamCache;
   return m;
 }

@@ -66,8 +66,22 @@ class NetworkRun {
   std::shared_ptr<SparseNewton> sparse_newton() const;
 
   // ---- geometry and forces
-  /// The cam's lift above its base circle at t: X = X_C − min_θ X_C, Ẋ_C, Ẍ_C.
+  /// The cam's lift above its base circle at t: X = X_C − min_θ X_C, Ẋ_C, Ẍ_C. Inside
+  /// a window set by set_cam_window, one-sided at the cam's breakpoints (cam_joints.hpp).
   CamMotion cam_at(double t) const;
+  /// The step about to be taken or just taken lies in [lo, hi]: at a cam breakpoint at
+  /// its start the cam is evaluated on the segment after it (the right limit), at its end
+  /// on the segment before it (the left limit), so that no stage of a step that lands on a
+  /// joint, or starts from one, sees the other segment's acceleration. lo / hi: a time
+  /// where θ is on a breakpoint, NaN if the window's end is none. Both NaN (the default):
+  /// the cam as Cam::motion evaluates it (the segment that holds θ).
+  void set_cam_window(double lo, double hi) {
+    win_lo_ = lo;
+    win_hi_ = hi;
+  }
+  /// The first cam breakpoint time after t_ (steps land on them: cam.land_on_breaks),
+  /// +inf if none before t_end.
+  double next_break_time() const { return stops_.before(t_, INFINITY); }
   /// g_j = T_j q + g₀_j − X_C·[cam], ġ_j, and the cam's part of g̈_j (−Ẍ_C·[cam]).
   double gap(int j, const Eigen::VectorXd& y, const CamMotion& cm) const;
   double gap_rate(int j, const Eigen::VectorXd& y, const CamMotion& cm) const;
@@ -179,8 +193,11 @@ class NetworkRun {
   // cam_at's last results (the cam is evaluated once per time, not once per use)
   struct CamCache {
     double t = NAN;
+    int side = 0;  // cam_at's side at a breakpoint: 0 none, +1 right, −1 left
     CamMotion m;
   };
+  double win_lo_ = NAN, win_hi_ = NAN;  // set_cam_window
+  std::vector<double> break_angles_;    // the cam's breakpoints where steps land on them
   // 16: a Lee step asks for its end, 7 switch samples and 5 quadrature points, and its
   // end again afterwards (with 4 the end was evicted and evaluated twice)
   static constexpr int kCamCache = 16;
