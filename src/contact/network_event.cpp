@@ -165,6 +165,7 @@ void NetworkEvent::run_method() {
   Eigen::VectorXd y1(2 * n_);
   const double gap_thr = gap_thr_;
   while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+    if (cam_joint_impact()) restart();  // closed contacts on a C0 joint of the cam
     const double horizon = step_horizon(), tout = stop_before(horizon);
     const double P_prev = dissipation_power(t_, y_);
     const double t1 = eng_->advance(tout, y1);

@@ -365,6 +365,7 @@ class NetworkLee final : public NetworkRun {
     double h = initial_step(), h_try = -1.0;
     Eigen::VectorXd y1(2 * n_);
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+      if (cam_joint_impact()) slope_.setZero();  // closed contacts on a C0 joint of the cam
       const double t_next = stop_before(land ? next_output_time() : sc_.run.t_end);
       const bool relocating = h_try > 0.0;
       double hs = relocating ? h_try : fit_step(h, t_next);
