@@ -141,6 +141,17 @@ double NetworkEvent::held_work(double ta, double tb) {
   return dW;
 }
 
+NetworkRun::StepEnergy NetworkEvent::advance_energy(double t0, double t1) {
+  return step_energy(
+      t0, t1, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
+      [this](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
+        if (set_.empty())
+          F.setZero(m_);
+        else
+          F = held_forces(tau, y, c, set_);
+      });
+}
+
 void NetworkEvent::run_method() {
   eng_->set_roots(m_, [this](double t, const double* y, double* g) {
     const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
@@ -183,14 +194,7 @@ void NetworkEvent::run_method() {
     if (m_) F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
     // the cam's work and the dissipated energy over the step: 3-point Gauss–Legendre on
     // the engine's own dense output (issue 25: each step's own quadrature)
-    const StepEnergy dE = step_energy(
-        t_ - h, t_, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
-        [this](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
-          if (set_.empty())
-            F.setZero(m_);
-          else
-            F = held_forces(tau, y, c, set_);
-        });
+    const StepEnergy dE = advance_energy(t_ - h, t_);
     after_advance(t_ - h, P_prev);
     const double P_end = dissipation_power(t_, y_);
     for (int j = 0; j < m_; ++j)  // a released contact that has opened: the normal root
