@@ -151,6 +151,17 @@ double NetworkEvent::held_work(double ta, double tb) {
   return dW;
 }
 
+NetworkRun::StepEnergy NetworkEvent::advance_energy(double t0, double t1) {
+  return step_energy(
+      t0, t1, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
+      [this](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
+        if (set_.empty())
+          F.setZero(m_);
+        else
+          held_forces_into(tau, y, c, set_, F);
+      });
+}
+
 void NetworkEvent::run_method() {
   eng_->set_roots(m_, [this](double t, const double* y, double* g) {
     const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
@@ -181,6 +192,7 @@ void NetworkEvent::run_method() {
   Eigen::VectorXd y1(2 * n_);
   const double gap_thr = gap_thr_;
   while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+    if (cam_joint_impact()) restart();  // closed contacts on a C0 joint of the cam
     const double horizon = step_horizon(), tout = stop_before(horizon), t_brk = next_break_time();
     // the step's cam: the segment after a breakpoint it starts from, the one before a
     // breakpoint it lands on
@@ -207,14 +219,7 @@ void NetworkEvent::run_method() {
     if (m_) F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
     // the cam's work and the dissipated energy over the step: 3-point Gauss–Legendre on
     // the engine's own dense output (issue 25: each step's own quadrature)
-    const StepEnergy dE = step_energy(
-        t_ - h, t_, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
-        [this](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
-          if (set_.empty())
-            F.setZero(m_);
-          else
-            held_forces_into(tau, y, c, set_, F);
-        });
+    const StepEnergy dE = advance_energy(t_ - h, t_);
     after_advance(t_ - h, P_prev);
     const double P_end = dissipation_power(t_, y_);
     bool changed = false, released_only = false;

@@ -39,6 +39,9 @@ class NetworkEvent : public NetworkRun {
   /// the engine's interpolant valid over [t_prev, t_]), before any switch is applied.
   /// P_prev: the dissipated power at t_prev.
   virtual void after_advance(double /*t_prev*/, double /*P_prev*/) {}
+  /// The cam's work and the dissipated energy over the step [t0, t1] just taken (before
+  /// after_advance): 3-point Gauss–Legendre on the engine's interpolant (step_energy).
+  virtual StepEnergy advance_energy(double t0, double t1);
   /// The cam's work over [ta, tb] ⊂ the last step (the held forces on the interpolant).
   double held_work(double ta, double tb);
   /// corr = P(y) − y: y put on the active set's g = 0, ġ = 0, M-orthogonally.

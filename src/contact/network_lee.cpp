@@ -160,6 +160,9 @@ class NetworkLee final : public NetworkRun {
     std::vector<int> set;                    // active contacts over the step
     double W0 = 0, D0 = 0, P0 = 0;
     Eigen::VectorXd s0, s1, sc;              // the force shape (start, end, bubble)
+    // the cam's power on the held contacts' pointwise forces at the switch search's samples
+    // (x = k / kSwitchSamples); empty: the work is taken on the applied shape
+    std::vector<double> power;
   } sd_;
   Eigen::VectorXd yi_;
   // State at τ (cubic Hermite from the end states and accelerations).
@@ -186,9 +189,11 @@ class NetworkLee final : public NetworkRun {
     if (len <= 0) return e;
     Eigen::VectorXd& F = Fq_;
     const bool dissipative = mk_.dissipative();  // Lee's contacts dissipate nothing between impacts
+    const bool sampled = !s.power.empty();
+    if (sampled) e.work = h * sampled_integral(s.power.data(), len / h);
     for (int i = 0; i < 5; ++i) {
       const double tau = s.t0 + 0.5 * len * (1.0 + xg[i]), x = (tau - s.t0) / h;
-      if (!s.set.empty()) {
+      if (!s.set.empty() && !sampled) {
         F = s.s0 + (s.s1 - s.s0) * x + s.sc * (4.0 * x * (1.0 - x));
         e.work += 0.5 * len * wg[i] * cam_power(F, cam_at(tau));
       }
@@ -396,6 +401,7 @@ class NetworkLee final : public NetworkRun {
     double h = initial_step(), h_try = -1.0;
     Eigen::VectorXd y1(2 * n_);
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+      if (cam_joint_impact()) slope_.setZero();  // closed contacts on a C0 joint of the cam
       const double t_next = stop_before(land ? next_output_time() : sc_.run.t_end);
       const bool relocating = h_try > 0.0;
       double hs = relocating ? h_try : fit_step(h, t_next);
@@ -553,6 +559,15 @@ class NetworkLee final : public NetworkRun {
         for (int j : set) first_tensile_inside(s, j);
       if (obs_) obs_->on_lee_shape(t_, hs, set.empty() ? 0.0 : F0_[set[0]], set.empty() ? 0.0 : F1_[set[0]],
                                    set.empty() ? 0.0 : Fc_[set[0]], 0.0);
+      s.power.clear();
+      if (unilateral_ && !set.empty()) {
+        s.power.assign(kSwitchSamples + 1, 0.0);
+        for (int k = 0; k <= kSwitchSamples; ++k) {
+          const CamMotion c = k == 0 ? cm0 : k == kSwitchSamples ? cm1 : cam_at(s.t0 + hs * double(k) / kSwitchSamples);
+          for (int j : set)
+            if (mk_.contacts()[j].cam) s.power[k] += samples_[j][k] * c.Xdot;
+        }
+      }
       s.W0 = work_;
       s.D0 = dissipated_;
       s.P0 = P_prev;

@@ -107,29 +107,87 @@ class NetworkPenalty final : public NetworkRun {
   }
 
   void prepare_start() override {
-    // The penalty's own equilibrium at t = 0: each contact carrying force F_j starts
-    // penetrated by the s_j its law needs (ŝ = 0), by the M-weighted smallest shift, from
-    // wherever it starts on the contact (gap 0, or inside by at most s_j + tol_u: the
-    // start check, src/initial_check.hpp).
+    // The penalty's own equilibrium at t = 0: the closed contacts start penetrated by the s_j
+    // at which their laws (ŝ as at the start) carry the forces of the acceleration level, from
+    // wherever they start on the contact (gap 0, or inside by at most s_j + tol_u: the start
+    // check, src/initial_check.hpp), solved by Newton on the shift μ (q → q − Pμ):
+    //  * a single follower (rigid, elastic_bar): the dynamic equilibrium of the follower stack
+    //    (penalty.cpp): the forces at the shifted state, g̈_S = 0,
+    //      r(μ) = T_S a_free(q − Pμ) + W_SS F(s(μ)) − Ẍ_C,S = 0,   s(μ) = −g_S(q) + T_S P μ,
+    //    the follower moved rigidly (P = 1: its preloaded shape kept, only the return spring
+    //    relaxes, so F(0) = F₀ k_p/(k_p + k) for a rigid one); ∂(T_S a_free)/∂μ by columns at
+    //    shifts of the static s (exact for a linear mechanism: a linear law takes one step);
+    //  * a network: F(s(μ)) = F_S of the unshifted state, by the M-weighted smallest shift
+    //    P = M⁻¹T_Sᵀ (a network has no rigid shift, and along M⁻¹T_Sᵀ a lumped bar's contact
+    //    node alone moves: the dynamic balance would load its first element, 2 % on the bar
+    //    of tests/test_initial_state.cpp).
     std::vector<int> set = active_list();
-    if (!set.empty()) {
-      const int k = int(set.size());
-      Eigen::VectorXd s(k);
-      Eigen::MatrixXd Wss(k, k), MTs(n_, k);
-      const CamMotion cm0 = cam_at(0.0);
-      for (int i = 0; i < k; ++i) {
-        const int j = set[i];
-        const double kp = mk_.contacts()[j].penalty_stiffness;
-        s[i] = sc_.contact.penalty_law == PenaltyLaw::Linear ? F_[j] / kp
-                                                              : std::pow(F_[j] / kp, 1.0 / sc_.contact.penalty_exponent);
-        s[i] += gap(j, y_, cm0);  // shift to the gap −s_j
-        MTs.col(i) = mk_.MinvTt().col(j);
-        for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, set[l]);
-      }
-      y_.head(n_) -= MTs * Wss.completeOrthogonalDecomposition().solve(s);
-    }
+    if (!set.empty()) start_equilibrium(set);
     forces(0.0, y_, F_);
     for (int j = 0; j < m_; ++j) active_[j] = F_[j] > 0.0;
+  }
+
+  void start_equilibrium(const std::vector<int>& set) {
+    const int k = int(set.size());
+    const CamMotion cm0 = cam_at(0.0);
+    const Eigen::VectorXd q0 = y_.head(n_), v0 = y_.tail(n_);
+    const bool single = mk_.single_follower();
+    Eigen::MatrixXd P(n_, k), TP(k, k), Wss(k, k);
+    Eigen::VectorXd g0(k), sd(k), mu(k), s_static(k), Fs(k);
+    for (int i = 0; i < k; ++i) {
+      const int j = set[i];
+      P.col(i) = single ? Eigen::VectorXd::Ones(n_) : Eigen::VectorXd(mk_.MinvTt().col(j));
+      g0[i] = gap(j, y_, cm0);
+      Fs[i] = F_[j];
+      sd[i] = -gap_rate(j, y_, cm0);
+      const double kp = mk_.contacts()[j].penalty_stiffness;
+      s_static[i] = sc_.contact.penalty_law == PenaltyLaw::Linear
+                        ? F_[j] / kp
+                        : std::pow(F_[j] / kp, 1.0 / sc_.contact.penalty_exponent);
+      for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, set[l]);
+    }
+    for (int i = 0; i < k; ++i)
+      for (int l = 0; l < k; ++l) TP(i, l) = mk_.contacts()[set[i]].t.dot(P.col(l));
+    // g̈_S of the free motion at q − Pμ (its T a_free part)
+    Eigen::VectorXd Ta, q(n_);
+    auto free_acc = [&](const Eigen::VectorXd& m, Eigen::VectorXd& out) {
+      if (!single) {  // the network's: the forces of the unshifted state, r = W_SS(F(s) − F_S)
+        out = -Wss * Fs;
+        return;
+      }
+      q = q0 - P * m;
+      mk_.contact_free_acceleration(0.0, q.data(), v0.data(), Ta);
+      out.resize(k);
+      for (int i = 0; i < k; ++i) out[i] = Ta[set[i]] - cam_acc(set[i], cm0);
+    };
+    const auto tp_solve = TP.completeOrthogonalDecomposition();
+    mu = tp_solve.solve(s_static + g0);  // the static start
+    Eigen::VectorXd b0, b1, s, F(k), dF(k), r;
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(k, k), J(k, k);
+    free_acc(mu, b0);
+    for (int i = 0; single && i < k; ++i) {  // ∂(T_S a_free)/∂μ by columns (exact for a linear mechanism)
+      const double d = std::max(std::abs(mu[i]), 1e-12 * (1.0 + q0.cwiseAbs().maxCoeff()));
+      Eigen::VectorXd m1 = mu;
+      m1[i] += d;
+      free_acc(m1, b1);
+      A.col(i) = (b1 - b0) / d;
+    }
+    for (int it = 0; it < 50; ++it) {
+      free_acc(mu, b0);
+      s = TP * mu - g0;
+      for (int i = 0; i < k; ++i) {
+        double dq = 0, dv = 0;
+        F[i] = law(set[i], s[i], sd[i]);
+        penalty_derivatives(params(set[i]), s[i], sd[i], &dq, &dv);
+        dF[i] = dq;
+      }
+      r = b0 + Wss * F;
+      J = A + Wss * dF.asDiagonal() * TP;
+      const Eigen::VectorXd dmu = J.completeOrthogonalDecomposition().solve(r);
+      mu -= dmu;
+      if (dmu.cwiseAbs().maxCoeff() <= 1e-15 * mu.cwiseAbs().maxCoeff()) break;
+    }
+    y_.head(n_) = q0 - P * mu;
   }
 
   void run_method() override {

@@ -94,8 +94,9 @@ CamMotion NetworkRun::cam_at(double t) const {
   // The last few times asked for are asked again (a row: its state, forces, energies).
   for (const CamCache& c : cam_cache_)
     if (c.t == t && c.side == side) return c.m;
-  CamMotion m;
-  if (!(side && one_sided_motion(cam_, drive_, break_angles_, t, side, &m)))
+  CamMotion m;  // on a C0 joint: the motion before it, or after it once passed (joint_t_)
+  const bool on_joint = !joints_.empty() && joints_.at(cam_, t, t == joint_t_ ? 1 : -1, &m);
+  if (!on_joint && !(side && one_sided_motion(cam_, drive_, break_angles_, t, side, &m)))
     m = cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
   m.X -= x_base_;
   cam_cache_[cam_next_] = {t, side, m};
@@ -221,7 +222,7 @@ void NetworkRun::settle_active(const CamMotion& cm) {
     }
 }
 
-void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion& cm) {
+void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion& cm, bool plastic) {
   std::vector<int> S = active_list();
   std::vector<char> stick(m_, 0), is_closing(m_, 0);
   for (int j : closing) {
@@ -274,7 +275,7 @@ void NetworkRun::resolve_impact(const std::vector<int>& closing, const CamMotion
   for (int j : closing) {
     const double approach = -gd[j];
     const double e = mk_.contacts()[j].restitution;
-    stick[j] = !unilateral_ || e == 0.0 || (1.0 + e) * approach < v_stick[j];
+    stick[j] = plastic || !unilateral_ || e == 0.0 || (1.0 + e) * approach < v_stick[j];
     soft = soft && approach < v_stick[j];
   }
   // The impulses over the contacts S taking part: the closing ones reach ġ⁺ = −e ġ⁻ (0

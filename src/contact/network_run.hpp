@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "camdyn/cam.hpp"
+#include "cam_joints.hpp"
 #include "cam_stops.hpp"
 #include "camdyn/simulator.hpp"
 #include "designer_stats.hpp"
@@ -113,7 +114,13 @@ class NetworkRun {
   /// they stick; 0 on the active ones), impulses ≥ 0 (a contact whose impulse would pull
   /// is left out). Sticking contacts join the active set; forces are settled afterwards.
   /// Records the impacts; books the cam's impulse work and the loss.
-  void resolve_impact(const std::vector<int>& closing, const CamMotion& cm);
+  /// plastic: the closing contacts stick whatever their restitution (a cam joint's impact).
+  void resolve_impact(const std::vector<int>& closing, const CamMotion& cm, bool plastic = false);
+  /// On a C0 joint of the cam (cam_joints.hpp) at t_: from now on cam_at(t_) is the motion
+  /// after the joint, and the closed cam contacts take its velocity jump (network_joint.cpp):
+  /// the cam strikes (a plastic impact: ġ⁺ = 0, resolve_impact) or, slower, leaves (a
+  /// separation; holonomic: a signed impulse). True if the state changed (restart).
+  bool cam_joint_impact();
 
   // ---- energies
   double potential(double t, const Eigen::VectorXd& y) const;
@@ -169,6 +176,8 @@ class NetworkRun {
   Cam cam_;
   CamDrive drive_;
   CamStops stops_{sc_, cam_};
+  CamJoints joints_{sc_, cam_};
+  double joint_t_ = -INFINITY;  // the last C0 joint passed: cam_at(joint_t_) is after it
   Observer* obs_;
   const std::atomic<bool>* stop_;
   std::string stop_reason_ = "stopped by caller";

@@ -65,6 +65,34 @@ double first_below(const std::function<double(double)>& f, double f0, double f1,
   return bisect_fall(f, lo, hi, h, t1);
 }
 
+double sampled_integral(const double* p, double xb) {
+  static_assert(kSwitchSamples % 4 == 0, "quartic panels");
+  constexpr double d = 1.0 / kSwitchSamples;
+  static const double xg[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+  static const double wg[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  xb = std::min(std::max(xb, 0.0), 1.0);
+  double sum = 0.0;
+  for (int k0 = 0; k0 < kSwitchSamples && k0 * d < xb; k0 += 4) {
+    const double a = k0 * d, b = std::min((k0 + 4) * d, xb);
+    if (b == (k0 + 4) * d) {  // a whole panel: Boole's rule
+      sum += d * (2.0 / 45.0) * (7.0 * (p[k0] + p[k0 + 4]) + 32.0 * (p[k0 + 1] + p[k0 + 3]) + 12.0 * p[k0 + 2]);
+      continue;
+    }
+    for (int g = 0; g < 3; ++g) {  // part of one: its quartic by 3-point Gauss (exact)
+      const double u = (a + 0.5 * (b - a) * (1.0 + xg[g])) / d - k0;  // in samples from a
+      double l = 0.0;
+      for (int i = 0; i <= 4; ++i) {
+        double c = p[k0 + i];
+        for (int q = 0; q <= 4; ++q)
+          if (q != i) c *= (u - q) / double(i - q);
+        l += c;
+      }
+      sum += 0.5 * (b - a) * wg[g] * l;
+    }
+  }
+  return sum;
+}
+
 // For a gap that starts a round-off below zero while opening: the first x where it falls
 // below zero after rising to its highest (16 samples, the highest refined by golden
 // section: a bounce shorter than a sample), bisected to round-off in time; −1 if it never

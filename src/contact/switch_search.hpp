@@ -25,6 +25,9 @@ double bisect_fall(const std::function<double(double)>& f, double lo, double hi,
 /// `samples` (kSwitchSamples + 1 entries, may be null): the samples taken, f0 and f1 at the ends.
 double first_below(const std::function<double(double)>& f, double f0, double f1, double thr, double h,
                    double t1, double* samples = nullptr);
+/// ∫₀^xb p(x) dx of samples p_k = p(k / kSwitchSamples) (k = 0 … kSwitchSamples), on their
+/// piecewise quartic interpolant (panels of four intervals: composite Boole over [0, 1]).
+double sampled_integral(const double* p, double xb);
 /// For a gap that starts a round-off below zero while opening: the first x where it falls
 /// below zero after rising to its highest; −1 if it never reaches zero or does not fall back.
 double reclosing(const std::function<double(double)>& f, double h, double t1);
