@@ -154,7 +154,11 @@ double floor_of(const std::string& scene, bool force) {
 
 // Combinations whose error is known not to fall; the test checks they still do not (so
 // that a fix shows up here and the entry is removed).
-const std::set<std::string> kKnownNotFalling = {};
+//   A_penalty_arkode_dirk: penalty on arkode-dirk sits far above ERK at tight tolerances
+//   on both stacks — the impulse error at rtol 1e-4 / 1e-7 / 1e-10 was 1.40e-3 / 3.06e-4 /
+//   2.32e-5 on the single-follower stack (8adb79a), 1.01e-3 / 1.47e-3 / 7.02e-5 on the
+//   mechanism with the dynamic-equilibrium start (ERK: 4.3e-3 / 1.6e-5 / 1.5e-8). Open.
+const std::set<std::string> kKnownNotFalling = {"A_penalty_arkode_dirk"};
 
 std::string name_of(const Combo& c) {
   std::string n = c.scene + "_" + to_string(c.model) + "_" + to_string(c.engine);
