@@ -189,7 +189,9 @@ void NetworkEvent::run_method() {
     if (m_) F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
     // the cam's work and the dissipated energy over the step: 3-point Gauss–Legendre on
     // the engine's own dense output (issue 25: each step's own quadrature)
-    const StepEnergy dE = step_energy(
+    // (no held contact on an undamped mechanism: nothing works or dissipates, and the three
+    // dense states are not needed)
+    const StepEnergy dE = set_.empty() && !mk_.dissipative() ? StepEnergy{} : step_energy(
         t_ - h, t_, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
         [this](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
           if (set_.empty())
