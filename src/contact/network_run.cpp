@@ -542,10 +542,8 @@ void NetworkRun::after_step(double h, double dW, double P_prev, double P_end, do
     }
   const int p = mk_.primary();
   const MechanismContact& c = mk_.contacts()[p];
-  Eigen::VectorXd a;
-  acceleration(t_, y_, F_, a);
   const double th = drive_.theta(t_);
-  designer_.step(t_, th, c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.tail(n_)), c.t.dot(a), gap(p, y_, cm));
+  designer_.step(t_, th, c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.tail(n_)), contact_acceleration(p), gap(p, y_, cm));
   sample_side_loads(th);
   if (active_[p]) designer_.sample_force(t_, th, F_[p]);
   if (out_dt() <= 0.0) {
@@ -565,6 +563,17 @@ void NetworkRun::after_step(double h, double dW, double P_prev, double P_end, do
     throw StepFailure(Termination::MaxSteps, "run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
   if (!y_.allFinite() || !F_.allFinite()) throw StepFailure(Termination::NonFinite, "non-finite state");
   if (obs_ && (sum_.steps & 255) == 0) obs_->on_progress(t_, sc_.run.t_end, sum_.steps);
+}
+
+double NetworkRun::contact_acceleration(int p) const {
+  if (!mk_.single_follower()) {
+    Eigen::VectorXd a;
+    acceleration(t_, y_, F_, a);
+    return mk_.contacts()[p].t.dot(a);
+  }
+  // T_p a = T_p a_free + W_p F: O(n) linear forms, no mass solve (the same value to round-off)
+  mk_.contact_free_acceleration(t_, y_.data(), y_.data() + n_, hf_ta_);
+  return hf_ta_[p] + mk_.W().row(p).dot(F_);
 }
 
 void NetworkRun::check_complementarity(const CamMotion& cm) const {

@@ -160,6 +160,8 @@ class NetworkRun {
   /// open gap, or a gap below −kCheckGaps·tol_u (not for penalty: its law penetrates),
   /// stops the run with a StepFailure naming the contact, the time and the cam angle.
   void check_complementarity(const CamMotion& cm) const;
+  /// T_p a at the current state (t_, y_, F_): contact p's acceleration.
+  double contact_acceleration(int p) const;
   /// false for the penalty method (its contacts penetrate by their law).
   virtual bool penetration_checked() const { return true; }
   double fit_step(double h, double t_next) const;
