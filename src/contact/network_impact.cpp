@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "active_set.hpp"  // solve_contact_lcp
 #include "network_run.hpp"
 #include "run_context.hpp"  // StepFailure, fmt
 
