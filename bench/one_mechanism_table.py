@@ -7,7 +7,10 @@ alike, and keeps the best CPU time of each:
 
   single followers (A, A7, B1, B2, stiff bar, B1 with 1000 elements):
       before = solver.stack = "follower" (the single-follower stack: FollowerModel,
-               src/engines.cpp, src/contact/lee_located.cpp / lee_multistep.cpp)
+               src/engines.cpp, src/contact/lee_located.cpp / lee_multistep.cpp).
+               Since 7a6a348 that stack runs Lee's classic step only and
+               solver.stack = "follower" with the located step is a SceneError: these
+               rows fail on a binary built from 7a6a348 on (not changed here).
       after  = solver.stack = "mechanism" (the one-contact Mechanism on the network
                methods and engines)
   networks (OHC, OHV one revolution): before = --before-bin (an older camdyn CLI, e.g. one
