@@ -1,18 +1,20 @@
-// camdyn (private) — integrator engines on SUNDIALS behind one interface.
+// camdyn (private) — the single-follower stack's integrator engines on SUNDIALS behind one
+// interface (Lee's classic step only since issue 23; the mechanism's are src/ode_engine.hpp).
 //
 //   First-order form, y = [q; v] (2n unknowns):
 //     q̇ = v,   M v̇ = f₀ − K q − C v + e₀ F(t, q₀, v₀)
 //   F is the running method's ContactForce (src/contact_force.hpp: Lee's force shape over
-//   a step, a penalty law, the held contact, …; none set: F = 0, free flight). The engine
+//   a step, StepRamp; none set: F = 0, free flight). The engine
 //   knows nothing of contact models or scenes: it gets a follower model, the solver's
 //   settings and, from the method, the force.
 //
-// Two ways to drive an engine:
-//   * trial steps (Lee): step(t, y, h) takes exactly one step of size h from a saved
+// How an engine is driven:
+//   * trial steps (Lee's classic step): step(t, y, h) takes exactly one step of size h from a saved
 //     state and returns the end state and the WRMS norm of the local error estimate;
 //     the same step can be retaken with another force ramp.
-//   * native stepping (penalty, event): reinit(t, y) then advance(tout) takes one
-//     internal, error-controlled step, never past tout (optionally stopping at a root).
+//   (The native mode — reinit/advance, roots — was deleted with the follower stack's
+//   penalty and event methods in issue 23: these engines serve Lee's classic step and
+//   its replay only; every other method runs on src/ode_engine.hpp.)
 #pragma once
 
 #include <Eigen/Core>
@@ -117,7 +119,7 @@ class Engine {
 
 /// Make the engine `solver` asks for. trial = true for Lee's trial steps (tighter CVODE
 /// Newton and error tolerances; tol_u > 0: CVODE's tolerances kept ≤ 10⁻² tol_u), false
-/// for native stepping. @throws SundialsError on a SUNDIALS failure.
+/// for an engine without a contact method (tests). @throws SundialsError on a SUNDIALS failure.
 std::unique_ptr<Engine> make_engine(std::shared_ptr<const FollowerModel> model, const SolverSpec& solver,
                                     bool trial, double tol_u = 0.0);
 

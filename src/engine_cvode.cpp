@@ -77,7 +77,8 @@ class CvodeEngine final : public Engine {
   // needs the same step map each time (the response is then affine in the end force, up
   // to the Newton tolerance, which is tightened for this reason); CVODE's multistep
   // history cannot be saved and restored through its API, so each contact step starts
-  // at order 1. CVODE keeps its full history in native stepping (penalty, event).
+  // at order 1 (Lee's classic step; the mechanism's methods step CVODE natively,
+  // src/ode_engine.cpp).
   double step(double t, const Eigen::VectorXd& y, double h, Eigen::VectorXd& y_out) override {
     map(y_.get()) = y;
     check_flag(CVodeReInit(mem_.get(), t, y_.get()), "CVodeReInit");

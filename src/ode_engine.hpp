@@ -1,5 +1,7 @@
-// camdyn (private) — a generic engine on SUNDIALS for y' = f(t, y) with dense linear
-// algebra: the integrator of the network (several-contact) methods.
+// camdyn (private) — a generic engine on SUNDIALS for y' = f(t, y): the integrator of
+// the mechanism's methods (every follower; src/contact/network_run.hpp). A Mechanism's
+// Newton systems go through the sparse Schur complement (OdeSystem::newton, below); the
+// dense matrix and dense LU named here are the fallback (a user FollowerSystem).
 //
 //   arkode-erk   ERKStep, Dormand–Prince 5(4)
 //   arkode-dirk  ARKStep, SDIRK 5-stage 4(3), SUNDIALS dense matrix + dense LU, the
@@ -7,8 +9,7 @@
 //   cvode-bdf    CVODE BDF, same linear algebra
 //
 // It knows nothing of scenes, followers or contacts: the contact method owns the right-hand
-// side (the force law is inside f) and the root functions. Two ways to drive it, as the
-// single-contact Engine (engine.hpp):
+// side (the force law is inside f) and the root functions. Two ways to drive it:
 //   * trial steps: step(t, y, h) takes exactly one step of size h from (t, y), returns the
 //     end state and the WRMS norm of the local error estimate (one-step engines; CVODE
 //     integrates [t, t+h] under its own error control and returns 0);

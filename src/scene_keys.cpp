@@ -121,9 +121,10 @@ const KeyDoc kDocs[] = {
     {"solver.max_step", "time", "Largest step; 0 = no limit beyond the output times."},
     {"solver.initial_step", "time", "First step; 0 = automatic."},
     {"solver.stack", "—", "Step loop of a `rigid` or `elastic_bar` follower: `mechanism` (built as a one-contact "
-                          "mechanism and run by the methods and engines of networks), `follower` (the "
-                          "single-follower stack, kept for comparison; not with `ida`), `auto` (the mechanism; the follower stack "
-                          "for contact.lee_step = classic; docs/one_mechanism.md)."},
+                          "mechanism and run by the methods and engines of networks; every method but "
+                          "contact.lee_step = classic), `follower` (the single-follower stack: Lee's classic step only, "
+                          "kept for the bench's comparison; any other method is an error), `auto` (the mechanism; the "
+                          "follower stack for contact.lee_step = classic; docs/one_mechanism.md §6)."},
     // [run]
     {"run.t_end", "time", "Final time."},
     {"run.revolutions", "rev", "Length of the run in camshaft revolutions, instead of `run.t_end` (giving both is an "

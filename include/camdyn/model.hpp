@@ -76,7 +76,9 @@ class FollowerModel {
 
 
  private:
-  friend class detail::HeldPhase;  // the held phase (src/held_phase.hpp) builds the free part
+  // HeldPhase and free_part() served the single-follower stack's held phase
+  // (src/held_phase.hpp), deleted in issue 23: neither has a user left.
+  friend class detail::HeldPhase;
   FollowerModel() = default;
   /// elastic_bar: the model over nodes 1 … n − 1 (node 0 removed; its node 0 is this
   /// model's node 1). @pre !rigid()

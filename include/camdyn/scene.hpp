@@ -197,7 +197,8 @@ struct ContactSpec {
 
 /// The time integrator.
 struct SolverSpec {
-  /// "ida" (SUNDIALS IDA, the held contact as an index-2 GGL DAE) needs contact.model =
+  /// "ida" (SUNDIALS IDA, the held contacts as an index-2 GGL DAE, any number of them: a
+  /// single follower or a network; not a user FollowerSystem) needs contact.model =
   /// "holonomic".
   Integrator integrator = Integrator::ArkodeErk;
   /// Relative and absolute local error tolerances, 1e-14 ≤ rtol ≤ 1e-1, 0 < atol ≤ 1.
@@ -208,14 +209,16 @@ struct SolverSpec {
   double max_step = 0.0;
   /// First step [time], ≥ 0; 0 = automatic.
   double initial_step = 0.0;
-  /// Which step loop runs a rigid or elastic_bar follower (issue 23, docs/one_mechanism.md):
+  /// Which step loop runs a rigid or elastic_bar follower (issue 23, docs/one_mechanism.md §6):
   ///  mechanism: the follower built as a one-contact Mechanism (sparse M, C, K, contact row
   ///             T = e₀ᵀ) and run by the network methods and engines — the one stack every
-  ///             network and user follower runs on;
-  ///  follower:  the single-follower stack (FollowerModel, src/engines.cpp);
-  ///  auto:      the follower stack for now (docs/one_mechanism.md §4 lists what the
-  ///             mechanism stack still lacks before it becomes the default). Networks and
-  ///             user followers always run on the mechanism stack.
+  ///             method but Lee's classic step runs on;
+  ///  follower:  the single-follower stack (FollowerModel, src/engines.cpp), which runs
+  ///             Lee's classic step only, kept as the bench's comparison;
+  ///  auto:      the mechanism; the follower stack for contact.lee_step = "classic".
+  /// Networks and user followers always run on the mechanism stack.
+  /// @throws SceneError (from Simulator) for "follower" with any method but the classic
+  /// step, and for "mechanism" with the classic step.
   StackKind stack = StackKind::Auto;
 };
 

@@ -308,13 +308,14 @@ class Simulator {
   /// before the run; run() copies them into Summary::warnings.
   const std::vector<std::string>& warnings() const { return warnings_; }
   /// true: the scene runs on the one-mechanism stack (a network always; a rigid or
-  /// elastic_bar follower as solver.stack decides, SceneSpec docs).
-  /// @throws SceneError (solver.stack = "mechanism" with ida or contact.lee_step = classic).
+  /// elastic_bar follower unless it runs Lee's classic step, SolverSpec::stack docs).
+  /// @throws SceneError (solver.stack = "mechanism" with contact.lee_step = classic;
+  /// solver.stack = "follower" with any method but Lee's classic step).
   static bool runs_on_mechanism(const Scene& scene);
 
  private:
   Scene scene_;
-  std::shared_ptr<const FollowerModel> model_;      // rigid, elastic_bar
+  std::shared_ptr<const FollowerModel> model_;      // rigid, elastic_bar (the classic step's; the mechanism's source)
   std::shared_ptr<const class MechanicalSystem> mech_;  // network, user's follower, or on the mechanism stack
   std::vector<std::string> extra_columns_;
   std::vector<std::string> warnings_;

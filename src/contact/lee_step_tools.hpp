@@ -1,5 +1,5 @@
-// camdyn (private) — pieces of Lee's located step shared by the single-follower step
-// (lee_located.cpp) and the network step (network_lee.cpp).
+// camdyn (private) — pieces of Lee's located step (network_lee.cpp, for one contact or
+// many; once shared with the single-follower located step, deleted in issue 23).
 #pragma once
 
 #include <algorithm>

@@ -2,7 +2,8 @@
 // contact.model = "holonomic") for any mechanism: a single follower (one contact) or a
 // network. The contacts closed at the start are held as an index-2 GGL DAE
 // (src/ida_engine.cpp); IDA steps natively and stops on every output time (rows are step
-// values); the held forces are the multipliers λ, the cam's work W = Σ ∫ λ_j Ẋ_C dt a DAE
+// values); the held forces are the multipliers λ (the rows report the acceleration
+// level's forces on IDA's state instead, below), the cam's work W = Σ ∫ λ_j Ẋ_C dt a DAE
 // component. A root of λ_j (decreasing) is the first tensile time (where a unilateral
 // contact would open). A contact open at the start that closes (a root of its gap) takes
 // the Newton impact law of the network methods (network_run.cpp: resolve_impact); held

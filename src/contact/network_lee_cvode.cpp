@@ -1,6 +1,6 @@
-// camdyn — Lee's method on a network on the multistep engine (contact.model = "lee",
-// located step, solver.integrator = "cvode-bdf", follower.kind = "network" or a user
-// FollowerSystem): the three levels of every held contact inside CVODE's own BDF step, for
+// camdyn — Lee's method on the multistep engine (contact.model = "lee" or "holonomic",
+// located step, solver.integrator = "cvode-bdf"; any mechanism: a rigid or elastic_bar
+// follower, a network, a user FollowerSystem): the three levels of every held contact inside CVODE's own BDF step, for
 // any number of held contacts, instead of around it (network_lee.cpp restarted CVODE in
 // every trial step of the located step and iterated the shape on top of it: one OHC
 // revolution 14.7× the arkode-erk run, docs/one_mechanism.md).

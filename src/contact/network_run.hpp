@@ -1,8 +1,12 @@
 // camdyn (private) — the run machinery of the several-contact (network) methods:
 //
-//   scene (follower.kind = "network") → Mechanism (src/mechanism.hpp) → OdeEngine
-//   (src/ode_engine.hpp) + a network contact method (a NetworkRun subclass, one file each:
-//   network_lee.cpp, network_penalty.cpp, network_event.cpp) → HistoryRow stream + Summary.
+//   scene (any follower: a rigid or elastic_bar follower as a one-contact mechanism,
+//   src/mechanism_follower.cpp; a network; a user FollowerSystem) → Mechanism
+//   (src/mechanism.hpp) → OdeEngine (src/ode_engine.hpp) or IDA (src/ida_engine.hpp) + a
+//   contact method (a NetworkRun subclass, one file each: network_lee.cpp,
+//   network_lee_cvode.cpp, network_penalty.cpp, network_event.cpp, network_ida.cpp; chosen
+//   by make_network_method, network_run.cpp) → HistoryRow stream + Summary. Every method
+//   but Lee's classic step (src/contact/lee_classic.cpp) runs here.
 //
 // The state is y = [q; v] over the mechanism's unknowns, F the contact forces (one per
 // contact, ≥ 0), `active` the contacts that are closed and carry force. Shared here: the

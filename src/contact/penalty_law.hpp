@@ -1,5 +1,5 @@
-// camdyn (private) — the penalty baseline's normal-force laws, for one contact
-// (penalty.cpp) and for every contact of a network (network_penalty.cpp):
+// camdyn (private) — the penalty baseline's normal-force laws, for every contact of a
+// mechanism, one contact or many (network_penalty.cpp):
 //
 //   penetration s > 0, its rate ŝ:
 //     linear:        F = max(0, k_p s + c_p ŝ),          elastic part F_el = k_p s
