@@ -246,37 +246,6 @@ double FollowerModel::damping_power(const double* v) const {
   return V.dot(C_ * V);
 }
 
-std::shared_ptr<const FollowerModel> FollowerModel::free_part() const {
-  if (rigid_ || n_ < 2) throw std::logic_error("free_part: needs an elastic bar");
-  std::shared_ptr<FollowerModel> h(new FollowerModel());
-  const int r = n_ - 1;
-  h->n_ = r;
-  h->rigid_ = false;
-  h->lumped_ = lumped_;
-  h->damped_ = damped_;
-  h->spring_k_ = spring_k_;
-  h->preload_ = preload_;
-  h->q_far0_ = q_far0_;
-  h->K_ = K_.bottomRightCorner(r, r);
-  h->M_ = M_.bottomRightCorner(r, r);
-  h->K_.makeCompressed();
-  h->M_.makeCompressed();
-  if (damped_) {
-    h->C_ = C_.bottomRightCorner(r, r);
-    h->C_.makeCompressed();
-  }
-  h->f0_ = f0_.tail(r);
-  h->q0_ = q0_.tail(r);
-  if (lumped_) h->Mdiag_inv_ = h->M_.diagonal().cwiseInverse();
-  else h->factor_ = std::make_unique<Factor>(h->M_);
-  h->contact_coupling();
-  h->desc_ = desc_;
-  h->desc_.nodes = r;
-  h->desc_.unknowns = 2 * r;
-  h->desc_.contact = "held (node 0 moves with the cam)";
-  return h;
-}
-
 std::shared_ptr<const FollowerModel> build_model(const Scene& scene) {
   return std::make_shared<const FollowerModel>(scene);
 }

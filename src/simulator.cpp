@@ -175,6 +175,7 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   validate(scene_);
   check_tolerances(scene_);
   if (scene_.follower.kind == FollowerKind::Network) {
+    runs_on_mechanism(scene_);  // @throws SceneError for the classic step
     mech_ = std::make_shared<const Mechanism>(scene_);
     extra_columns_ = detail::NetworkRun::extra_columns(*mech_);
     detail::check_start(scene_, *mech_, false);
@@ -187,9 +188,19 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   add_designer_columns();
 }
 
+namespace {
+// Lee's classic step runs on the single-follower stack only (src/contact/lee_classic.cpp).
+constexpr const char* kClassicOnlySingle =
+    "runs on a rigid or elastic_bar follower only (a network or a user follower runs Lee's located step: "
+    "contact.lee_step = \"located\")";
+}  // namespace
+
 bool Simulator::runs_on_mechanism(const Scene& sc) {
-  if (sc.follower.kind == FollowerKind::Network) return true;
   const bool classic = sc.contact.model == ContactModel::Lee && sc.contact.lee_step == LeeStepKind::Classic;
+  if (sc.follower.kind == FollowerKind::Network) {
+    if (classic) throw SceneError(sc.source, 0, "contact.lee_step", "classic", kClassicOnlySingle);
+    return true;
+  }
   switch (sc.solver.stack) {
     case StackKind::Follower:
       if (!classic)
@@ -218,10 +229,12 @@ void Simulator::add_designer_columns() {
 Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower) : scene_(std::move(scene)) {
   resolve_defaults(scene_);
   validate(scene_);
+  if (scene_.contact.model == ContactModel::Lee && scene_.contact.lee_step == LeeStepKind::Classic)
+    throw SceneError(scene_.source, 0, "contact.lee_step", "classic", kClassicOnlySingle);
   if (scene_.solver.integrator == Integrator::Ida)
     throw SceneError(scene_.source, 0, "solver.integrator", "ida",
-                     "a user-defined follower runs on arkode-erk, arkode-dirk or cvode-bdf (ida: "
-                     "single-follower holonomic scenes only)");
+                     "a user-defined follower runs on arkode-erk, arkode-dirk or cvode-bdf (ida needs a "
+                     "linear mechanism: rigid, elastic_bar or network)");
   check_tolerances(scene_);
   warnings_ = scene_warnings(scene_, follower.get());
   mech_ = make_user_system(scene_, std::move(follower));

@@ -262,3 +262,24 @@ TEST(MechanismStack, ForceMarginInsideStepsMatchesTheClosedForm) {
 
 }  // namespace
 }  // namespace camdyn
+
+namespace camdyn {
+namespace {
+// Lee's classic step runs on the single-follower stack only: a network asking for it is
+// bad input (it used to run the located step without a word).
+TEST(MechanismStack, ANetworkRefusesTheClassicStep) {
+  Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_bucket_tappet.toml");
+  s.contact.lee_step = LeeStepKind::Classic;
+  try {
+    Simulator sim(s);
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key(), "contact.lee_step");
+    EXPECT_EQ(e.value(), "classic");
+    EXPECT_EQ(e.rule(),
+              "runs on a rigid or elastic_bar follower only (a network or a user follower runs Lee's located step: "
+              "contact.lee_step = \"located\")");
+  }
+}
+}  // namespace
+}  // namespace camdyn

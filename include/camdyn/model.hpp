@@ -24,10 +24,6 @@
 namespace camdyn {
 
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, long>;
-namespace detail {
-class HeldPhase;
-}
-
 /// A linear follower model. Immutable once built; share it between engines.
 class FollowerModel {
  public:
@@ -76,13 +72,6 @@ class FollowerModel {
 
 
  private:
-  // HeldPhase and free_part() served the single-follower stack's held phase
-  // (src/held_phase.hpp), deleted in issue 23: neither has a user left.
-  friend class detail::HeldPhase;
-  FollowerModel() = default;
-  /// elastic_bar: the model over nodes 1 … n − 1 (node 0 removed; its node 0 is this
-  /// model's node 1). @pre !rigid()
-  std::shared_ptr<const FollowerModel> free_part() const;
   int n_ = 1;
   bool rigid_ = true, lumped_ = true, damped_ = false;
   double m_ = 1, k_ = 0, c_ = 0, spring_k_ = 0, preload_ = 0, q_far0_ = 0;
