@@ -152,6 +152,9 @@ double NetworkEvent::held_work(double ta, double tb) {
 }
 
 NetworkRun::StepEnergy NetworkEvent::advance_energy(double t0, double t1) {
+  // no held contact on an undamped mechanism: nothing works or dissipates, and the three
+  // dense states are not needed
+  if (set_.empty() && !mk_.dissipative()) return StepEnergy{};
   return step_energy(
       t0, t1, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
       [this](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
@@ -219,9 +222,7 @@ void NetworkEvent::run_method() {
     if (m_) F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
     // the cam's work and the dissipated energy over the step: 3-point Gauss–Legendre on
     // the engine's own dense output (issue 25: each step's own quadrature)
-    // (no held contact on an undamped mechanism: nothing works or dissipates, and the three
-    // dense states are not needed)
-    const StepEnergy dE = set_.empty() && !mk_.dissipative() ? StepEnergy{} : advance_energy(t_ - h, t_);
+    const StepEnergy dE = advance_energy(t_ - h, t_);
     after_advance(t_ - h, P_prev);
     const double P_end = dissipation_power(t_, y_);
     bool changed = false, released_only = false;
