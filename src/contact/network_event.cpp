@@ -41,29 +41,7 @@ NetworkEvent::NetworkEvent(const Scene& sc, std::shared_ptr<const MechanicalSyst
     sn->held = &set_;
     sys.newton = sn;
   } else {
-    Eigen::MatrixXd dq, dv;
-    const Eigen::VectorXd q0 = mk_.q0(), v0 = mk_.v0();
-    if (mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq, dv))
-      sys.jacobian = [this](double t, const double* y, Eigen::MatrixXd& J) {
-        Eigen::MatrixXd dadq, dadv;
-        mk_.acceleration_jacobian(t, y, y + n_, dadq, dadv);
-        const int k = int(set_.size());
-        if (k > 0) {
-          Eigen::MatrixXd MT(n_, k), Ts(k, n_), Wss(k, k);
-          for (int i = 0; i < k; ++i) {
-            MT.col(i) = mk_.MinvTt().col(set_[std::size_t(i)]);
-            Ts.row(i) = mk_.T().row(set_[std::size_t(i)]);
-            for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(set_[std::size_t(i)], set_[std::size_t(l)]);
-          }
-          const Eigen::MatrixXd G = MT * Wss.completeOrthogonalDecomposition().solve(Ts);
-          dadq -= G * dadq;
-          dadv -= G * dadv;
-        }
-        J.setZero();
-        J.topRightCorner(n_, n_).setIdentity();
-        J.bottomLeftCorner(n_, n_) = dadq;
-        J.bottomRightCorner(n_, n_) = dadv;
-      };
+    sys.jacobian = dense_jacobian(&set_);
   }
   bdf_order(sc, *mech_, max_order, sys);
   engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));

@@ -51,19 +51,7 @@ class NetworkLee final : public NetworkRun {
     // The mechanism's sparse Newton structure (the force shape does not depend on the
     // state); a user's follower: its dense Jacobian, without one difference quotients.
     sys.newton = sparse_newton();
-    if (!sys.newton) {
-      Eigen::MatrixXd dq, dv;
-      const Eigen::VectorXd q0 = mk_.q0(), v0 = mk_.v0();
-      if (mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq, dv))
-        sys.jacobian = [this](double t, const double* y, Eigen::MatrixXd& J) {
-          Eigen::MatrixXd dadq, dadv;
-          mk_.acceleration_jacobian(t, y, y + n_, dadq, dadv);
-          J.setZero();
-          J.topRightCorner(n_, n_).setIdentity();
-          J.bottomLeftCorner(n_, n_) = dadq;
-          J.bottomRightCorner(n_, n_) = dadv;
-        };
-    }
+    if (!sys.newton) sys.jacobian = dense_jacobian(nullptr);
     sys.linear = mk_.linear() && (sys.jacobian || sys.newton);
     if (sc.solver.integrator == Integrator::CvodeBdf)
       throw std::logic_error("network Lee on cvode-bdf runs in network_lee_cvode.cpp");

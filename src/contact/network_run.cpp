@@ -82,6 +82,34 @@ std::shared_ptr<SparseNewton> NetworkRun::sparse_newton() const {
   return sn;
 }
 
+std::function<void(double, const double*, Eigen::MatrixXd&)> NetworkRun::dense_jacobian(
+    const std::vector<int>* held) const {
+  Eigen::MatrixXd dq, dv;
+  const Eigen::VectorXd q0 = mk_.q0(), v0 = mk_.v0();
+  if (!mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq, dv)) return {};
+  return [this, held](double t, const double* y, Eigen::MatrixXd& J) {
+    Eigen::MatrixXd dadq, dadv;
+    mk_.acceleration_jacobian(t, y, y + n_, dadq, dadv);
+    const int k = held ? int(held->size()) : 0;
+    if (k > 0) {
+      const std::vector<int>& S = *held;
+      Eigen::MatrixXd MT(n_, k), Ts(k, n_), Wss(k, k);
+      for (int i = 0; i < k; ++i) {
+        MT.col(i) = mk_.MinvTt().col(S[std::size_t(i)]);
+        Ts.row(i) = mk_.T().row(S[std::size_t(i)]);
+        for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(S[std::size_t(i)], S[std::size_t(l)]);
+      }
+      const Eigen::MatrixXd G = MT * Wss.completeOrthogonalDecomposition().solve(Ts);
+      dadq -= G * dadq;
+      dadv -= G * dadv;
+    }
+    J.setZero();
+    J.topRightCorner(n_, n_).setIdentity();
+    J.bottomLeftCorner(n_, n_) = dadq;
+    J.bottomRightCorner(n_, n_) = dadv;
+  };
+}
+
 CamMotion NetworkRun::cam_at(double t) const {
   // At a breakpoint that starts (ends) the window: the segment after (before) it. Only the
   // window's breakpoint ends can be within 1e-9 rad of θ(t) (steps land on breakpoints).

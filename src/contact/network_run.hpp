@@ -69,6 +69,11 @@ class NetworkRun {
   /// null for a user's FollowerSystem (dense Jacobian). The method adds its contact
   /// derivatives or held set.
   std::shared_ptr<SparseNewton> sparse_newton() const;
+  /// A user's follower: the dense Jacobian J = [0 I; P ∂a/∂q P ∂a/∂v] of the native system
+  /// from its acceleration_jacobian (empty if it has none). `held` (read at every call; null:
+  /// none): the contacts held at the acceleration level inside f, a = a_free + M⁻¹T_SᵀF_S with
+  /// F_S = W_SS⁺(Ẍ_C,S − T_S a_free), so P = I − M⁻¹T_Sᵀ W_SS⁺ T_S; else P = I.
+  std::function<void(double, const double*, Eigen::MatrixXd&)> dense_jacobian(const std::vector<int>* held) const;
 
   // ---- geometry and forces
   /// The cam's lift above its base circle at t: X = X_C − min_θ X_C, Ẋ_C, Ẍ_C. Inside
