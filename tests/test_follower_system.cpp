@@ -70,6 +70,12 @@ CamMotion lift(const Scene& s, double t) {
   return c;
 }
 
+// The rows a run emits.
+struct KeepRows : Observer {
+  std::vector<HistoryRow> rows;
+  void on_row(const HistoryRow& r) override { rows.push_back(r); }
+};
+
 struct Case {
   ContactModel model;
   Integrator integ;
@@ -82,10 +88,7 @@ TEST_P(UserFollower, HeldForceIsTheClosedForm) {
   const auto f = std::make_shared<CubicSpringFollower>();
   Scene s = cam_scene(5.0, c.model, c.integ);
   s.run.t_end = 0.2;  // one revolution
-  struct Keep : Observer {
-    std::vector<HistoryRow> rows;
-    void on_row(const HistoryRow& r) override { rows.push_back(r); }
-  } keep;
+  KeepRows keep;
   Simulator sim(s, f);
   const Summary sum = sim.run(&keep);
   ASSERT_TRUE(sum.finished) << sum.message;
@@ -178,10 +181,7 @@ TEST(UserFollower, CvodeUsesTheFollowersJacobian) {
     s.run.t_end = 0.05;
     Simulator sim(s, f);
     const long calls_before = f->jacobian_calls;
-    struct Rows : Observer {
-      std::vector<HistoryRow> rows;
-      void on_row(const HistoryRow& r) override { rows.push_back(r); }
-    } rows;
+    KeepRows rows;
     const Summary sum = sim.run(&rows);
     ASSERT_TRUE(sum.finished) << sum.message;
     EXPECT_GT(f->jacobian_calls, calls_before) << to_string(m);

@@ -302,11 +302,8 @@ void NetworkEvent::enter_segment() {
     // explicit method's first stage is the last one's right-hand side, a BDF history the
     // old segment's: their error estimate does not fall with h across a jump).
     settle_active(right);
-    const double th = drive_.theta(t_);
-    if (!in_take_up(t_))
-      for (int j = 0; j < m_; ++j)
-        if (active_[j]) sample_contact(j, F_[j], angle_deg_mod360(th));
-    if (active_[mk_.primary()]) designer_.sample_force(t_, th, F_[mk_.primary()]);
+    for (int j = 0; j < m_; ++j)
+      if (active_[j]) sample_held_force(j, t_, F_[j]);
     restart();
   } else if (restart_at_breaks_ && int(set_.size()) < n_) {
     restart();  // a cam breakpoint under held contacts, with unknowns they leave free (header)

@@ -248,10 +248,9 @@ class NetworkLee final : public NetworkRun {
       return hf_[j];
     };
     const Sample m = golden_min(force, double(k - 1) / kSwitchSamples, double(k + 1) / kSwitchSamples, 30);
-    const double tau = s.t0 + m.x * hs, F = std::max(m.f, 0.0), th = drive_.theta(tau);
+    const double tau = s.t0 + m.x * hs, F = std::max(m.f, 0.0);
     least_[j] = std::min(least_[j], F);
-    if (!in_take_up(tau)) sample_contact(j, F, angle_deg_mod360(th));
-    if (j == mk_.primary()) designer_.sample_force(tau, th, F);
+    sample_held_force(j, tau, F);
   }
 
   // A bilateral contact (holonomic) whose force turns tensile inside the accepted step:

@@ -338,6 +338,12 @@ bool NetworkRun::in_take_up(double t) const {
   return false;
 }
 
+void NetworkRun::sample_held_force(int j, double t, double F) {
+  const double th = drive_.theta(t);
+  if (!in_take_up(t)) sample_contact(j, F, angle_deg_mod360(th));
+  if (j == mk_.primary()) designer_.sample_force(t, th, F);
+}
+
 void NetworkRun::sample_contact(int j, double F, double theta_deg) {
   ContactResult& cr = sum_.contacts[j];
   if (std::isnan(cr.min_force) || F < cr.min_force) {
@@ -468,11 +474,7 @@ Summary NetworkRun::run() {
   settle_active(cm0);
   prepare_start();
   for (int j = 0; j < m_; ++j)  // the start's forces are samples of the least force too
-    if (active_[j]) {
-      const double th = drive_.theta(0.0);
-      if (!in_take_up(0.0)) sample_contact(j, F_[j], angle_deg_mod360(th));
-      if (j == mk_.primary()) designer_.sample_force(0.0, th, F_[j]);
-    }
+    if (active_[j]) sample_held_force(j, 0.0, F_[j]);
   V0_ = potential(0.0, y_);
   E0_ = mk_.kinetic_energy(y_.data() + n_) + V0_;
   emit_row();

@@ -148,6 +148,9 @@ class NetworkRun {
   void sample_side_loads(double theta);
   /// A force sample of closed contact j for its ContactResult::min_force.
   void sample_contact(int j, double F, double theta_deg);
+  /// The held force F of contact j at t as a sample of its least force (outside the lash
+  /// take-up window) and, for the primary contact, of the designer's force statistics.
+  void sample_held_force(int j, double t, double F);
   void record_event(EventKind type, int contact, double v, double impulse = 0.0,
                     double t_event = NAN);
   /// After an accepted step (state updated): dW the cam's work over the step, P_prev the
