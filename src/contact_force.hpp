@@ -22,14 +22,9 @@ namespace camdyn {
 class ContactForce {
  public:
   virtual ~ContactForce() = default;
-  /// F at time t for the contact node's displacement q₀ and velocity v₀.
+  /// F at time t for the contact node's displacement q₀ and velocity v₀ (Lee's force
+  /// shapes do not depend on the state: the Newton matrix has no contact term).
   virtual double force(double t, double q0, double v0) const = 0;
-  /// ∂F/∂q₀ and ∂F/∂v₀ (the implicit engines' Newton matrix); zero unless the force
-  /// depends on the state.
-  virtual void derivatives(double /*t*/, double /*q0*/, double /*v0*/, double* dFdq, double* dFdv) const {
-    *dFdq = 0.0;
-    *dFdv = 0.0;
-  }
 };
 
 /// Lee's force over the step [t0, t0 + h]:

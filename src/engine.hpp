@@ -76,26 +76,11 @@ class Engine {
   /// One step of exactly h from (t, y); y_out = state at t + h. Returns the WRMS norm of
   /// the local error estimate (≤ 1: acceptable), 0 if !estimates_error().
   virtual double step(double t, const Eigen::VectorXd& y, double h, Eigen::VectorXd& y_out) = 0;
-  /// True if step() maps the contact force's shape parameters affinely to the end state
-  /// and to the local error estimate, exactly up to round-off, for a fixed h (one-step
-  /// engines with a fixed stage structure: ERK, and DIRK with its linear stage solves).
-  /// CVODE chooses its internal steps from the solution: not exactly affine.
-  virtual bool affine_steps() const { return estimates_error(); }
-  /// true: the right-hand side drops f₀ (the preload), so that a step from y = 0 gives the
-  /// follower's response to the contact force alone (Lee's shape responses, exact also
-  /// for steps whose response is far below the round-off of the state).
-  void set_homogeneous(bool on) { homogeneous_ = on; }
-  /// The unweighted local error estimate of the last step() (empty if none).
-  const Eigen::VectorXd& local_error() const { return local_error_; }
   /// WRMS norm with the engine's tolerances, weights from y.
   double wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const;
 
-  /// Engine's own proposal for the next step after step() (0 = no opinion).
-  virtual double suggested_step() const { return 0.0; }
-
   /// The force on node 0 from now on (borrowed: it must outlive its use; nullptr: F = 0).
   void set_contact(const ContactForce* force) { contact_ = force; }
-  const ContactForce* contact() const { return contact_; }
 
   const EngineStats& stats() const { return stats_; }
 
@@ -114,7 +99,6 @@ class Engine {
   const ContactForce* contact_ = nullptr;
   EngineStats stats_;
   Eigen::VectorXd work_, local_error_;
-  bool homogeneous_ = false;
 };
 
 /// Make the engine `solver` asks for. trial = true for Lee's trial steps (tighter CVODE

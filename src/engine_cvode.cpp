@@ -59,8 +59,8 @@ class CvodeEngine final : public Engine {
                  "CVodeSStolerances");
     }
     if (spec.max_step > 0) check_flag(CVodeSetMaxStep(mem, spec.max_step), "CVodeSetMaxStep");
-    // Our own direct solver for (I − γJ) x = b (SchurLinearSolver); CVODE hands γ (and
-    // the state, for the penalty Jacobian) to the linear-system function.
+    // Our own direct solver for (I − γJ) x = b (SchurLinearSolver); CVODE hands γ to the
+    // linear-system function.
     check_flag(CVodeSetLinearSolver(mem, sls_.ls(), sls_.placeholder()), "CVodeSetLinearSolver");
     check_flag(CVodeSetLinSysFn(mem, &CvodeEngine::linsys), "CVodeSetLinSysFn");
   }
@@ -70,7 +70,6 @@ class CvodeEngine final : public Engine {
   const char* name() const override { return "cvode-bdf"; }
   int error_order() const override { return 2; }
   bool estimates_error() const override { return false; }
-  double suggested_step() const override { return hcur_; }
 
   // A trial step of exactly h: CVODE integrates [t, t+h] under its own error control,
   // restarted from (t, y). Lee's iteration retakes the step with other force ramps and
@@ -96,7 +95,6 @@ class CvodeEngine final : public Engine {
     double h0 = 0;
     CVodeGetActualInitStep(mem_.get(), &h0);
     first_h_ = 2.0 * h0;  // start the next restart near the first step that worked
-    CVodeGetCurrentStep(mem_.get(), &hcur_);
     return 0.0;
   }
 
@@ -109,11 +107,11 @@ class CvodeEngine final : public Engine {
       return -1;
     }
   }
-  static int linsys(double t, N_Vector y, N_Vector, SUNMatrix, sunbooleantype, sunbooleantype* jcur,
+  static int linsys(double, N_Vector, N_Vector, SUNMatrix, sunbooleantype, sunbooleantype* jcur,
                     double gamma, void* ud, N_Vector, N_Vector, N_Vector) {
     try {
       auto* self = static_cast<CvodeEngine*>(ud);
-      self->sls_.prepare(self->contact_, t, N_VGetArrayPointer(y), gamma);
+      self->sls_.prepare(gamma);
       *jcur = SUNTRUE;
       return 0;
     } catch (...) {
@@ -125,7 +123,7 @@ class CvodeEngine final : public Engine {
   NVec y_;
   SchurLinearSolver sls_;
   std::unique_ptr<void, CvDel> mem_;
-  double hcur_ = 0, first_h_ = 0;
+  double first_h_ = 0;
 };
 
 }  // namespace

@@ -51,12 +51,13 @@ struct ModelEntries {
 
 // ---------------------------------------------------------------- Schur solver ---
 // The Newton systems of both implicit engines, (I − γJ) x = b with
-// J = [[0, I], [−M⁻¹K̃, −M⁻¹C̃]], through the n × n system
-//   S x_v = M b_v − γ K̃ b_u,   S = M + γC̃ + γ²K̃,   x_u = b_u + γ x_v.
+// J = [[0, I], [−M⁻¹K, −M⁻¹C]], through the n × n system
+//   S x_v = M b_v − γ K b_u,   S = M + γC + γ²K,   x_u = b_u + γ x_v.
 // S has the pattern of K (tridiagonal for a bar). KLU's symbolic analysis is done once
-// for that pattern; the numeric factorisation is redone only when (γ, ∂F/∂q₀, ∂F/∂v₀)
-// changed since the last one — Lee's trial steps retake the same step size several
-// times, and ARKODE asks for a setup at the first stage after every reset.
+// for that pattern; the numeric factorisation is redone only when γ changed since the
+// last one — Lee's trial steps retake the same step size several times, and ARKODE asks
+// for a setup at the first stage after every reset. (The contact force is a prescribed
+// shape over the step: it adds nothing to J.)
 class SchurSolver {
  public:
   SchurSolver(const FollowerModel& m, bool dense, EngineStats& stats)
@@ -64,24 +65,20 @@ class SchurSolver {
     if (!m.rigid()) S_ = m.K();  // copy of the shared pattern
   }
 
-  void setup(double g, double dFdq, double dFdv) {
-    if (factored_ && g == g_ && dFdq == dFdq_ && dFdv == dFdv_) return;  // S unchanged
+  void setup(double g) {
+    if (factored_ && g == g_) return;  // S unchanged
     g_ = g;
-    dFdq_ = dFdq;
-    dFdv_ = dFdv;
     factored_ = true;
     ++stats_.lin_setups;
     if (m_.rigid()) {
-      s_rigid_ = m_.m_rigid() + g * (m_.c_rigid() - dFdv) + g * g * (m_.k_rigid() - dFdq);
+      s_rigid_ = m_.m_rigid() + g * m_.c_rigid() + g * g * m_.k_rigid();
       return;
     }
     const ModelEntries e{m_};
     double* x = S_.valuePtr();
     for (long j = 0; j < n_; ++j)
       for (long p = e.begin(j); p < e.end(j); ++p) {
-        double v = e.M(p) + g * e.C(p) + g * g * e.K(p);
-        if (j == 0 && e.row(p) == 0) v -= g * dFdv + g * g * dFdq;
-        x[p] = v;
+        x[p] = e.M(p) + g * e.C(p) + g * g * e.K(p);
       }
     lu_.factor(S_);
   }
@@ -91,7 +88,7 @@ class SchurSolver {
     double* bu = b;
     double* bv = b + n;
     if (m_.rigid()) {
-      const double rhs = m_.m_rigid() * bv[0] - g_ * (m_.k_rigid() - dFdq_) * bu[0];
+      const double rhs = m_.m_rigid() * bv[0] - g_ * m_.k_rigid() * bu[0];
       bv[0] = rhs / s_rigid_;
       bu[0] += g_ * bv[0];
       return;
@@ -99,7 +96,6 @@ class SchurSolver {
     Eigen::Map<Eigen::VectorXd> U(bu, n), V(bv, n);
     rhs_.noalias() = m_.M() * V;
     rhs_.noalias() -= g_ * (m_.K() * U);
-    rhs_[0] += g_ * dFdq_ * U[0];
     lu_.solve(rhs_.data());
     V = rhs_;
     U += g_ * V;
@@ -110,36 +106,29 @@ class SchurSolver {
   long n_;
   EngineStats& stats_;
   bool factored_ = false;
-  double g_ = 0, dFdq_ = 0, dFdv_ = 0, s_rigid_ = 1;
+  double g_ = 0, s_rigid_ = 1;
   SparseMatrix S_;
   Eigen::VectorXd rhs_;
   detail::SparseLu lu_;
 };
 
 // The SchurSolver as a SUNDIALS linear solver (detail::CustomLinearSolver). The engine's
-// linear-system function hands over γ and the contact law's derivatives (prepare), the
-// solver's setup factorises (if they changed), its solve applies (I − γJ)⁻¹.
+// linear-system function hands over γ (prepare), the solver's setup factorises (if it
+// changed), its solve applies (I − γJ)⁻¹.
 class SchurLinearSolver {
  public:
   SchurLinearSolver(const FollowerModel& m, bool dense, EngineStats& stats, SUNContext ctx)
-      : schur_(m, dense, stats), n_(m.n()),
-        cls_(ctx, [this] { schur_.setup(gamma_, dFdq_, dFdv_); },
+      : schur_(m, dense, stats),
+        cls_(ctx, [this] { schur_.setup(gamma_); },
              [this](double* x) { schur_.solve(x); }) {}
   SUNLinearSolver ls() { return cls_.ls(); }
   SUNMatrix placeholder() { return cls_.placeholder(); }
-  // From the linear-system function: the system I − γJ at (t, y) under the contact force f.
-  void prepare(const ContactForce* f, double t, const double* y, double gamma) {
-    if (f)
-      f->derivatives(t, y[0], y[n_], &dFdq_, &dFdv_);
-    else
-      dFdq_ = dFdv_ = 0.0;
-    gamma_ = gamma;
-  }
+  // From the linear-system function: the system I − γJ for this γ.
+  void prepare(double gamma) { gamma_ = gamma; }
 
  private:
   SchurSolver schur_;
-  long n_;
-  double gamma_ = 0, dFdq_ = 0, dFdv_ = 0;
+  double gamma_ = 0;
   detail::CustomLinearSolver cls_;
 };
 

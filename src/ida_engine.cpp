@@ -357,7 +357,6 @@ void IdaHeldSet::init(double t0, const Eigen::VectorXd& y0, const Eigen::VectorX
   // their own scales (a force and a velocity), so that round-off of order c_j·ε|q| in μ
   // does not fail it.
   const double rtol = d.spec.rtol, atol = d.spec.atol;
-  const double Fs = std::max(Fmax, mc.force_scale());
   N_VConst(atol, d.atol.get());
   double* av = N_VGetArrayPointer(d.atol.get());
   for (int j = 0; j < k; ++j) {
