@@ -3,7 +3,7 @@
 //   M q̈ + K q = f₀,  N two-node bar elements, n = N + 1 nodes, 2n unknowns.
 //
 // CPU per step for N = 10², 10³, 10⁴, 10⁵ on each engine of the mechanism (arkode-erk,
-// arkode-dirk and cvode-bdf with the sparse Schur complement on KLU, src/ode_engine.cpp).
+// arkode-dirk and cvode-bdf with the sparse Schur complement on KLU, src/engine/ode_engine.cpp).
 // With KLU the cost must grow linearly in N.
 // A plain timer program (one process, one run: ratios are measured together).
 //   usage: bench_engines [max_N=100000] [steps=200]
@@ -16,8 +16,8 @@
 #include <memory>
 
 #include "camdyn/model.hpp"
-#include "mechanism.hpp"
-#include "ode_engine.hpp"
+#include "mechanism/mechanism.hpp"
+#include "engine/ode_engine.hpp"
 
 using namespace camdyn;
 
@@ -36,8 +36,8 @@ int main(int argc, char** argv) {
         s.solver.rtol = 1e-6;
         s.solver.atol = 1e-9;
         s.contact.model = integ == Integrator::CvodeBdf ? ContactModel::Event : ContactModel::Lee;
-        // The bar as a one-contact mechanism (src/mechanism_follower.cpp) on the engines
-        // every method runs on (src/ode_engine.cpp), no contact force.
+        // The bar as a one-contact mechanism (src/mechanism/follower_builder.cpp) on the engines
+        // every method runs on (src/engine/ode_engine.cpp), no contact force.
         const Mechanism mech(s);
         const int n = mech.n();
         OdeSystem sys;
@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
         sn->T = mech.T();
         sys.newton = sn;
         sys.linear = true;
-        sys.max_order = 2;  // an undamped bar (as the methods' policy, network_event.cpp)
+        sys.max_order = 2;  // an undamped bar (as the methods' policy, methods/event.cpp)
         const bool native = integ == Integrator::CvodeBdf;
         auto eng = OdeEngine::make(integ, s.solver, sys, /*trial=*/!native);
         Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n), y1(2 * n);

@@ -5,7 +5,7 @@
 //   arkode-dirk, cvode-bdf): run Lee with an Observer recording each accepted step's
 //   velocity-level ramp (Observer::on_lee_step), then replay: a fresh engine of the same
 //   kind takes exactly those steps with those ramps (StepRamp), once each, no
-//   iteration (src/replay.cpp). Both timed with std::clock in this process (Lee: the
+//   iteration (src/legacy/replay.cpp). Both timed with std::clock in this process (Lee: the
 //   whole Simulator::run, engine construction and output rows included; replay: engine
 //   construction and the steps); median of R repeats (a Lee run over 5 s CPU is timed
 //   once, with its replay).
@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "camdyn/simulator.hpp"
-#include "replay.hpp"
+#include "legacy/replay.hpp"
 
 using namespace camdyn;
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Lee on cvode-bdf (src/contact/network_lee_cvode.cpp since issue 23; the tables in
+# Lee on cvode-bdf (src/contact/methods/lee_cvode.cpp since issue 23; the tables in
 # docs/background/method_notes.md were measured with the deleted lee_multistep.cpp) side by side with Lee on the one-step
 # engines and the event-driven method, same scene and tolerance, one process after
 # another on this machine: CPU (Summary::cpu_seconds), steps, CVODE restarts, max force.

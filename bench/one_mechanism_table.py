@@ -7,7 +7,7 @@ alike, and keeps the best CPU time of each:
 
   before = --before-bin: an older camdyn CLI (e.g. one built at 8adb79a, where single
            followers still ran on the single-follower stack — FollowerModel,
-           src/engines.cpp, lee_located.cpp / lee_multistep.cpp — deleted since),
+           src/legacy/engines.cpp, lee_located.cpp / lee_multistep.cpp — deleted since),
   after  = --bin (every scene on the mechanism);
   rows: A, A7, B1, B2, the stiff bar, B1 with 1000 elements, OHC and OHV one revolution.
 

@@ -14,7 +14,7 @@
 // step map is not affine; penalty and event-driven run as well. An implicit engine uses
 // force_jacobian() when given, SUNDIALS' difference quotients otherwise.
 //
-// Example (C++): tests/test_follower_system.cpp and README "Bring your own follower".
+// Example (C++): tests/mechanism/test_follower_system.cpp and README "Bring your own follower".
 #pragma once
 
 #include <cmath>

@@ -213,7 +213,7 @@ struct SolverSpec {
   ///  mechanism: the follower built as a one-contact Mechanism (sparse M, C, K, contact row
   ///             T = e₀ᵀ) and run by the network methods and engines — the one stack every
   ///             method but Lee's classic step runs on;
-  ///  follower:  the single-follower stack (FollowerModel, src/engines.cpp), which runs
+  ///  follower:  the single-follower stack (FollowerModel, src/legacy/engines.cpp), which runs
   ///             Lee's classic step only, kept as the bench's comparison;
   ///  auto:      the mechanism; the follower stack for contact.lee_step = "classic".
   /// Networks and user followers always run on the mechanism stack.

@@ -27,7 +27,7 @@ struct SceneKeyInfo {
 /// Every key of the scene's key table (top-level tables in file order), then the keys of
 /// [[nodes]], [[elements]] and [[contacts]]. Defaults come from the default-constructed
 /// specs, rules and types from the key table, units and descriptions from one documentation
-/// table kept next to it (src/scene_keys.cpp).
+/// table kept next to it (src/scene/keys.cpp).
 /// @throws std::logic_error when the documentation table and the key table disagree (a key
 ///         without documentation or documentation of no key): a build-time mistake, which
 ///         the test suite catches.

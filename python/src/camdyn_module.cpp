@@ -430,7 +430,7 @@ class PyFollower final : public FollowerSystem {
 };
 
 /// A follower written in C++ (the test's cubic hardening valve spring,
-/// tests/test_follower_system.cpp): the native reference the Python follower's speed is
+/// tests/mechanism/test_follower_system.cpp): the native reference the Python follower's speed is
 /// measured against (tests/python/test_follower.py).
 struct CubicSpringFollower final : FollowerSystem {
   double m, k, k3, P;
@@ -720,7 +720,7 @@ PYBIND11_MODULE(_camdyn, m) {
       .def_property_readonly("size", &FollowerSystem::size);
   py::class_<CubicSpringFollower, FollowerSystem, std::shared_ptr<CubicSpringFollower>>(
       m, "CubicSpringFollower",
-      "The cubic hardening valve spring follower of tests/test_follower_system.cpp, in C++ "
+      "The cubic hardening valve spring follower of tests/mechanism/test_follower_system.cpp, in C++ "
       "(r = -(P + k q + k3 q^3), M = m): the native reference for timing Python followers.")
       .def(py::init<double, double, double, double>(), py::arg("m"), py::arg("k"), py::arg("k3"),
            py::arg("P"));

@@ -1,5 +1,5 @@
 // camdyn — the contact LCP with the minimal-norm split (active_set.hpp has the maths).
-#include "active_set.hpp"
+#include "contact/active_set.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>

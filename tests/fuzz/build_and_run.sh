@@ -17,7 +17,7 @@ CXX="${CXX_FUZZ:-clang++}"
 mkdir -p "$OUT/corpus" "$OUT/artifacts"
 
 # toml++ is compiled from its headers here (toml_impl.cpp below) so the parser itself is
-# instrumented too; scene.cpp, scene_network.cpp and cam.cpp, cam_profiles.cpp (+ the cam geometry of issue 24:
+# instrumented too; scene.cpp, scene/network_reader.cpp and cam.cpp, cam_profiles.cpp (+ the cam geometry of issue 24:
 # follower_geometry, motion_law, motion_law_parse) need nothing else from the library.
 #
 # Known upstream bug, found by this fuzzer on the first minute: toml++ 3.3.0 (Debian's)

@@ -1,6 +1,6 @@
 """Bring your own follower from Python (issue 17): camdyn.run(scene, follower=obj).
 
-The follower is the one of tests/test_follower_system.cpp — a rigid follower (m) on a
+The follower is the one of tests/mechanism/test_follower_system.cpp — a rigid follower (m) on a
 progressive (cubic hardening) valve spring, r = −(P + k q + k₃ q³) — written as a plain
 Python class, against independent solutions from the circle cam's closed form
 (flat-faced follower, constant speed: X = e (1 + cos θ), θ = π + 2π f t, the lift above the

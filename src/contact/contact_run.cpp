@@ -1,0 +1,555 @@
+// camdyn — the run machinery of the network (several-contact) methods (contact_run.hpp).
+#include "contact/contact_run.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <stdexcept>
+
+#include "camdyn/initial_state.hpp"
+#include "contact/active_set.hpp"
+#include "cam/joints.hpp"  // one_sided_motion
+#include "legacy/run_context.hpp"  // StepFailure, Clock, fmt
+
+namespace camdyn {
+namespace detail {
+
+namespace {
+constexpr double kFloatLift = 0.01;  // a float: the cam above clearance + 1 % of its lift
+constexpr double kCheckGaps = 10.0;  // the step check's gap tolerance in tol_u
+}  // namespace
+
+ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
+                       const std::atomic<bool>* stop)
+    : sc_(sc), mech_(std::move(mech)), mk_(*mech_), cam_(sc.cam), drive_(sc.cam), obs_(obs),
+      stop_(stop), n_(mk_.n()), m_(mk_.m()), designer_(sc, cam_) {
+  sum_.scene = sc.title;
+  sum_.integrator = to_string(sc.solver.integrator);
+  sum_.contact_model = to_string(sc.contact.model);
+  sum_.model = mk_.description();
+  sum_.min_gap = INFINITY;
+  for (const MechanismContact& c : mk_.contacts()) {
+    sum_.contacts.emplace_back();
+    sum_.contacts.back().name = c.name;
+  }
+  unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
+  if (sc.cam.land_on_breaks) break_angles_ = cam_.breakpoints();
+  // The base circle, so that a cam contact's gap sees the lift X_C − X_base
+  // (cam_lift_base, include/camdyn/initial_state.hpp: cam.base_radius for a lift table,
+  // min over θ of X_C otherwise).
+  // A single follower's gap sees the cam's X_C itself (u_c = q₀, as on the follower stack).
+  if (!mk_.single_follower() && (sc.cam.profile == CamProfileKind::Lift || mk_.cam_contacts() > 0))
+    x_base_ = cam_lift_base(cam_, sc.cam);
+}
+
+std::vector<std::string> ContactRun::extra_columns(const MechanicalSystem& mech) {
+  std::vector<std::string> c;
+  if (mech.single_follower()) return c;  // the standard columns show its one contact
+  for (const MechanismContact& k : mech.contacts()) {
+    c.push_back("F_" + k.name);
+    c.push_back("gap_" + k.name);
+    c.push_back("in_" + k.name);
+  }
+  for (const std::string& nd : mech.node_names()) {
+    c.push_back("u_" + nd);
+    c.push_back("v_" + nd);
+  }
+  return c;
+}
+
+OdeSystem ContactRun::contact_system(ForceFn forces) {
+  OdeSystem sys;
+  sys.size = 2 * n_;
+  sys.rhs = [this, forces = std::move(forces)](double t, const double* y, double* yd) {
+    sys_y_ = Eigen::Map<const Eigen::VectorXd>(y, 2 * n_);
+    forces(t, sys_y_, sys_F_);
+    std::copy(y + n_, y + 2 * n_, yd);
+    mk_.acceleration(t, y, y + n_, sys_F_, yd + n_);
+  };
+  return sys;
+}
+
+std::shared_ptr<SparseNewton> ContactRun::sparse_newton() const {
+  const auto* mech = dynamic_cast<const Mechanism*>(&mk_);
+  if (!mech) return nullptr;
+  auto sn = std::make_shared<SparseNewton>();
+  sn->M = &mech->M();
+  sn->K = &mech->K();
+  sn->C = mech->damped() ? &mech->C() : nullptr;
+  sn->T = mk_.T();
+  return sn;
+}
+
+std::function<void(double, const double*, Eigen::MatrixXd&)> ContactRun::dense_jacobian(
+    const std::vector<int>* held) const {
+  Eigen::MatrixXd dq, dv;
+  const Eigen::VectorXd q0 = mk_.q0(), v0 = mk_.v0();
+  if (!mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq, dv)) return {};
+  return [this, held](double t, const double* y, Eigen::MatrixXd& J) {
+    Eigen::MatrixXd dadq, dadv;
+    mk_.acceleration_jacobian(t, y, y + n_, dadq, dadv);
+    const int k = held ? int(held->size()) : 0;
+    if (k > 0) {
+      const std::vector<int>& S = *held;
+      Eigen::MatrixXd MT(n_, k), Ts(k, n_), Wss(k, k);
+      for (int i = 0; i < k; ++i) {
+        MT.col(i) = mk_.MinvTt().col(S[std::size_t(i)]);
+        Ts.row(i) = mk_.T().row(S[std::size_t(i)]);
+        for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(S[std::size_t(i)], S[std::size_t(l)]);
+      }
+      const Eigen::MatrixXd G = MT * Wss.completeOrthogonalDecomposition().solve(Ts);
+      dadq -= G * dadq;
+      dadv -= G * dadv;
+    }
+    J.setZero();
+    J.topRightCorner(n_, n_).setIdentity();
+    J.bottomLeftCorner(n_, n_) = dadq;
+    J.bottomRightCorner(n_, n_) = dadv;
+  };
+}
+
+CamMotion ContactRun::cam_at(double t) const {
+  // At a breakpoint that starts (ends) the window: the segment after (before) it. Only the
+  // window's breakpoint ends can be within 1e-9 rad of θ(t) (steps land on breakpoints).
+  int side = 0;
+  if (!std::isnan(win_lo_) || !std::isnan(win_hi_)) {
+    const double dlo = std::isnan(win_lo_) ? INFINITY : std::abs(t - win_lo_);
+    const double dhi = std::isnan(win_hi_) ? INFINITY : std::abs(t - win_hi_);
+    side = dlo <= dhi ? 1 : -1;
+  }
+  // The last few times asked for are asked again (a row: its state, forces, energies).
+  for (const CamCache& c : cam_cache_)
+    if (c.t == t && c.side == side) return c.m;
+  CamMotion m;  // on a C0 joint: the motion before it, or after it once passed (joint_t_)
+  const bool on_joint = !joints_.empty() && joints_.at(cam_, t, t == joint_t_ ? 1 : -1, &m);
+  if (!on_joint && !(side && one_sided_motion(cam_, drive_, break_angles_, t, side, &m)))
+    m = cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
+  m.X -= x_base_;
+  cam_cache_[cam_next_] = {t, side, m};
+  cam_next_ = (cam_next_ + 1) % kCamCache;
+  return m;
+}
+double ContactRun::gap(int j, const Eigen::VectorXd& y, const CamMotion& cm) const {
+  const MechanismContact& c = mk_.contacts()[j];
+  return c.t.dot(y.head(n_)) + c.g0 - (c.cam ? cm.X : 0.0);
+}
+double ContactRun::gap_rate(int j, const Eigen::VectorXd& y, const CamMotion& cm) const {
+  const MechanismContact& c = mk_.contacts()[j];
+  return c.t.dot(y.tail(n_)) - (c.cam ? cm.Xdot : 0.0);
+}
+double ContactRun::cam_acc(int j, const CamMotion& cm) const {
+  return mk_.contacts()[j].cam ? cm.Xddot : 0.0;
+}
+void ContactRun::acceleration(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F,
+                              Eigen::VectorXd& a) const {
+  for (int i = 0; i < 2; ++i) {
+    const AccCache& c = acc_cache_[(acc_last_ + i) % 2];
+    if (c.t == t && c.F.size() == F.size() && c.y.size() == y.size() && c.F == F && c.y == y) {
+      a = c.a;
+      acc_last_ = (acc_last_ + i) % 2;
+      return;
+    }
+  }
+  acc_last_ = (acc_last_ + 1) % 2;
+  AccCache& c = acc_cache_[acc_last_];
+  c.t = NAN;  // invalid until filled (a user's force may throw)
+  c.a.resize(n_);
+  mk_.acceleration(t, y.data(), y.data() + n_, F, c.a.data());
+  c.t = t;
+  c.y = y;
+  c.F = F;
+  a = c.a;
+}
+
+Eigen::VectorXd ContactRun::held_forces(double t, const Eigen::VectorXd& y, const CamMotion& cm,
+                                        const std::vector<int>& set, Eigen::VectorXd* margin,
+                                        bool* ok) const {
+  Eigen::VectorXd F;
+  held_forces_into(t, y, cm, set, F, margin, ok);
+  return F;
+}
+
+void ContactRun::held_forces_into(double t, const Eigen::VectorXd& y, const CamMotion& cm,
+                                  const std::vector<int>& set, Eigen::VectorXd& F, Eigen::VectorXd* margin,
+                                  bool* ok) const {
+  F.setZero(m_);
+  if (margin) margin->setZero(m_);
+  if (ok) *ok = true;
+  if (set.empty()) return;
+  Eigen::VectorXd& Ta = hf_ta_;
+  mk_.contact_free_acceleration(t, y.data(), y.data() + n_, Ta);  // T a_free
+  const int k = int(set.size());
+  if (k == 1) {  // one held contact (a single follower): scalars, the same arithmetic
+    const int j = set[0];
+    const double W = mk_.W()(j, j), b = Ta[j] - cam_acc(j, cm);
+    if (!unilateral_) {
+      F[j] = -b / W;
+      if (margin) (*margin)[j] = F[j];
+      return;
+    }
+    double w = 0.0;
+    const bool good = solve_contact_lcp1(W, b, F[j], w);
+    if (ok) *ok = good;
+    if (margin) (*margin)[j] = F[j] - w / W;
+    return;
+  }
+  Eigen::MatrixXd Wss(k, k);
+  Eigen::VectorXd b(k);  // the gap accelerations without contact forces
+  for (int i = 0; i < k; ++i) {
+    b[i] = Ta[set[i]] - cam_acc(set[i], cm);
+    for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(set[i], set[l]);
+  }
+  if (!unilateral_) {  // holonomic: every contact held, pulls allowed
+    const Eigen::VectorXd Fs = k == 1 ? Eigen::VectorXd(-b / Wss(0, 0))
+                                      : Eigen::VectorXd(Wss.completeOrthogonalDecomposition().solve(-b));
+    for (int i = 0; i < k; ++i) F[set[i]] = Fs[i];
+    if (margin)
+      for (int i = 0; i < k; ++i) (*margin)[set[i]] = Fs[i];
+    return;
+  }
+  // complementarity (active_set.hpp): an open-going contact carries no force, redundant
+  // ones share by the minimal norm
+  const ContactLcpResult r = solve_contact_lcp(Wss, b);
+  if (ok) *ok = r.ok;
+  for (int i = 0; i < k; ++i) F[set[i]] = r.F[i];
+  if (margin)
+    for (int i = 0; i < k; ++i) (*margin)[set[i]] = r.F[i] - r.w[i] / Wss(i, i);
+}
+
+std::vector<int> ContactRun::active_list() const {
+  std::vector<int> a;
+  for (int j = 0; j < m_; ++j)
+    if (active_[j]) a.push_back(j);
+  return a;
+}
+
+double ContactRun::potential(double t, const Eigen::VectorXd& y) const {
+  return mk_.potential_energy(y.data()) + contact_potential(t, y.data());
+}
+double ContactRun::dissipation_power(double t, const Eigen::VectorXd& y) const {
+  return mk_.damping_power(y.data() + n_) + contact_dissipation(t, y);
+}
+double ContactRun::cam_power(const Eigen::VectorXd& F, const CamMotion& cm) const {
+  double p = 0.0;
+  for (int j = 0; j < m_; ++j)
+    if (mk_.contacts()[j].cam) p += F[j] * cm.Xdot;
+  return p;
+}
+
+void ContactRun::emit_row() { emit_row_at(t_, y_, F_, active_, work_, dissipated_); }
+
+void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F,
+                             const std::vector<char>& active, double W, double D) {
+  const int p = mk_.primary();
+  const CamMotion cm = cam_at(t);
+  Eigen::VectorXd a;
+  acceleration(t, y, F, a);
+  const MechanismContact& c = mk_.contacts()[p];
+  HistoryRow r;
+  r.t = t;
+  r.theta = drive_.theta(t);
+  r.u_c = c.t.dot(y.head(n_)) + c.g0;
+  r.v_c = c.t.dot(y.tail(n_));
+  r.a_c = c.t.dot(a);
+  r.contact_force = F[p];
+  r.gap = gap(p, y, cm);
+  r.in_contact = active[p] ? 1 : 0;
+  r.kinetic = mk_.kinetic_energy(y.data() + n_);
+  r.potential = potential(t, y) - V0_;
+  r.work_cam = W;
+  r.dissipated = D;
+  r.extra.reserve(3 * m_ + 2 * mk_.node_names().size());
+  for (int j = 0; j < m_ && !mk_.single_follower(); ++j) {
+    r.extra.push_back(F[j]);
+    r.extra.push_back(gap(j, y, cm));
+    r.extra.push_back(active[j] ? 1.0 : 0.0);
+  }
+  const Eigen::VectorXd u = mk_.L() * y.head(n_), v = mk_.L() * y.tail(n_);
+  for (Eigen::Index i = 0; i < u.size(); ++i) {
+    r.extra.push_back(u[i]);
+    r.extra.push_back(v[i]);
+  }
+  if (sc_.run.designer_columns) {
+    double Fc = 0.0;  // the cam's force: Σ over the cam contacts (their axial components)
+    for (int j = 0; j < m_; ++j)
+      if (mk_.contacts()[j].cam) Fc += F[j];
+    design_cols_.append(cam_.evaluate(r.theta), Fc, drive_.omega(t), r.extra);
+  }
+  if (!in_take_up(t))
+    for (int j = 0; j < m_; ++j)
+      if (active[j]) sample_contact(j, F[j], angle_deg_mod360(r.theta));
+  last_row_t_ = t;
+  if (obs_ && obs_->on_output(r) == ObserverAction::Stop) observer_stop_ = true;
+}
+
+void ContactRun::record_event(EventKind type, int contact, double v, double impulse, double t_event) {
+  const double te = std::isnan(t_event) ? t_ : t_event;
+  ContactEvent e{te, to_string(type), v, drive_.theta(te), impulse, mk_.contacts()[contact].name, type};
+  // The designer results follow the primary contact (the cam's). A cam contact with lash
+  // opens at the end of every lift event as the cam returns to its base circle, a few µm
+  // above the clearance (the chain's deflection under load): only a separation while the
+  // cam is lifted past the clearance by more than kFloatLift of its lift is a float (a
+  // jump: first_separation_theta_deg, camdyn jump).
+  if (contact == mk_.primary()) {
+    const MechanismContact& c = mk_.contacts()[contact];
+    const bool on_lift = !c.cam || cam_at(te).X > c.g0 + kFloatLift * cam_.lift();
+    if (e.type != EventKind::Separation || on_lift) designer_.event(e);
+  }
+  sum_.events.push_back(e);
+  ContactResult& cr = sum_.contacts[contact];
+  const double th = angle_deg_mod360(e.theta);
+  if (type == EventKind::Separation) {
+    ++cr.separations;
+    if (std::isnan(cr.first_separation_theta_deg)) cr.first_separation_theta_deg = th;
+    if (!in_take_up(te)) sample_contact(contact, 0.0, th);
+  } else if (type == EventKind::Impact) {
+    ++cr.impacts;
+    if (std::isnan(cr.first_impact_theta_deg)) cr.first_impact_theta_deg = th;
+    if (std::isnan(cr.max_impact_theta_deg) || v > cr.max_impact_velocity) {
+      cr.max_impact_velocity = v;
+      cr.max_impact_theta_deg = th;
+    }
+  }
+  if (obs_) obs_->on_event(e);
+}
+
+void ContactRun::sample_side_loads(double theta) {
+  bool any = false;
+  for (int j = 0; j < m_ && !any; ++j) any = mk_.contacts()[j].cam && active_[j];
+  if (!any) return;
+  const double tan_phi = std::tan(cam_.evaluate(theta).pressure_angle);
+  for (int j = 0; j < m_; ++j) {
+    if (!mk_.contacts()[j].cam || !active_[j]) continue;
+    ContactResult& cr = sum_.contacts[j];
+    const double side = std::abs(F_[j] * tan_phi);
+    if (std::isnan(cr.max_side_load) || side > cr.max_side_load) {
+      cr.max_side_load = side;
+      cr.max_side_load_theta_deg = angle_deg_mod360(theta);
+    }
+  }
+}
+
+bool ContactRun::in_take_up(double t) const {
+  const double X = cam_at(t).X, d = kFloatLift * cam_.lift();
+  for (const MechanismContact& c : mk_.contacts())
+    if (c.cam && std::abs(X - c.g0) <= d) return true;
+  return false;
+}
+
+void ContactRun::sample_held_force(int j, double t, double F) {
+  const double th = drive_.theta(t);
+  if (!in_take_up(t)) sample_contact(j, F, angle_deg_mod360(th));
+  if (j == mk_.primary()) designer_.sample_force(t, th, F);
+}
+
+void ContactRun::sample_contact(int j, double F, double theta_deg) {
+  ContactResult& cr = sum_.contacts[j];
+  if (std::isnan(cr.min_force) || F < cr.min_force) {
+    cr.min_force = std::max(F, 0.0);
+    cr.min_force_theta_deg = theta_deg;
+  }
+}
+
+ContactRun::StepEnergy ContactRun::step_energy(
+    double t0, double t1, const std::function<void(double, Eigen::VectorXd&)>& state,
+    const std::function<void(double, const Eigen::VectorXd&, const CamMotion&, Eigen::VectorXd&)>& forces) const {
+  static const double xg[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+  static const double wg[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  StepEnergy e;
+  const double h = t1 - t0;
+  if (!(h > 0)) return e;
+  Eigen::VectorXd &y = se_y_, &F = se_F_;
+  y.resize(2 * n_);
+  F.resize(m_);
+  for (int g = 0; g < 3; ++g) {
+    const double tau = t0 + 0.5 * h * (1.0 + xg[g]);
+    state(tau, y);
+    const CamMotion cm = cam_at(tau);
+    forces(tau, y, cm, F);
+    e.work += 0.5 * h * wg[g] * cam_power(F, cm);
+    e.dissipated += 0.5 * h * wg[g] * dissipation_power(tau, y);
+  }
+  return e;
+}
+
+void ContactRun::after_step(double h, double dW, double P_prev, double P_end, double dD) {
+  ++sum_.steps;
+  const CamMotion cm = cam_at(t_);
+  const double P = std::isnan(P_end) ? dissipation_power(t_, y_) : P_end;
+  work_ += dW;
+  dissipated_ += std::isnan(dD) ? 0.5 * h * (P_prev + P) : dD;
+  for (int j = 0; j < m_; ++j) {
+    const double g = gap(j, y_, cm);
+    sum_.min_gap = std::min(sum_.min_gap, g);
+    sum_.max_penetration = std::max(sum_.max_penetration, -g);
+    sum_.max_contact_force = std::max(sum_.max_contact_force, F_[j]);
+  }
+  check_complementarity(cm);
+  for (int j = 0; j < m_ && !unilateral_ && sum_.first_tensile_time < 0; ++j)
+    if (active_[j] && F_[j] < 0.0) {  // a bilateral contact pulls: where a follower would leave
+      sum_.first_tensile_time = t_;
+      record_event(EventKind::Tensile, j, 0.0);
+    }
+  const int p = mk_.primary();
+  const MechanismContact& c = mk_.contacts()[p];
+  const double th = drive_.theta(t_);
+  designer_.step(t_, th, c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.tail(n_)), contact_acceleration(p), gap(p, y_, cm));
+  sample_side_loads(th);
+  if (active_[p]) designer_.sample_force(t_, th, F_[p]);
+  if (out_dt() <= 0.0) {
+    emit_row();
+  } else {
+    while (!observer_stop_ && next_out_ * out_dt() <= t_ * (1 + 1e-12) + 1e-300 &&
+           next_out_ * out_dt() <= sc_.run.t_end * (1 + 1e-12)) {
+      const double to = double(next_out_) * out_dt();
+      ++next_out_;
+      if (!(to < t_ && dense_row_at(to))) emit_row();
+    }
+    if (!observer_stop_ && t_ >= sc_.run.t_end && last_row_t_ < t_) emit_row();
+  }
+  if (observer_stop_) throw StepFailure(Termination::StoppedByObserver, "stopped by observer");
+  if (stop_ && stop_->load()) throw StepFailure(Termination::StoppedByCaller, stop_reason_);
+  if (sum_.steps + sum_.rejected_steps > sc_.run.max_steps)
+    throw StepFailure(Termination::MaxSteps, "run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
+  if (!y_.allFinite() || !F_.allFinite()) throw StepFailure(Termination::NonFinite, "non-finite state");
+  if (obs_ && (sum_.steps & 255) == 0) obs_->on_progress(t_, sc_.run.t_end, sum_.steps);
+}
+
+double ContactRun::contact_acceleration(int p) const {
+  if (!mk_.single_follower()) {
+    Eigen::VectorXd a;
+    acceleration(t_, y_, F_, a);
+    return mk_.contacts()[p].t.dot(a);
+  }
+  // T_p a = T_p a_free + W_p F: O(n) linear forms, no mass solve (the same value to round-off)
+  mk_.contact_free_acceleration(t_, y_.data(), y_.data() + n_, hf_ta_);
+  return hf_ta_[p] + mk_.W().row(p).dot(F_);
+}
+
+void ContactRun::check_complementarity(const CamMotion& cm) const {
+  // Tolerances: a closed contact's gap is held to tol_u by Lee's displacement level and
+  // drifts a little under the event method's acceleration level; kCheckGaps·tol_u allows
+  // that and still catches a contact pushing across an open gap or a node sinking into a
+  // stop by a visible amount. Penalty contacts penetrate by their law (F/k_p): only the
+  // force-on-open-gap check applies there (the law cannot violate it).
+  if (!unilateral_) return;
+  const double tol = kCheckGaps * sc_.contact.tol_u;
+  const double F_thr = 1e-9 * std::max(F_ref_, mk_.force_scale());
+  for (int j = 0; j < m_; ++j) {
+    const double g = gap(j, y_, cm);
+    // the message only when it is thrown (its formatting cost a run 5 % of its time)
+    auto where = [&] {
+      return "at t = " + fmt(t_) + " (cam angle " + fmt(angle_deg_mod360(drive_.theta(t_))) + " deg): contact '" +
+             mk_.contacts()[j].name + "' ";
+    };
+    if (F_[j] > F_thr && g > tol)
+      throw StepFailure(where() + "carries a force of " + fmt(F_[j]) + " N while its gap is open (" + fmt(g) +
+                        " > " + fmt(kCheckGaps) + " tol_u): complementarity violated");
+    if (penetration_checked() && -g > tol)
+      throw StepFailure(where() + "penetrates by " + fmt(-g) + " (> " + fmt(kCheckGaps) +
+                        " tol_u = " + fmt(tol) + ")");
+  }
+}
+
+double ContactRun::fit_step(double h, double t_next) const { return fit_step_size(sc_, t_, h, t_next); }
+double ContactRun::initial_step() const { return first_step_size(sc_); }
+double ContactRun::next_output_time() const { return output_time(sc_, next_out_); }
+
+Summary ContactRun::run() {
+  Clock clock;
+  y_.resize(2 * n_);
+  y_.head(n_) = mk_.q0();
+  y_.tail(n_) = mk_.v0();
+  t_ = 0.0;
+  F_ = Eigen::VectorXd::Zero(m_);
+  active_.assign(m_, 0);
+  // Closed contacts at t = 0 (gap ≤ 0 and not opening) start active with the forces of
+  // the acceleration level; the ones that would pull are released at once.
+  const CamMotion cm0 = cam_at(0.0);
+  const double gtol = 1e-12 * std::max(1.0, y_.head(n_).cwiseAbs().maxCoeff());
+  for (int j = 0; j < m_; ++j)
+    if (gap(j, y_, cm0) <= gtol && gap_rate(j, y_, cm0) <= gtol) active_[j] = 1;
+  settle_active(cm0);
+  prepare_start();
+  for (int j = 0; j < m_; ++j)  // the start's forces are samples of the least force too
+    if (active_[j]) sample_held_force(j, 0.0, F_[j]);
+  V0_ = potential(0.0, y_);
+  E0_ = mk_.kinetic_energy(y_.data() + n_) + V0_;
+  emit_row();
+  {
+    const int p = mk_.primary();
+    const MechanismContact& c = mk_.contacts()[p];
+    Eigen::VectorXd a;
+    acceleration(t_, y_, F_, a);
+    designer_.step(0.0, drive_.theta(0.0), c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.tail(n_)),
+                   c.t.dot(a), gap(p, y_, cm0));
+  }
+  next_out_ = 1;
+  auto end_run = [&](Termination kind, const char* what) {
+    sum_.finished = false;
+    sum_.termination = kind;
+    sum_.message = "at t = " + fmt(t_) + ": " + what;
+    if (last_row_t_ < t_ && !observer_stop_) emit_row();  // keep the last accepted state
+  };
+  run_to_end(sum_, end_run, [&] {
+    if (observer_stop_) throw StepFailure(Termination::StoppedByObserver, "stopped by observer");
+    run_method();
+  });
+  sum_.t_end = t_;
+  for (const auto& e : engines_) {
+    sum_.rhs_evals += e->stats().rhs_evals;
+    sum_.lin_setups += e->stats().lin_setups;
+    sum_.lin_analyses += e->stats().lin_analyses;
+    sum_.engine_restarts += e->stats().reinits;
+  }
+  sum_.cpu_seconds = clock.cpu();
+  sum_.wall_seconds = clock.wall();
+  if (!std::isfinite(sum_.min_gap)) sum_.min_gap = 0.0;
+  const double E = mk_.kinetic_energy(y_.data() + n_) + potential(t_, y_);
+  sum_.energy_residual = std::abs(work_ - (E - E0_) - dissipated_);
+  designer_.finish(sum_);
+  return sum_;
+}
+
+}  // namespace detail
+}  // namespace camdyn
+
+namespace camdyn {
+namespace detail {
+
+std::unique_ptr<ContactRun> make_network_lee(const Scene&, std::shared_ptr<const MechanicalSystem>, Observer*,
+                                             const std::atomic<bool>*);
+std::unique_ptr<ContactRun> make_network_penalty(const Scene&, std::shared_ptr<const MechanicalSystem>,
+                                                 Observer*, const std::atomic<bool>*);
+std::unique_ptr<ContactRun> make_network_event(const Scene&, std::shared_ptr<const MechanicalSystem>,
+                                               Observer*, const std::atomic<bool>*);
+std::unique_ptr<ContactRun> make_network_lee_cvode(const Scene&, std::shared_ptr<const MechanicalSystem>,
+                                                   Observer*, const std::atomic<bool>*);
+std::unique_ptr<ContactRun> make_network_ida(const Scene&, std::shared_ptr<const MechanicalSystem>, Observer*,
+                                             const std::atomic<bool>*);
+
+// The network methods: Lee's located step (lee; holonomic = Lee with contacts that never
+// release; on cvode-bdf Lee's levels inside CVODE's own step, methods/lee_cvode.cpp), the
+// penalty baseline, the event-driven method; on ida (validated: holonomic only) the held
+// contacts as a DAE (methods/holonomic_ida.cpp).
+std::unique_ptr<ContactRun> make_contact_method(const Scene& scene, std::shared_ptr<const MechanicalSystem> mech,
+                                                Observer* obs, const std::atomic<bool>* stop) {
+  if (scene.solver.integrator == Integrator::Ida) return make_network_ida(scene, std::move(mech), obs, stop);
+  switch (scene.contact.model) {
+    case ContactModel::Lee:
+    case ContactModel::Holonomic:
+      if (scene.solver.integrator == Integrator::CvodeBdf)
+        return make_network_lee_cvode(scene, std::move(mech), obs, stop);
+      return make_network_lee(scene, std::move(mech), obs, stop);
+    case ContactModel::Penalty:
+      return make_network_penalty(scene, std::move(mech), obs, stop);
+    case ContactModel::Event:
+      return make_network_event(scene, std::move(mech), obs, stop);
+  }
+  throw std::logic_error("no network method for this contact.model");
+}
+
+}  // namespace detail
+}  // namespace camdyn

@@ -1,0 +1,245 @@
+// camdyn (private) — the run machinery of the several-contact (network) methods:
+//
+//   scene (any follower: a rigid or elastic_bar follower as a one-contact mechanism,
+//   src/mechanism/follower_builder.cpp; a network; a user FollowerSystem) → Mechanism
+//   (src/mechanism/mechanism.hpp) → OdeEngine (src/engine/ode_engine.hpp) or IDA (src/engine/ida_engine.hpp) + a
+//   contact method (a ContactRun subclass, one file each: methods/lee_located.cpp,
+//   methods/lee_cvode.cpp, methods/penalty.cpp, methods/event.cpp, methods/holonomic_ida.cpp; chosen
+//   by make_contact_method, contact_run.cpp) → HistoryRow stream + Summary. Every method
+//   but Lee's classic step (src/legacy/lee_classic.cpp) runs here.
+//
+// The state is y = [q; v] over the mechanism's unknowns, F the contact forces (one per
+// contact, ≥ 0), `active` the contacts that are closed and carry force. Shared here: the
+// initial state and its consistent forces, gaps, the acceleration-level forces of an
+// active set, the Newton impact law on several contacts, output rows (standard columns for
+// the primary contact, then per contact and per node), the energy ledger, events,
+// statistics, stop and failure handling.
+#pragma once
+
+#include <Eigen/Core>
+#include <atomic>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camdyn/cam.hpp"
+#include "cam/joints.hpp"
+#include "cam/stops.hpp"
+#include "camdyn/simulator.hpp"
+#include "results/designer_stats.hpp"
+#include "mechanism/mechanism.hpp"
+#include "engine/ode_engine.hpp"
+
+namespace camdyn {
+namespace detail {
+
+class ContactRun {
+ public:
+  ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
+             const std::atomic<bool>* stop);
+  virtual ~ContactRun() = default;
+  ContactRun(const ContactRun&) = delete;
+  ContactRun& operator=(const ContactRun&) = delete;
+  void set_stop_reason(std::string reason) { stop_reason_ = std::move(reason); }
+  Summary run();
+
+  /// Names of HistoryRow::extra for a mechanism.
+  static std::vector<std::string> extra_columns(const MechanicalSystem& mech);
+
+ protected:
+  /// The method's loop over accepted steps from (t_, y_, F_, active_) to t_end.
+  virtual void run_method() = 0;
+  /// Method-specific start after the common initial state and its held forces, before
+  /// the t = 0 row and the energy ledger's origin (penalty: its own equilibrium).
+  virtual void prepare_start() {}
+  /// Dense output inside the step just accepted (see RunContext); false: step-end row.
+  virtual bool dense_row_at(double /*to*/) { return false; }
+  /// Penalty: energy stored in the contact springs at (t, q), and the power its dampers
+  /// dissipate at (t, y); 0 for the other methods.
+  virtual double contact_potential(double /*t*/, const double* /*q*/) const { return 0.0; }
+  virtual double contact_dissipation(double /*t*/, const Eigen::VectorXd& /*y*/) const { return 0.0; }
+
+  /// The first-order system the native methods integrate: y = [q; v], q̇ = v,
+  /// v̇ = M⁻¹(r(t, q, v) + TᵀF) with the method's contact forces forces(t, y, F) (m entries).
+  using ForceFn = std::function<void(double t, const Eigen::VectorXd& y, Eigen::VectorXd& F)>;
+  OdeSystem contact_system(ForceFn forces);
+  /// The implicit engines' sparse Newton structure (M, K, C, T) of a linear Mechanism;
+  /// null for a user's FollowerSystem (dense Jacobian). The method adds its contact
+  /// derivatives or held set.
+  std::shared_ptr<SparseNewton> sparse_newton() const;
+  /// A user's follower: the dense Jacobian J = [0 I; P ∂a/∂q P ∂a/∂v] of the native system
+  /// from its acceleration_jacobian (empty if it has none). `held` (read at every call; null:
+  /// none): the contacts held at the acceleration level inside f, a = a_free + M⁻¹T_SᵀF_S with
+  /// F_S = W_SS⁺(Ẍ_C,S − T_S a_free), so P = I − M⁻¹T_Sᵀ W_SS⁺ T_S; else P = I.
+  std::function<void(double, const double*, Eigen::MatrixXd&)> dense_jacobian(const std::vector<int>* held) const;
+
+  // ---- geometry and forces
+  /// The cam's lift above its base circle at t: X = X_C − min_θ X_C, Ẋ_C, Ẍ_C. Inside
+  /// a window set by set_cam_window, one-sided at the cam's breakpoints (cam_joints.hpp).
+  CamMotion cam_at(double t) const;
+  /// The step about to be taken or just taken lies in [lo, hi]: at a cam breakpoint at
+  /// its start the cam is evaluated on the segment after it (the right limit), at its end
+  /// on the segment before it (the left limit), so that no stage of a step that lands on a
+  /// joint, or starts from one, sees the other segment's acceleration. lo / hi: a time
+  /// where θ is on a breakpoint, NaN if the window's end is none. Both NaN (the default):
+  /// the cam as Cam::motion evaluates it (the segment that holds θ).
+  void set_cam_window(double lo, double hi) {
+    win_lo_ = lo;
+    win_hi_ = hi;
+  }
+  /// The first cam breakpoint time after t_ (steps land on them: cam.land_on_breaks),
+  /// +inf if none before t_end.
+  double next_break_time() const { return stops_.before(t_, INFINITY); }
+  /// g_j = T_j q + g₀_j − X_C·[cam], ġ_j, and the cam's part of g̈_j (−Ẍ_C·[cam]).
+  double gap(int j, const Eigen::VectorXd& y, const CamMotion& cm) const;
+  double gap_rate(int j, const Eigen::VectorXd& y, const CamMotion& cm) const;
+  double cam_acc(int j, const CamMotion& cm) const;
+  /// a = M⁻¹(f₀ − Kq − Cv + TᵀF).
+  void acceleration(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F, Eigen::VectorXd& a) const;
+  /// The acceleration level of the closed contacts `set`, by complementarity
+  /// (src/contact/active_set.hpp): F_S ≥ 0, g̈_S = W_SS F_S + T_S a_free − Ẍ_C,S ≥ 0,
+  /// F_S·g̈_S = 0; redundant contacts (W_SS singular: two contacts on one node or one rigid
+  /// chain) share by the minimal norm; zero off the set. Holonomic (contact.separation =
+  /// false): g̈_S = 0 with signed forces. `margin` (m entries): F_j − g̈_j/W_jj on the set,
+  /// a force that is > 0 while contact j carries force and < 0 once the acceleration level
+  /// opens it, continuous through the switch (the separation function); `ok` false: no
+  /// bounded forces (the contacts jam).
+  Eigen::VectorXd held_forces(double t, const Eigen::VectorXd& y, const CamMotion& cm,
+                              const std::vector<int>& set, Eigen::VectorXd* margin = nullptr,
+                              bool* ok = nullptr) const;
+  /// held_forces into F (no allocation once F and margin have m entries).
+  void held_forces_into(double t, const Eigen::VectorXd& y, const CamMotion& cm, const std::vector<int>& set,
+                        Eigen::VectorXd& F, Eigen::VectorXd* margin = nullptr, bool* ok = nullptr) const;
+  /// Active contacts as a list.
+  std::vector<int> active_list() const;
+  /// F_ from the acceleration level for the active set, releasing (with a separation
+  /// event) every contact the complementarity solution opens (margin < −thr·scale).
+  /// @throws StepFailure naming the contacts if they jam.
+  void settle_active(const CamMotion& cm);
+  /// Resolve an impact at the current state: `closing` contacts (gap ≈ 0, approaching)
+  /// and the active ones take a Newton impulse (g⁺ = −e g⁻ on the closing ones, or 0 when
+  /// they stick; 0 on the active ones), impulses ≥ 0 (a contact whose impulse would pull
+  /// is left out). Sticking contacts join the active set; forces are settled afterwards.
+  /// Records the impacts; books the cam's impulse work and the loss.
+  /// plastic: the closing contacts stick whatever their restitution (a cam joint's impact).
+  void resolve_impact(const std::vector<int>& closing, const CamMotion& cm, bool plastic = false);
+  /// On a C0 joint of the cam (cam_joints.hpp) at t_: from now on cam_at(t_) is the motion
+  /// after the joint, and the closed cam contacts take its velocity jump (cam_joint.cpp):
+  /// the cam strikes (a plastic impact: ġ⁺ = 0, resolve_impact) or, slower, leaves (a
+  /// separation; holonomic: a signed impulse). True if the state changed (restart).
+  bool cam_joint_impact();
+
+  // ---- energies
+  double potential(double t, const Eigen::VectorXd& y) const;
+  double dissipation_power(double t, const Eigen::VectorXd& y) const;
+  /// Σ over cam contacts F_j Ẋ_C.
+  double cam_power(const Eigen::VectorXd& F, const CamMotion& cm) const;
+
+  // ---- output and bookkeeping
+  void emit_row();
+  void emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F,
+                   const std::vector<char>& active, double W, double D);
+  /// Inside the lash take-up window at t (simulator.hpp ContactResult).
+  bool in_take_up(double t) const;
+  /// The side loads |F_j tan φ| of the closed cam contacts at an accepted step end
+  /// (ContactResult::max_side_load).
+  void sample_side_loads(double theta);
+  /// A force sample of closed contact j for its ContactResult::min_force.
+  void sample_contact(int j, double F, double theta_deg);
+  /// The held force F of contact j at t as a sample of its least force (outside the lash
+  /// take-up window) and, for the primary contact, of the designer's force statistics.
+  void sample_held_force(int j, double t, double F);
+  void record_event(EventKind type, int contact, double v, double impulse = 0.0,
+                    double t_event = NAN);
+  /// After an accepted step (state updated): dW the cam's work over the step, P_prev the
+  /// dissipated power at its start (P_end at its end if not the current state's); dD the
+  /// energy dissipated over the step by the method's own quadrature (NaN: the trapezoid
+  /// on P_prev and P_end).
+  void after_step(double h, double dW, double P_prev, double P_end = NAN, double dD = NAN);
+  /// The cam's work and the dissipated energy over [t0, t1] by 3-point Gauss–Legendre on
+  /// the step's own dense state (state(τ, y)) and contact forces (forces(τ, y, cm, F)):
+  /// each step's own quadrature (issue 25; the trapezoid on the step ends left the stem
+  /// damping's energy of the valve train 6e-8 of the cam's work off at rtol 1e-8).
+  struct StepEnergy {
+    double work = 0.0, dissipated = 0.0;
+  };
+  StepEnergy step_energy(double t0, double t1, const std::function<void(double, Eigen::VectorXd&)>& state,
+                         const std::function<void(double, const Eigen::VectorXd&, const CamMotion&,
+                                                  Eigen::VectorXd&)>& forces) const;
+  /// The check after every accepted step (issue 28): a contact carrying force across an
+  /// open gap, or a gap below −kCheckGaps·tol_u (not for penalty: its law penetrates),
+  /// stops the run with a StepFailure naming the contact, the time and the cam angle.
+  void check_complementarity(const CamMotion& cm) const;
+  /// T_p a at the current state (t_, y_, F_): contact p's acceleration.
+  double contact_acceleration(int p) const;
+  /// false for the penalty method (its contacts penetrate by their law).
+  virtual bool penetration_checked() const { return true; }
+  double fit_step(double h, double t_next) const;
+  double initial_step() const;
+  double out_dt() const { return sc_.run.output_dt; }
+  double next_output_time() const;
+  // The time to step toward: t_next, or a cam breakpoint before it (cam_stops.hpp).
+  double stop_before(double t_next) const { return stops_.before(t_, t_next); }
+  double next_stop_time() const { return stop_before(next_output_time()); }
+
+  const Scene& sc_;
+  std::shared_ptr<const MechanicalSystem> mech_;
+  const MechanicalSystem& mk_;
+  Cam cam_;
+  CamDrive drive_;
+  CamStops stops_{sc_, cam_};
+  CamJoints joints_{sc_, cam_};
+  double joint_t_ = -INFINITY;  // the last C0 joint passed: cam_at(joint_t_) is after it
+  Observer* obs_;
+  const std::atomic<bool>* stop_;
+  std::string stop_reason_ = "stopped by caller";
+  int n_, m_;
+  DesignerStats designer_;
+  DesignerColumns design_cols_{sc_};  // run.designer_columns
+  Summary sum_;
+  double t_ = 0, work_ = 0, dissipated_ = 0, E0_ = 0, V0_ = 0, last_row_t_ = -1;
+  Eigen::VectorXd y_, F_;
+  std::vector<char> active_;
+  Eigen::VectorXd sys_y_, sys_F_;  // contact_system()'s buffers
+  mutable Eigen::VectorXd hf_ta_;  // held_forces' T a_free
+  mutable Eigen::VectorXd se_y_, se_F_;  // step_energy's state and forces
+  double x_base_ = 0.0;     // the base circle's X_C: cam_at() returns the lift X_C − x_base_
+  bool unilateral_ = true;
+  bool observer_stop_ = false;  // an observer returned ObserverAction::Stop  // false: contact.separation = false or holonomic (never release)
+  long next_out_ = 1;
+  double F_ref_ = 0.0;        // largest contact force so far (force thresholds)
+  double v_impact_ref_ = 0.0;  // first approach velocity (sticking threshold)
+  double last_progress_ = 0;
+  std::vector<std::unique_ptr<OdeEngine>> engines_;  // for the statistics
+  // cam_at's last results (the cam is evaluated once per time, not once per use)
+  struct CamCache {
+    double t = NAN;
+    int side = 0;  // cam_at's side at a breakpoint: 0 none, +1 right, −1 left
+    CamMotion m;
+  };
+  double win_lo_ = NAN, win_hi_ = NAN;  // set_cam_window
+  std::vector<double> break_angles_;    // the cam's breakpoints where steps land on them
+  // 16: a Lee step asks for its end, 7 switch samples and 5 quadrature points, and its
+  // end again afterwards (with 4 the end was evicted and evaluated twice)
+  static constexpr int kCamCache = 16;
+  mutable CamCache cam_cache_[kCamCache];
+  mutable int cam_next_ = 0;
+  // acceleration()'s last two results, keyed by (t, y, F): a step's end state is asked
+  // for again at the next step's start, by the step check and by its row
+  struct AccCache {
+    double t = NAN;
+    Eigen::VectorXd y, F, a;
+  };
+  mutable AccCache acc_cache_[2];
+  mutable int acc_last_ = 0;
+};
+
+/// The network method a scene asks for (contact.model: lee | penalty | event | holonomic).
+std::unique_ptr<ContactRun> make_contact_method(const Scene& scene,
+                                                std::shared_ptr<const MechanicalSystem> mech,
+                                                Observer* obs, const std::atomic<bool>* stop);
+
+}  // namespace detail
+}  // namespace camdyn

@@ -1,0 +1,319 @@
+// camdyn — the event-driven method on a network: the active contacts are constraint rows,
+//   M q̈ = f₀ − K q − C q̇ + T_Aᵀ F_A,   W_AA F_A = Ẍ_C,A − T_A M⁻¹(f₀ − K q − C q̇)
+// (the acceleration level of every active contact, g̈_A = 0), integrated natively with the
+// engine's error control. Rootfinding on one function per contact: the force F_j of an
+// active contact (it separates where F_j reaches zero) and the gap g_j of an open one (it
+// impacts where g_j reaches zero). At an impact all contacts taking part get a Newton
+// impulse at once (contact_run.cpp: resolve_impact), then the engine restarts.
+//
+// The acceleration level alone lets the closed gaps drift (g̈_A = 0 integrated: g_A and ġ_A
+// carry the integration error, −1.8e-8 m at rtol 1e-8 on a valve train, and a tappet that
+// creeps into the cam after a seat impact). The displacement and velocity levels are held
+// by projecting every accepted step's end state onto g_A = 0, ġ_A = 0, M-orthogonally
+// (the smallest correction in kinetic-energy metric):
+//   Δq = −M⁻¹T_Aᵀ W_AA⁺ g_A,   Δv = −M⁻¹T_Aᵀ W_AA⁺ ġ_A   (W_AA⁺: minimum-norm least squares)
+// — on cvode-bdf inside CVODE's step (CVodeSetProjFn), on arkode-erk / arkode-dirk after
+// the step, the stepper reset there (ode_engine.hpp: set_projection); a root's state too.
+// Steps land on the cam's breakpoints and see the cam one-sided there (their own segment):
+// where its acceleration jumps under held contacts the engine restarts (enter_segment).
+#include "contact/methods/event.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cam/joints.hpp"  // one_sided_motion
+
+namespace camdyn {
+namespace detail {
+
+EventMethod::EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
+                           const std::atomic<bool>* stop, int max_order)
+    : ContactRun(sc, std::move(mech), obs, stop) {
+  OdeSystem sys = contact_system([this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& F) {
+    held_forces_into(t, y, cam_at(t), set_, F);
+  });
+  // A Mechanism: the sparse Newton structure, bordered with the held contacts' rows (the
+  // exact Jacobian of the acceleration level). A user's follower with a force Jacobian: the
+  // dense J = [0 I; P ∂a/∂q P ∂a/∂v], P = I − M⁻¹T_Sᵀ W_SS⁺ T_S the held set's projection
+  // (a = a_free + M⁻¹T_SᵀF_S with F_S = W_SS⁻¹(Ẍ_C,S − T_S a_free): ∂a/∂y = P ∂a_free/∂y);
+  // without one, SUNDIALS' difference quotients.
+  if (auto sn = sparse_newton()) {
+    sn->held = &set_;
+    sys.newton = sn;
+  } else {
+    sys.jacobian = dense_jacobian(&set_);
+  }
+  bdf_order(sc, *mech_, max_order, sys);
+  engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
+  eng_ = engines_.back().get();
+  eng_->set_projection([this](double t, const double* y, double* corr) { project(t, y, corr); });
+}
+
+// On a single follower run as a one-contact Mechanism, the follower stack's policy: an
+// elastic bar is undamped and stiff, its fast modes sit on the imaginary axis where BDF
+// orders 3–5 are not A-stable, so CVODE stays at BDF ≤ 2 at rtol > 1e-8 (B1, 0.1 s, lee at
+// rtol 1e-6: 66 431 steps at order ≤ 4 — steps collapsed to resolve the bar's top mode —,
+// 14 046 at ≤ 2, the follower stack's Lee on CVODE 15 829); at rtol ≤ 1e-8 its steps
+// resolve those modes anyway and higher orders pay, up to 5 with CVODE's stability-limit
+// detection (B1, 20 ms at rtol 1e-9: 51 338 steps at ≤ 2, 13 430 at ≤ 4, 14 029 at ≤ 5
+// with the detection). A rigid follower has no stiff mode: `network_order`.
+void EventMethod::bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys) {
+  sys.max_order = network_order;
+  sys.stability_limit_detection = false;
+  if (!mech.single_follower() || mech.n() == 1) return;
+  const bool tight = sc.solver.rtol <= 1e-8;
+  sys.max_order = tight ? 5 : 2;
+  sys.stability_limit_detection = tight;
+}
+
+void EventMethod::restart() {
+  set_ = active_list();
+  const int k = int(set_.size());
+  set_metric();
+  // the state the engine starts from is on the active set's manifold too
+  if (k) {
+    Eigen::VectorXd corr(2 * n_);
+    project(t_, y_.data(), corr.data());
+    y_ += corr;
+  }
+  eng_->reinit(t_, y_);
+}
+
+void EventMethod::set_metric() {
+  const int k = int(set_.size());
+  MTa_.resize(n_, k);
+  Eigen::MatrixXd Waa(k, k);
+  if (gamma_p_ > 0) {  // S⁻¹T_Aᵀ, T_A S⁻¹ T_Aᵀ
+    for (int i = 0; i < k; ++i) MTa_.col(i) = S_ldlt_.solve(Eigen::VectorXd(mk_.contacts()[set_[i]].t.transpose()));
+    for (int i = 0; i < k; ++i)
+      for (int l = 0; l < k; ++l) Waa(i, l) = mk_.contacts()[set_[i]].t.dot(MTa_.col(l));
+  } else {  // M⁻¹T_Aᵀ, W_AA
+    for (int i = 0; i < k; ++i) {
+      MTa_.col(i) = mk_.MinvTt().col(set_[i]);
+      for (int l = 0; l < k; ++l) Waa(i, l) = mk_.W()(set_[i], set_[l]);
+    }
+  }
+  if (k) Waa_.compute(Waa);
+}
+
+void EventMethod::stiff_metric(double h) {
+  if (!stiff_metric_ || !(h > 0)) return;
+  const double g = std::exp2(std::round(std::log2(h * metric_scale_)));  // on the grid 2^k: few factorisations
+  if (g == gamma_p_) return;
+  const auto& mech = static_cast<const Mechanism&>(mk_);
+  SparseMatrix S = mech.M() + (g * g) * mech.K();
+  if (mech.damped()) S += g * mech.C();
+  if (gamma_p_ == 0) S_ldlt_.analyzePattern(S);
+  S_ldlt_.factorize(S);
+  if (S_ldlt_.info() != Eigen::Success) return;  // keep the metric in use
+  gamma_p_ = g;
+  set_metric();
+}
+
+void EventMethod::project(double t, const double* y, double* corr) {
+  const int k = int(set_.size());
+  Eigen::Map<Eigen::VectorXd> C(corr, 2 * n_);
+  if (k == 0) {
+    C.setZero();
+    return;
+  }
+  const CamMotion cm = cam_at(t);
+  pg_.resize(k);
+  pgd_.resize(k);
+  const Eigen::Map<const Eigen::VectorXd> Q(y, n_), V(y + n_, n_);
+  for (int i = 0; i < k; ++i) {
+    const MechanismContact& c = mk_.contacts()[set_[i]];
+    pg_[i] = c.t.dot(Q) + c.g0 - (c.cam ? cm.X : 0.0);
+    pgd_[i] = c.t.dot(V) - (c.cam ? cm.Xdot : 0.0);
+  }
+  if (k == 1) {  // W_AA⁺g = g/W (what the 1 × 1 factorisation gives), without its temporaries
+    const double w = Waa_.matrixQTZ()(0, 0);
+    const double x = Waa_.rank() ? pg_[0] / w : 0.0, xd = Waa_.rank() ? pgd_[0] / w : 0.0;
+    C.head(n_).noalias() = -(MTa_.col(0) * x);
+    C.tail(n_).noalias() = -(MTa_.col(0) * xd);
+    return;
+  }
+  C.head(n_).noalias() = -MTa_ * Waa_.solve(pg_);
+  C.tail(n_).noalias() = -MTa_ * Waa_.solve(pgd_);
+}
+
+// The cam's work over [ta, tb] inside the last step: 3-point Gauss–Legendre on the
+// engine's own dense output (the trapezoid on step ends was 3e-4 of the work off on a rigid
+// follower that CVODE/ERK step across in 150 steps per revolution).
+double EventMethod::held_work(double ta, double tb) {
+  static const double xg[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+  static const double wg[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  const double h = tb - ta;
+  double dW = 0.0;
+  if (!(h > 0)) return 0.0;
+  for (int g = 0; g < 3; ++g) {
+    const double tau = ta + 0.5 * h * (1.0 + xg[g]);
+    eng_->dense(tau, yg_);
+    const CamMotion cg = cam_at(tau);
+    dW += 0.5 * h * wg[g] * cam_power(held_forces(tau, yg_, cg, set_), cg);
+  }
+  return dW;
+}
+
+ContactRun::StepEnergy EventMethod::advance_energy(double t0, double t1) {
+  // no held contact on an undamped mechanism: nothing works or dissipates, and the three
+  // dense states are not needed
+  if (set_.empty() && !mk_.dissipative()) return StepEnergy{};
+  return step_energy(
+      t0, t1, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
+      [this](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
+        if (set_.empty())
+          F.setZero(m_);
+        else
+          held_forces_into(tau, y, c, set_, F);
+      });
+}
+
+void EventMethod::run_method() {
+  eng_->set_roots(m_, [this](double t, const double* y, double* g) {
+    const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
+    yv_ = Y;
+    if (on_manifold_roots_ && !set_.empty()) {  // see the header: on_manifold_roots_
+      rc_.resize(2 * n_);
+      project(t, yv_.data(), rc_.data());
+      yv_ += rc_;
+    }
+    const CamMotion cm = cam_at(t);
+    Eigen::VectorXd& F = rF_;  // the separation function of the active contacts (force units)
+    if (!set_.empty()) held_forces_into(t, yv_, cm, set_, rFh_, &F);
+    // Offsets keep every function away from zero at a restart (SUNDIALS stops with
+    // "root found at and very near t" on a function that stays at zero): a gap triggers
+    // at −10⁻³ tol_u, an active contact's margin F − g̈/W_jj (its force while held, −its
+    // opening acceleration as a force once complementarity opens it) at −10⁻¹² of the
+    // largest force so far.
+    const double F_thr = 1e-12 * std::max(F_ref_, mk_.force_scale());
+    for (int j = 0; j < m_; ++j) g[j] = active_[j] ? F[j] + F_thr : gap(j, yv_, cm) + gap_thr_;
+  });
+  // A start on a cam breakpoint (a law's first joint at θ = 0): the segment after it.
+  {
+    CamMotion m;
+    on_break_ = one_sided_motion(cam_, drive_, break_angles_, t_, 1, &m);
+  }
+  set_cam_window(on_break_ ? t_ : NAN, NAN);
+  restart();
+  Eigen::VectorXd y1(2 * n_);
+  const double gap_thr = gap_thr_;
+  while (t_ < sc_.run.t_end * (1 - 1e-15)) {
+    if (cam_joint_impact()) restart();  // closed contacts on a C0 joint of the cam
+    const double horizon = step_horizon(), tout = stop_before(horizon), t_brk = next_break_time();
+    // the step's cam: the segment after a breakpoint it starts from, the one before a
+    // breakpoint it lands on
+    set_cam_window(on_break_ ? t_ : NAN, tout == t_brk ? tout : NAN);
+    const double P_prev = dissipation_power(t_, y_);
+    const double t1 = eng_->advance(tout, y1);
+    const double h = t1 - t_;
+    on_break_ = t1 == t_brk;
+    stiff_metric(h);  // for the next steps' projections
+    t_ = t1;
+    y_ = y1;
+    // A root's state (interpolated inside the step) on the held contacts' g = 0, ġ = 0, as
+    // every step end is: a contact released there leaves the cam from exactly where it was
+    // held. ERK's interpolant of the held step is off that manifold by its interpolation
+    // error (case A7 at rtol 1e-11: the free flights started up to 6.1e-10 m off the
+    // rtol-1e-12 run, 2.5e-12 m with the projection).
+    if (eng_->hit_root() && !set_.empty()) {
+      rc_.resize(2 * n_);
+      project(t_, y_.data(), rc_.data());
+      y_ += rc_;
+    }
+    const CamMotion cm = cam_at(t_);
+    F_ = held_forces(t_, y_, cm, set_);
+    if (m_) F_ref_ = std::max(F_ref_, F_.cwiseAbs().maxCoeff());
+    // the cam's work and the dissipated energy over the step: 3-point Gauss–Legendre on
+    // the engine's own dense output (issue 25: each step's own quadrature)
+    const StepEnergy dE = advance_energy(t_ - h, t_);
+    after_advance(t_ - h, P_prev);
+    const double P_end = dissipation_power(t_, y_);
+    bool changed = false, released_only = false;
+    if (eng_->hit_root() && unilateral_) {
+      std::vector<int> closing;
+      bool released = false;
+      for (int j = 0; j < m_; ++j) {
+        if (eng_->root_info()[j] >= 0) continue;  // only downward crossings act
+        if (active_[j]) {
+          active_[j] = 0;
+          ++sum_.separations;
+          record_event(EventKind::Separation, j, 0.0);
+          released = true;
+        } else if (gap_rate(j, y_, cm) < 0.0) {
+          // a gap that crosses its root while opening is the engine's interpolation
+          // error around a contact that has just let go (CVODE: 61 phantom re-closures
+          // in 5 revolutions of the OHC train at 75 rev/s): no impact
+          closing.push_back(j);
+        }
+      }
+      // other open contacts closing at the same instant take part too (not one that
+      // has just been released: it leaves at zero speed)
+      const double v_eps = 1e-6 * v_impact_ref_;
+      for (int j = 0; j < m_; ++j)
+        if (!active_[j] && eng_->root_info()[j] == 0 && gap(j, y_, cm) <= gap_thr &&
+            gap_rate(j, y_, cm) < -v_eps)
+          closing.push_back(j);
+      if (!closing.empty())
+        resolve_impact(closing, cm);
+      else if (released)
+        settle_active(cm);
+      changed = !closing.empty() || released;
+      released_only = closing.empty() && released;
+    } else if (eng_->hit_root()) {  // bilateral: a contact that closes stays closed
+      std::vector<int> closing;
+      for (int j = 0; j < m_; ++j)
+        if (!active_[j] && eng_->root_info()[j] < 0 && gap_rate(j, y_, cm) < 0.0) closing.push_back(j);
+      if (!closing.empty()) {
+        resolve_impact(closing, cm);
+        changed = true;
+      }
+    }
+    for (int j : set_)
+      if (active_[j] && unilateral_) F_[j] = std::max(F_[j], 0.0);
+    if (changed && released_only && continue_on_release_) {
+      // A release alone: the contact leaves where its force has reached zero, so the
+      // right-hand side is continuous there and CVODE's history stays valid: it goes on
+      // from its own step end (the next advance returns it) with the smaller held set.
+      // A restart there began again at order 1, whose first steps' error (h²|g̈|/2 in the
+      // gap, of the order of rtol·|q|) put the follower of A7 1.9e-7 into the cam 14 µs
+      // after its separation (the issue-28 check at 10 tol_u = 1e-7 stopped the run).
+      set_ = active_list();
+      set_metric();
+    } else if (changed) {
+      restart();  // projects onto the new active set
+    }
+    after_step(h, dE.work, P_prev, changed ? P_end : NAN, dE.dissipated);
+    if (on_break_) enter_segment();
+  }
+}
+
+void EventMethod::enter_segment() {
+  const CamMotion left = cam_at(t_);  // the step just taken: the segment before t_
+  set_cam_window(t_, NAN);
+  const CamMotion right = cam_at(t_);
+  if (set_.empty()) return;
+  const double w = drive_.omega(t_);
+  const double scale = std::abs(left.Xddot) + std::abs(right.Xddot) + 1e-4 * cam_.lift() * w * w;
+  if (std::abs(right.Xddot - left.Xddot) > 1e-8 * scale) {
+    // The cam's acceleration jumps (a C1 joint, an arc cam's tangency point): the held
+    // contacts take the new segment's forces — those the new acceleration pulls off
+    // separate here — and the engine restarts, its first stage on the new segment (an
+    // explicit method's first stage is the last one's right-hand side, a BDF history the
+    // old segment's: their error estimate does not fall with h across a jump).
+    settle_active(right);
+    for (int j = 0; j < m_; ++j)
+      if (active_[j]) sample_held_force(j, t_, F_[j]);
+    restart();
+  } else if (restart_at_breaks_ && int(set_.size()) < n_) {
+    restart();  // a cam breakpoint under held contacts, with unknowns they leave free (header)
+  }
+}
+
+std::unique_ptr<ContactRun> make_network_event(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
+                                               Observer* obs, const std::atomic<bool>* stop) {
+  return std::make_unique<EventMethod>(sc, std::move(mech), obs, stop);
+}
+
+}  // namespace detail
+}  // namespace camdyn

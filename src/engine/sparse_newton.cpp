@@ -1,0 +1,133 @@
+// camdyn — SparseNewtonSolver (sparse_newton.hpp).
+#include "engine/sparse_newton.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace camdyn {
+namespace detail {
+
+namespace {
+using Trip = Eigen::Triplet<double, long>;
+// Position of (i, j) in compressed S (which holds it).
+long position(const SparseMatrix& S, long i, long j) {
+  const long* outer = S.outerIndexPtr();
+  const long* inner = S.innerIndexPtr();
+  const long* b = inner + outer[j];
+  const long* e = inner + outer[j + 1];
+  const long* p = std::lower_bound(b, e, i);
+  if (p == e || *p != i) throw std::logic_error("SparseNewtonSolver: entry outside the pattern");
+  return long(p - inner);
+}
+std::vector<long> positions(const SparseMatrix& S, const SparseMatrix& A) {
+  std::vector<long> pos;
+  pos.reserve(std::size_t(A.nonZeros()));
+  for (long j = 0; j < A.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it) pos.push_back(position(S, it.row(), j));
+  return pos;
+}
+}  // namespace
+
+SparseNewtonSolver::SparseNewtonSolver(const SparseNewton& sys, bool dense, EngineStats& stats)
+    : sys_(sys), n_(sys.M->rows()), m_(int(sys.T.rows())), stats_(stats), lu_(dense, stats) {
+  if (!sys.M || !sys.K) throw std::invalid_argument("SparseNewton: M and K are required");
+  // the union pattern, values zero; the diagonal explicit
+  std::vector<Trip> t;
+  auto pattern = [&](const SparseMatrix& A) {
+    for (long j = 0; j < A.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) t.emplace_back(it.row(), j, 0.0);
+  };
+  pattern(*sys.M);
+  pattern(*sys.K);
+  if (sys.C) pattern(*sys.C);
+  for (long i = 0; i < n_; ++i) t.emplace_back(i, i, 0.0);
+  std::vector<std::vector<std::pair<long, double>>> rows(static_cast<std::size_t>(m_));
+  if (sys.contact_derivatives) {
+    for (int j = 0; j < m_; ++j) {
+      for (long i = 0; i < n_; ++i)
+        if (sys.T(j, i) != 0.0) rows[std::size_t(j)].emplace_back(i, sys.T(j, i));
+      for (const auto& a : rows[std::size_t(j)])
+        for (const auto& b : rows[std::size_t(j)]) t.emplace_back(a.first, b.first, 0.0);
+    }
+  }
+  S_.resize(n_, n_);
+  S_.setFromTriplets(t.begin(), t.end());
+  S_.makeCompressed();
+  pos_m_ = positions(S_, *sys.M);
+  pos_k_ = positions(S_, *sys.K);
+  if (sys.C) pos_c_ = positions(S_, *sys.C);
+  for (int j = 0; j < m_; ++j)
+    for (const auto& a : rows[std::size_t(j)])
+      for (const auto& b : rows[std::size_t(j)]) outer_.push_back({position(S_, a.first, b.first), j, a.second * b.second});
+  dFdg_ = dFdgd_ = Eigen::VectorXd::Zero(m_);
+}
+
+void SparseNewtonSolver::prepare(double t, const double* y, double gamma) {
+  gamma_ = gamma;
+  if (sys_.contact_derivatives) sys_.contact_derivatives(t, y, dFdg_, dFdgd_);
+}
+
+void SparseNewtonSolver::setup() {
+  if (factored_ && gamma_ == gamma_f_ && dFdg_ == dFdg_f_ && dFdgd_ == dFdgd_f_) return;  // S unchanged
+  const double g = gamma_;
+  double* x = S_.valuePtr();
+  std::fill(x, x + S_.nonZeros(), 0.0);
+  const double* v = sys_.M->valuePtr();
+  for (std::size_t p = 0; p < pos_m_.size(); ++p) x[pos_m_[p]] += v[p];
+  v = sys_.K->valuePtr();
+  for (std::size_t p = 0; p < pos_k_.size(); ++p) x[pos_k_[p]] += g * g * v[p];
+  if (sys_.C) {
+    v = sys_.C->valuePtr();
+    for (std::size_t p = 0; p < pos_c_.size(); ++p) x[pos_c_[p]] += g * v[p];
+  }
+  for (const Outer& o : outer_) x[o.pos] -= (g * dFdgd_[o.j] + g * g * dFdg_[o.j]) * o.w;
+  lu_.factor(S_);
+  ++stats_.lin_setups;
+  gamma_f_ = g;
+  dFdg_f_ = dFdg_;
+  dFdgd_f_ = dFdgd_;
+  factored_ = true;
+  held_f_.clear();
+  Z_.resize(0, 0);
+}
+
+void SparseNewtonSolver::solve(double* b) {
+  const double g = gamma_f_;
+  Eigen::Map<Eigen::VectorXd> U(b, n_), V(b + n_, n_);
+  rhs_.noalias() = *sys_.M * V;
+  rhs_.noalias() -= g * (*sys_.K * U);
+  if (sys_.contact_derivatives)
+    for (int j = 0; j < m_; ++j)
+      if (dFdg_f_[j] != 0.0) rhs_.noalias() += (g * dFdg_f_[j] * sys_.T.row(j).dot(U)) * sys_.T.row(j).transpose();
+  lu_.solve(rhs_.data());
+  const std::vector<int>* held = sys_.held;
+  if (held && !held->empty()) {
+    const int k = int(held->size());
+    if (Z_.cols() != k || held_f_ != *held) {  // Z = S⁻¹T_Aᵀ, G = T_A Z
+      held_f_ = *held;
+      Z_.resize(n_, k);
+      Eigen::MatrixXd G(k, k);
+      for (int i = 0; i < k; ++i) {
+        Z_.col(i) = sys_.T.row((*held)[std::size_t(i)]).transpose();
+        lu_.solve(Z_.col(i).data());
+      }
+      for (int i = 0; i < k; ++i) G.row(i) = sys_.T.row((*held)[std::size_t(i)]) * Z_;
+      G_.compute(G);
+    }
+    Eigen::VectorXd& r = r_;
+    r.resize(k);
+    for (int i = 0; i < k; ++i) {
+      const auto t = sys_.T.row((*held)[std::size_t(i)]);
+      r[i] = t.dot(V) - t.dot(rhs_);
+    }
+    if (k == 1)  // G⁻¹r = r/G (what the 1 × 1 LU gives), without its temporaries
+      rhs_.noalias() += Z_.col(0) * (r[0] / G_.matrixLU()(0, 0));
+    else
+      rhs_.noalias() += Z_ * G_.solve(r);
+  }
+  V = rhs_;
+  U += g * V;
+}
+
+}  // namespace detail
+}  // namespace camdyn

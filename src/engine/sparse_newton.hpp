@@ -1,0 +1,52 @@
+// camdyn (private) — the Newton systems of a mechanism's implicit engines (ode_engine.cpp)
+// through the sparse Schur complement (SparseNewton in ode_engine.hpp has the maths).
+//
+// S's pattern is the union of M, C, K and, when F depends on the state, Tᵀ T; it is fixed
+// at construction, so KLU analyses it once per run. setup() refills S's values in O(nnz)
+// and refactors only when γ or the contact derivatives changed; solve() costs one sparse
+// product with M and K, one KLU solve, and for k held contacts a k × k bordering
+// (Z = S⁻¹T_Aᵀ: k solves per factorisation and held set).
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "engine/ode_engine.hpp"
+#include "engine/sparse_lu.hpp"
+
+namespace camdyn {
+namespace detail {
+
+class SparseNewtonSolver {
+ public:
+  SparseNewtonSolver(const SparseNewton& sys, bool dense, EngineStats& stats);
+  /// From the integrator's linear-system function: the system I − γJ at (t, y).
+  void prepare(double t, const double* y, double gamma);
+  /// Factorise S (if γ or the contact derivatives changed since the last time).
+  void setup();
+  /// x = (I − γJ)⁻¹ b in place (length 2n).
+  void solve(double* b);
+
+ private:
+  const SparseNewton& sys_;
+  long n_;
+  int m_;
+  EngineStats& stats_;
+  SparseLu lu_;
+  SparseMatrix S_;
+  // positions in S_ of the entries of M, K, C and of the contacts' tⱼᵀtⱼ (row, col pairs)
+  std::vector<long> pos_m_, pos_k_, pos_c_;
+  struct Outer { long pos; int j; double w; };  // S(pos) += coefficient_j · w
+  std::vector<Outer> outer_;
+  Eigen::VectorXd dFdg_, dFdgd_, dFdg_f_, dFdgd_f_;  // prepared / factorised
+  double gamma_ = 0, gamma_f_ = -1;
+  bool factored_ = false;
+  Eigen::VectorXd rhs_, r_;
+  // bordering for the held set
+  std::vector<int> held_f_;
+  Eigen::MatrixXd Z_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> G_;
+};
+
+}  // namespace detail
+}  // namespace camdyn

@@ -1,0 +1,524 @@
+// camdyn — the mechanism builder for network scenes (src/mechanism/mechanism.hpp has the maths).
+#include "mechanism/mechanism.hpp"
+
+#include <cmath>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "legacy/engine.hpp"       // resolve_linear_solver
+#include "legacy/run_context.hpp"  // detail::fmt
+
+namespace camdyn {
+
+namespace {
+std::string element_label(const ElementSpec& e, size_t i) {
+  return e.name.empty() ? std::string(to_string(e.kind)) + " #" + std::to_string(i) : e.name;
+}
+}  // namespace
+
+Mechanism::Mechanism(const Scene& scene) {
+  using detail::fmt;
+  if (scene.follower.kind != FollowerKind::Network) {
+    build_follower(scene);
+    return;
+  }
+  const NetworkSpec& net = scene.network;
+  std::map<std::string, int> index;  // named node → full DOF
+  for (const NodeSpec& nd : net.nodes) {
+    index[nd.name] = int(node_names_.size());
+    node_names_.push_back(nd.name);
+  }
+  const int n_named = int(node_names_.size());
+  auto dof = [&](const std::string& name) { return name == "ground" ? -1 : index.at(name); };
+
+  // ---- full DOFs: named nodes, then the inside nodes of bars and springs with mass
+  int n_full = n_named;
+  struct Stiff { int a, b; double k, c, P; };  // two-node spring/damper/preload, −1 = ground
+  std::vector<Stiff> links;
+  std::vector<std::pair<int, double>> point_mass;  // (dof, mass)
+  struct MassPair { int a, b; double md, mo; };    // element mass matrix [md mo; mo md]
+  std::vector<MassPair> mass_pairs;
+  std::vector<std::pair<int, std::pair<int, double>>> levers;  // out → (in, ratio)
+  std::vector<std::pair<int, int>> inner_ends;  // per inner node: its chain's end DOFs
+  std::vector<double> inner_frac;               // position along the chain (0 at a, 1 at b)
+  for (size_t i = 0; i < net.nodes.size(); ++i)
+    if (net.nodes[i].mass > 0.0) point_mass.emplace_back(int(i), net.nodes[i].mass);
+  bool any_damping = false, any_preload = false, any_mass_matrix = false;
+  for (size_t ei = 0; ei < net.elements.size(); ++ei) {
+    const ElementSpec& e = net.elements[ei];
+    const int a = dof(e.nodes.at(0)), b = dof(e.nodes.at(1));
+    std::ostringstream d;
+    d << to_string(e.kind) << " '" << element_label(e, ei) << "' [" << e.nodes[0] << " → "
+      << e.nodes[1] << "]";
+    // A chain of `parts` equal segments a → inner … → b; returns the DOFs along it.
+    auto chain = [&](int parts) {
+      std::vector<int> c{a};
+      for (int k = 1; k < parts; ++k) {
+        c.push_back(n_full++);
+        inner_ends.emplace_back(a, b);
+        inner_frac.push_back(double(k) / parts);
+      }
+      c.push_back(b);
+      return c;
+    };
+    switch (e.kind) {
+      case ElementKind::Spring:
+      case ElementKind::Dashpot: {
+        const double k = e.kind == ElementKind::Spring ? e.stiffness : 0.0;
+        const double P = e.kind == ElementKind::Spring ? e.preload : 0.0;
+        any_damping |= e.damping != 0.0;
+        any_preload |= P != 0.0;
+        if (e.kind == ElementKind::Spring && e.masses > 0) {
+          const int parts = e.masses + 1;
+          const std::vector<int> c = chain(parts);
+          const double ms = e.mass / parts;
+          for (int s = 0; s < parts; ++s) {
+            links.push_back({c[s], c[s + 1], k * parts, e.damping * parts, P});
+            mass_pairs.push_back({c[s], c[s + 1], 0.5 * ms, 0.0});
+          }
+          d << " k " << fmt(k) << ", preload " << fmt(P) << ", mass " << fmt(e.mass) << " in "
+            << e.masses << " masses";
+        } else {
+          links.push_back({a, b, k, e.damping, P});
+          if (e.kind == ElementKind::Spring) d << " k " << fmt(k) << ", preload " << fmt(P);
+        }
+        if (e.damping != 0.0) d << ", c " << fmt(e.damping);
+        break;
+      }
+      case ElementKind::Bar: {
+        const int N = e.elements;
+        const std::vector<int> c = chain(N);
+        const double h = e.length / N, ke = e.youngs_modulus * e.area / h, me = e.mass / N;
+        const bool lumped = e.mass_matrix == BarMass::Lumped;
+        any_mass_matrix |= !lumped;
+        any_damping |= e.rayleigh_alpha != 0.0 || e.rayleigh_beta != 0.0;
+        for (int s = 0; s < N; ++s) {
+          const double md = lumped ? me / 2 : me / 3, mo = lumped ? 0.0 : me / 6;
+          // Rayleigh on the element: c = α·(mass part) + β·ke (the mass part's
+          // off-diagonal enters C through mass_pairs below)
+          links.push_back({c[s], c[s + 1], ke, e.rayleigh_beta * ke, 0.0});
+          mass_pairs.push_back({c[s], c[s + 1], md, mo});
+          if (e.rayleigh_alpha != 0.0) {
+            // C += α Mₑ, written as a link with c = −α·mo (off-diagonal) plus diagonal terms
+            links.push_back({c[s], c[s + 1], 0.0, -e.rayleigh_alpha * mo, 0.0});
+            // diagonal α(md + mo) on both ends: a damper to ground at each end
+            links.push_back({c[s], -1, 0.0, e.rayleigh_alpha * (md + mo), 0.0});
+            links.push_back({c[s + 1], -1, 0.0, e.rayleigh_alpha * (md + mo), 0.0});
+          }
+        }
+        d << " " << N << " elements, EA " << fmt(e.youngs_modulus * e.area) << ", L "
+          << fmt(e.length) << ", mass " << fmt(e.mass) << (lumped ? " lumped" : " consistent");
+        break;
+      }
+      case ElementKind::Lever:
+        levers.push_back({b, {a, e.ratio}});
+        d << " ratio " << fmt(e.ratio);
+        break;
+    }
+    desc_.network.push_back(d.str());
+  }
+
+  // ---- levers: q_full = Lf q (an output is ratio × its input, chains resolved: every row
+  //      of Lf has at most one entry)
+  std::vector<int> red(n_full, -1);
+  std::map<int, std::pair<int, double>> dep;
+  for (const auto& lv : levers) dep[lv.first] = lv.second;
+  n_ = 0;
+  for (int i = 0; i < n_full; ++i)
+    if (!dep.count(i)) red[i] = n_++;
+  std::vector<std::pair<int, double>> lrow(n_full);  // (reduced DOF or −1, coefficient)
+  for (int i = 0; i < n_full; ++i) {
+    int k = i, depth = 0;
+    double c = 1.0;
+    for (auto it = dep.find(k); it != dep.end(); it = dep.find(k)) {
+      if (++depth > n_full) throw std::invalid_argument("levers form a cycle");
+      c *= it->second.second;
+      k = it->second.first;
+      if (k < 0) break;
+    }
+    lrow[i] = k < 0 ? std::make_pair(-1, 0.0) : std::make_pair(red[k], c);
+  }
+
+  // ---- assemble M, K, C, f₀ directly over the reduced DOFs: Lfᵀ A Lf entry by entry
+  using Trip = Eigen::Triplet<double, long>;
+  std::vector<Trip> tm, tk, tc;
+  Eigen::VectorXd ff = Eigen::VectorXd::Zero(n_full);
+  // x [1 −1; −1 1] on full DOFs (a, b); ground (−1) and grounded lever outputs dropped
+  auto add2 = [&](std::vector<Trip>& A, int a, int b, double x) {
+    if (x == 0.0) return;
+    const int ia = a >= 0 ? lrow[a].first : -1, ib = b >= 0 ? lrow[b].first : -1;
+    const double ca = ia >= 0 ? lrow[a].second : 0.0, cb = ib >= 0 ? lrow[b].second : 0.0;
+    if (ia >= 0) A.emplace_back(ia, ia, x * ca * ca);
+    if (ib >= 0) A.emplace_back(ib, ib, x * cb * cb);
+    if (ia >= 0 && ib >= 0) {
+      A.emplace_back(ia, ib, -x * ca * cb);
+      A.emplace_back(ib, ia, -x * ca * cb);
+    }
+  };
+  for (const Stiff& l : links) {
+    add2(tk, l.a, l.b, l.k);
+    add2(tc, l.a, l.b, l.c);
+    if (l.a >= 0) ff[l.a] -= l.P;
+    if (l.b >= 0) ff[l.b] += l.P;
+  }
+  auto add_mass = [&](int a, int b, double x) {  // x on (a, b) of the full mass matrix
+    if (a < 0 || b < 0 || lrow[a].first < 0 || lrow[b].first < 0) return;
+    tm.emplace_back(lrow[a].first, lrow[b].first, x * lrow[a].second * lrow[b].second);
+  };
+  for (const auto& pm : point_mass) add_mass(pm.first, pm.first, pm.second);
+  for (const MassPair& p : mass_pairs) {
+    add_mass(p.a, p.a, p.md);
+    add_mass(p.b, p.b, p.md);
+    if (p.mo != 0.0) {
+      add_mass(p.a, p.b, p.mo);
+      add_mass(p.b, p.a, p.mo);
+    }
+  }
+  M_.resize(n_, n_);
+  K_.resize(n_, n_);
+  M_.setFromTriplets(tm.begin(), tm.end());
+  K_.setFromTriplets(tk.begin(), tk.end());
+  if (any_damping) {
+    C_.resize(n_, n_);
+    C_.setFromTriplets(tc.begin(), tc.end());
+  }
+  f0_ = Eigen::VectorXd::Zero(n_);
+  for (int i = 0; i < n_full; ++i)
+    if (lrow[i].first >= 0) f0_[lrow[i].first] += lrow[i].second * ff[i];
+  {
+    std::vector<Trip> tl;
+    for (int i = 0; i < n_named; ++i)
+      if (lrow[i].first >= 0) tl.emplace_back(i, lrow[i].first, lrow[i].second);
+    L_.resize(n_named, n_);
+    L_.setFromTriplets(tl.begin(), tl.end());
+  }
+
+  factor_mass();
+
+  // ---- contacts
+  for (const ContactPointSpec& cs : net.contacts) {
+    MechanismContact c;
+    c.name = cs.name;
+    c.kind = cs.kind;
+    Eigen::RowVectorXd tr = Eigen::RowVectorXd::Zero(n_);  // the row over the reduced DOFs
+    auto tf = [&](int i, double x) {
+      if (i >= 0 && lrow[i].first >= 0) tr[lrow[i].first] += x * lrow[i].second;
+    };
+    const int a = dof(cs.nodes.at(0));
+    std::ostringstream d;
+    d << "contact '" << cs.name << "' (" << to_string(cs.kind) << ", ";
+    switch (cs.kind) {
+      case ContactPointKind::Cam:
+        tf(a, 1.0);
+        c.cam = true;
+        d << "cam on " << cs.nodes[0];
+        break;
+      case ContactPointKind::Lash:
+        tf(dof(cs.nodes.at(1)), 1.0);
+        tf(a, -1.0);
+        d << cs.nodes[0] << " below " << cs.nodes[1];
+        break;
+      case ContactPointKind::Stop:
+        tf(a, cs.side == StopSide::Below ? 1.0 : -1.0);
+        d << "stop " << to_string(cs.side) << " " << cs.nodes[0];
+        break;
+    }
+    c.g0 = cs.clearance;
+    c.t = tr;
+    c.restitution = cs.restitution.value_or(scene.contact.restitution);
+    c.penalty_stiffness = cs.penalty_stiffness.value_or(scene.contact.penalty_stiffness);
+    c.penalty_damping = cs.penalty_damping.value_or(scene.contact.penalty_damping);
+    d << ", clearance " << fmt(c.g0) << ", e " << fmt(c.restitution) << ")";
+    desc_.network.push_back(d.str());
+    contacts_.push_back(std::move(c));
+  }
+  finish_contacts([&](const double* b, double* x) {
+    Eigen::Map<Eigen::VectorXd>(x, n_) = Mldlt_.solve(Eigen::Map<const Eigen::VectorXd>(b, n_));
+  });
+  force_scale_ = f0_.size() ? f0_.cwiseAbs().maxCoeff() : 0.0;
+
+  // ---- initial state: named nodes as given, inside nodes linear between their ends
+  Eigen::VectorXd qf = Eigen::VectorXd::Zero(n_full), vf = qf;
+  for (int i = 0; i < n_named; ++i) {
+    qf[i] = net.nodes[i].initial_displacement;
+    vf[i] = net.nodes[i].initial_velocity;
+  }
+  for (size_t k = 0; k < inner_ends.size(); ++k) {
+    const int i = n_named + int(k), a = inner_ends[k].first, b = inner_ends[k].second;
+    const double x = inner_frac[k];
+    qf[i] = (1 - x) * (a >= 0 ? qf[a] : 0.0) + x * (b >= 0 ? qf[b] : 0.0);
+    vf[i] = (1 - x) * (a >= 0 ? vf[a] : 0.0) + x * (b >= 0 ? vf[b] : 0.0);
+  }
+  q0_.resize(n_);
+  v0_.resize(n_);
+  for (int i = 0; i < n_full; ++i)
+    if (red[i] >= 0) {
+      q0_[red[i]] = qf[i];
+      v0_[red[i]] = vf[i];
+    }
+  r0_ = f0_ - K_ * q0_;
+
+  desc_.follower = "network";
+  desc_.nodes = n_;
+  desc_.unknowns = 2 * n_;
+  desc_.mass = any_mass_matrix ? "consistent" : "lumped";
+  desc_.sparse = true;
+  desc_.linear_solver = scene.solver.integrator == Integrator::ArkodeErk
+                            ? "none"
+                            : (resolve_linear_solver(scene.solver, n_) == LinearSolverKind::Dense ? "dense" : "klu");
+  desc_.damping = any_damping;
+  desc_.preload = any_preload;
+  desc_.contact = "unilateral × " + std::to_string(m());
+  desc_.rhs_terms = {"inertia"};
+  if (K_.nonZeros() > 0) desc_.rhs_terms.push_back("stiffness");
+  if (any_preload) desc_.rhs_terms.push_back("preload");
+  if (any_damping) desc_.rhs_terms.push_back("damping");
+  if (!levers.empty()) desc_.rhs_terms.push_back("levers");
+  desc_.rhs_terms.push_back("contacts");
+}
+
+bool Mechanism::acceleration_jacobian(double, const double*, const double*, Eigen::MatrixXd& dadq,
+                                      Eigen::MatrixXd& dadv) const {
+  dadq = -Mldlt_.solve(Eigen::MatrixXd(K_));
+  if (damped())
+    dadv = -Mldlt_.solve(Eigen::MatrixXd(C_));
+  else
+    dadv.setZero(n_, n_);
+  return true;
+}
+
+void Mechanism::factor_mass() {
+  M_.makeCompressed();
+  K_.makeCompressed();  // acceleration() walks K's and C's columns
+  if (damped()) C_.makeCompressed();
+  bool diag = true, tri = true;
+  for (int j = 0; j < M_.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(M_, j); it; ++it) {
+      if (it.value() == 0.0) continue;
+      diag &= it.row() == j;
+      tri &= std::abs(long(it.row()) - long(j)) <= 1;
+    }
+  const char* bad = "the mass matrix is not positive definite (a node without mass)";
+  if (diag || tri) {  // LDLᵀ of a tridiagonal SPD matrix: no pivoting, no fill
+    mass_dinv_.resize(n_);
+    mass_l_ = Eigen::VectorXd::Zero(n_);
+    double d_prev = 0.0;
+    for (int j = 0; j < n_; ++j) {
+      const double b = j > 0 && !diag ? M_.coeff(j, j - 1) : 0.0;
+      if (j > 0) mass_l_[j] = b / d_prev;
+      const double d = M_.coeff(j, j) - mass_l_[j] * b;
+      if (!(d > 0.0)) throw std::invalid_argument(bad);
+      mass_dinv_[j] = 1.0 / d;
+      d_prev = d;
+    }
+    mass_pattern_ = diag ? MassPattern::Diagonal : MassPattern::Tridiagonal;
+  }
+  Mldlt_.compute(M_);  // also for the general pattern's callers (Jacobians)
+  if (Mldlt_.info() != Eigen::Success || !(Mldlt_.vectorD().minCoeff() > 0.0)) throw std::invalid_argument(bad);
+}
+
+void Mechanism::solve_mass(Eigen::Ref<Eigen::VectorXd> x) const {
+  switch (mass_pattern_) {
+    case MassPattern::Diagonal:
+      x.array() *= mass_dinv_.array();
+      return;
+    case MassPattern::Tridiagonal:
+      for (int i = 1; i < n_; ++i) x[i] -= mass_l_[i] * x[i - 1];
+      x[n_ - 1] *= mass_dinv_[n_ - 1];
+      for (int i = n_ - 2; i >= 0; --i) x[i] = x[i] * mass_dinv_[i] - mass_l_[i + 1] * x[i + 1];
+      return;
+    case MassPattern::General:
+      x = Mldlt_.solve(Eigen::VectorXd(x));
+      return;
+  }
+}
+
+void Mechanism::acceleration(double, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
+                             bool homogeneous) const {
+  Eigen::Map<Eigen::VectorXd> A(a, n_);
+  if (!single_follower_) {
+    // Networks: f₀ − Kq − Cv and the sparse LDLᵀ, in this order (a penalty run at rtol 1e-4
+    // is sensitive to the round-off of its forces: the two-mass train's energy residual
+    // moved from 5.4e-4 to 1.2e-3 of the work with the one-pass form below).
+    Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
+    Eigen::VectorXd r = -(K_ * Q);
+    if (!homogeneous) r += f0_;
+    if (damped()) r.noalias() -= C_ * V;
+    A = Mldlt_.solve(r);
+    if (F.size()) A.noalias() += MinvTt_ * F;
+    return;
+  }
+  // A single follower: one pass over K's columns (no temporaries), a = r₀ − K(q − q(0)) − Cv
+  // as FollowerModel::internal_force, then M⁻¹ in place (diagonal or tridiagonal).
+  const long* outer = K_.outerIndexPtr();
+  const long* inner = K_.innerIndexPtr();
+  const double* val = K_.valuePtr();
+  if (homogeneous) A.setZero();
+  else A = r0_;
+  for (int j = 0; j < n_; ++j) {
+    const double dq = homogeneous ? q[j] : q[j] - q0_[j];
+    if (dq != 0.0)
+      for (long p = outer[j]; p < outer[j + 1]; ++p) a[inner[p]] -= val[p] * dq;
+  }
+  if (damped()) {
+    const long* co = C_.outerIndexPtr();
+    const long* ci = C_.innerIndexPtr();
+    const double* cv = C_.valuePtr();
+    for (int j = 0; j < n_; ++j)
+      if (v[j] != 0.0)
+        for (long p = co[j]; p < co[j + 1]; ++p) a[ci[p]] -= cv[p] * v[j];
+  }
+  solve_mass(A);
+  if (F.size() == 1)  // one contact: the product's own operations, without the matrix-vector kernel
+    A.noalias() += MinvTt_.col(0) * F[0];
+  else if (F.size())
+    A.noalias() += MinvTt_ * F;
+}
+
+void Mechanism::contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta) const {
+  if (!single_follower_) {
+    MechanicalSystem::contact_free_acceleration(t, q, v, Ta);
+    return;
+  }
+  Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
+  Ta = ta_r0_;
+  Ta.noalias() -= ta_q_.transpose() * (Q - q0_);
+  if (damped()) Ta.noalias() -= ta_v_.transpose() * V;
+}
+
+double Mechanism::kinetic_energy(const double* v) const {
+  Eigen::Map<const Eigen::VectorXd> V(v, n_);
+  return 0.5 * V.dot(M_ * V);
+}
+double Mechanism::potential_energy(const double* q) const {
+  Eigen::Map<const Eigen::VectorXd> Q(q, n_);
+  return 0.5 * Q.dot(K_ * Q) - f0_.dot(Q);
+}
+double Mechanism::damping_power(const double* v) const {
+  if (!damped()) return 0.0;
+  Eigen::Map<const Eigen::VectorXd> V(v, n_);
+  return V.dot(C_ * V);
+}
+
+}  // namespace camdyn
+
+// ---- a user's follower (include/camdyn/follower_system.hpp) as a MechanicalSystem ----------
+namespace camdyn {
+
+namespace {
+class UserMechanism final : public MechanicalSystem {
+ public:
+  UserMechanism(const Scene& scene, std::shared_ptr<const FollowerSystem> f) : f_(std::move(f)) {
+    auto fail = [](const std::string& key, const std::string& value, const std::string& rule) {
+      throw SceneError("<follower>", 0, key, value, rule);
+    };
+    n_ = f_->size();
+    if (n_ < 1) fail("size()", std::to_string(n_), "must be >= 1");
+    const std::vector<FollowerContact> cs = f_->contacts();
+    if (cs.empty()) fail("contacts()", "[]", "needs at least one contact");
+    for (size_t i = 0; i < cs.size(); ++i) {
+      const FollowerContact& c = cs[i];
+      const std::string p = "contacts()[" + std::to_string(i) + "]";
+      if (c.name.empty() || c.name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
+        fail(p + ".name", "\"" + c.name + "\"", "must be non-empty, letters, digits, '_' and '-' only");
+      for (size_t k = 0; k < i; ++k)
+        if (cs[k].name == c.name) fail(p + ".name", "\"" + c.name + "\"", "must be unique");
+      if (int(c.row.size()) != n_)
+        fail(p + ".row", std::to_string(c.row.size()) + " entries", "must have size() = " + std::to_string(n_) + " entries");
+      bool nonzero = false;
+      for (double x : c.row) {
+        if (!std::isfinite(x)) fail(p + ".row", "non-finite entry", "must be finite");
+        nonzero |= x != 0.0;
+      }
+      if (!nonzero) fail(p + ".row", "all zero", "must not be all zero");
+      if (!(c.clearance >= 0.0) || !std::isfinite(c.clearance))
+        fail(p + ".clearance", detail::fmt(c.clearance), "must be finite and >= 0");
+      if (c.restitution && !(*c.restitution >= 0.0 && *c.restitution <= 1.0))
+        fail(p + ".restitution", detail::fmt(*c.restitution), "must be >= 0 and <= 1");
+      if (c.penalty_stiffness && !(*c.penalty_stiffness > 0.0))
+        fail(p + ".penalty_stiffness", detail::fmt(*c.penalty_stiffness), "must be > 0");
+      if (c.penalty_damping && !(*c.penalty_damping >= 0.0))
+        fail(p + ".penalty_damping", detail::fmt(*c.penalty_damping), "must be >= 0");
+      MechanismContact m;
+      m.name = c.name;
+      m.kind = c.cam ? ContactPointKind::Cam : ContactPointKind::Stop;
+      m.t = Eigen::Map<const Eigen::RowVectorXd>(c.row.data(), n_);
+      m.g0 = c.clearance;
+      m.cam = c.cam;
+      m.restitution = c.restitution.value_or(scene.contact.restitution);
+      m.penalty_stiffness = c.penalty_stiffness.value_or(scene.contact.penalty_stiffness);
+      m.penalty_damping = c.penalty_damping.value_or(scene.contact.penalty_damping);
+      contacts_.push_back(std::move(m));
+    }
+    finish_contacts([&](const double* b, double* x) { f_->solve_mass(b, x); });
+    if (!W_.allFinite() || W_.diagonal().minCoeff() <= 0.0)
+      fail("solve_mass()", "T M⁻¹ Tᵀ", "must give a positive diagonal (M symmetric positive definite)");
+    q0_.resize(n_);
+    v0_.resize(n_);
+    f_->initial_state(q0_.data(), v0_.data());
+    // the force at rest: the scale of the force thresholds
+    Eigen::VectorXd r(n_), zero = Eigen::VectorXd::Zero(n_);
+    f_->force(0.0, q0_.data(), zero.data(), r.data());
+    force_scale_ = r.cwiseAbs().maxCoeff();
+    for (int i = 0; i < n_; ++i) node_names_.push_back("q" + std::to_string(i));
+    L_.resize(n_, n_);
+    L_.setIdentity();
+    desc_.follower = "user: " + f_->name();
+    desc_.nodes = n_;
+    desc_.unknowns = 2 * n_;
+    desc_.mass = "user (M⁻¹ action)";
+    desc_.linear_solver = scene.solver.integrator == Integrator::ArkodeErk ? "none" : "dense";
+    desc_.contact = "unilateral × " + std::to_string(m());
+    Eigen::MatrixXd dq, dv;
+    const bool jac = f_->force_jacobian(0.0, q0_.data(), v0_.data(), (dq = Eigen::MatrixXd(n_, n_)).data(),
+                                        (dv = Eigen::MatrixXd(n_, n_)).data());
+    desc_.rhs_terms = {"inertia", "user force r(t, q, v)", jac ? "user Jacobian" : "difference-quotient Jacobian",
+                       "contacts"};
+    for (const MechanismContact& c : contacts_)
+      desc_.network.push_back("contact '" + c.name + "' (" + (c.cam ? "cam" : "stop") + ", clearance " +
+                              detail::fmt(c.g0) + ", e " + detail::fmt(c.restitution) + ")");
+  }
+  bool linear() const override { return f_->linear(); }
+  void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
+                    bool homogeneous) const override {
+    r_.resize(n_);
+    f_->force(t, q, v, r_.data());
+    if (homogeneous) {  // linear only: drop r's constant part r(t, 0, 0)
+      Eigen::VectorXd z = Eigen::VectorXd::Zero(n_), r0(n_);
+      f_->force(t, z.data(), z.data(), r0.data());
+      r_ -= r0;
+    }
+    if (F.size()) r_.noalias() += T_.transpose() * F;
+    f_->solve_mass(r_.data(), a);
+  }
+  bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
+                             Eigen::MatrixXd& dadv) const override {
+    Eigen::MatrixXd drdq(n_, n_), drdv(n_, n_);
+    if (!f_->force_jacobian(t, q, v, drdq.data(), drdv.data())) return false;
+    dadq.resize(n_, n_);
+    dadv.resize(n_, n_);
+    for (int j = 0; j < n_; ++j) {
+      f_->solve_mass(drdq.col(j).data(), dadq.col(j).data());
+      f_->solve_mass(drdv.col(j).data(), dadv.col(j).data());
+    }
+    return true;
+  }
+  double kinetic_energy(const double* v) const override { return f_->kinetic_energy(v); }
+  double potential_energy(const double* q) const override { return f_->potential_energy(q); }
+  double damping_power(const double* v) const override { return f_->damping_power(v); }
+
+ private:
+  std::shared_ptr<const FollowerSystem> f_;
+  mutable Eigen::VectorXd r_;
+};
+}  // namespace
+
+std::shared_ptr<const MechanicalSystem> make_user_system(const Scene& scene,
+                                                         std::shared_ptr<const FollowerSystem> follower) {
+  if (!follower) throw std::invalid_argument("Simulator: the follower is null");
+  return std::make_shared<const UserMechanism>(scene, std::move(follower));
+}
+
+}  // namespace camdyn

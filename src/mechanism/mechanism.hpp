@@ -1,0 +1,194 @@
+// camdyn (private) — a mechanism with several contacts, assembled from a network scene
+// (include/camdyn/network.hpp, docs/interface.md "Networks").
+//
+//   M q̈ + C q̇ + K q = f₀ + Tᵀ F,     F ≥ 0 (one entry per contact)
+//   gap of contact j:  g_j = T_j q + g₀_j − X_C(t)·[j touches the cam]
+//
+//   Assembly over the network's nodes (ground dropped), then levers eliminated:
+//     q_full = L q  (a lever's output node is ratio × its input node; chains resolved),
+//     M = LᵀM_f L, C = LᵀC_f L, K = LᵀK_f L, f₀ = Lᵀf₀_f, T = T_f L.
+//   spring [a, b] (δ = q_a − q_b):  K_f += k[1 −1; −1 1], C_f += c[…], f₀_f += P(−e_a + e_b)
+//   spring with mass m_s, N masses: N + 1 springs of (N + 1)k (and (N + 1)c) in series,
+//     masses m_s/(N + 1) inside, m_s/(2(N + 1)) added on each end node (a lumped bar).
+//   bar (N elements, h = L/N, mₑ = m/N): Kₑ = EA/h[1 −1; −1 1], Mₑ = mₑ/6[2 1; 1 2] or
+//     mₑ/2 I, C += αMₑ + βKₑ.
+//   W = T M⁻¹ Tᵀ (m × m): the contacts' inverse mass matrix (Lee's M* for several contacts).
+//
+// M, C, K, L are sparse (CSC): a valve train has a handful of unknowns, a pushrod meshed
+// finely 10⁵ (issue 23: memory and work per step linear in the unknowns). M⁻¹ acts through
+// one sparse LDLᵀ factorisation of M (no fill for a chain); the implicit engines solve
+// their Newton systems through the sparse Schur complement M + γC + γ²K (ode_engine.hpp,
+// SparseNewton). Only what the scene asks for is built (C only if some element damps; the
+// description lists the assembled network).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camdyn/follower_system.hpp"
+#include "camdyn/model.hpp"  // SparseMatrix
+#include "camdyn/model_description.hpp"
+#include "camdyn/scene.hpp"
+
+namespace camdyn {
+
+/// One contact of a mechanism: a row of T.
+struct MechanismContact {
+  std::string name;
+  ContactPointKind kind = ContactPointKind::Cam;
+  Eigen::RowVectorXd t;  ///< row of T over the unknowns
+  double g0 = 0.0;       ///< gap at q = 0 (and X_C = 0)
+  bool cam = false;      ///< the cam's lift X_C(t) enters the gap
+  double restitution = 0.0, penalty_stiffness = 0.0, penalty_damping = 0.0;
+};
+
+/// What the network methods integrate: M q̈ = r(t, q, q̇) + TᵀF with constant M and contact
+/// rows T. Two kinds: the linear Mechanism assembled from a network scene, and a user's
+/// FollowerSystem (include/camdyn/follower_system.hpp) through an adapter.
+class MechanicalSystem {
+ public:
+  virtual ~MechanicalSystem() = default;
+  int n() const { return n_; }  ///< unknowns
+  int m() const { return int(contacts_.size()); }
+  const Eigen::MatrixXd& MinvTt() const { return MinvTt_; }  ///< M⁻¹Tᵀ (n × m)
+  const Eigen::MatrixXd& T() const { return T_; }            ///< m × n
+  const Eigen::MatrixXd& W() const { return W_; }            ///< T M⁻¹ Tᵀ
+  const std::vector<MechanismContact>& contacts() const { return contacts_; }
+  /// The contact shown in history.csv's standard columns: the first cam contact (or 0).
+  int primary() const { return primary_; }
+  int cam_contacts() const {
+    int k = 0;
+    for (const MechanismContact& c : contacts_) k += c.cam;
+    return k;
+  }
+  /// Named nodes and their displacement q_node = L_row · q.
+  const std::vector<std::string>& node_names() const { return node_names_; }
+  const SparseMatrix& L() const { return L_; }  ///< named nodes × unknowns
+  const Eigen::VectorXd& q0() const { return q0_; }
+  const Eigen::VectorXd& v0() const { return v0_; }
+  const ModelDescription& description() const { return desc_; }
+  /// A typical force (thresholds): the largest preload.
+  double force_scale() const { return force_scale_; }
+  /// true: built from a rigid or elastic_bar scene (one cam contact on node 0, the cam's
+  /// X_C absolute: g = q₀ − X_C, u_c = q₀), whose history keeps the single follower's
+  /// standard columns (no per-contact or per-node columns).
+  bool single_follower() const { return single_follower_; }
+
+  /// true: r affine in (q, q̇) with constant coefficients (Lee's step map is affine).
+  virtual bool linear() const = 0;
+  /// a = M⁻¹(r(t, q, v) + TᵀF) (F over all contacts, or empty); homogeneous (linear only):
+  /// without r's constant part.
+  virtual void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F,
+                            double* a, bool homogeneous = false) const = 0;
+  /// ∂a/∂q, ∂a/∂v without contacts (n × n, dense: for small systems; a Mechanism's
+  /// engines use its sparse M, C, K instead); false if not available.
+  virtual bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
+                                     Eigen::MatrixXd& dadv) const = 0;
+  /// T a_free: the contacts' accelerations without contact forces, T M⁻¹ r(t, q, v)
+  /// (m entries). Default: acceleration() then T·a.
+  virtual void contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta) const {
+    Eigen::VectorXd a(n_);
+    acceleration(t, q, v, Eigen::VectorXd(), a.data());
+    Ta = T_ * a;
+  }
+  virtual double kinetic_energy(const double* v) const = 0;
+  /// Up to a constant.
+  virtual double potential_energy(const double* q) const = 0;
+  virtual double damping_power(const double* v) const = 0;
+  /// false: damping_power is zero for every v (a quadrature of it may skip the state).
+  virtual bool dissipative() const { return true; }
+
+ protected:
+  /// T_, MinvTt_ (through solve), W_, primary_ from contacts_.
+  template <class Solve>
+  void finish_contacts(Solve solve) {
+    T_.resize(m(), n_);
+    for (int j = 0; j < m(); ++j) T_.row(j) = contacts_[j].t;
+    MinvTt_.resize(n_, m());
+    for (int j = 0; j < m(); ++j) {
+      const Eigen::VectorXd b = T_.row(j).transpose();
+      Eigen::VectorXd x(n_);
+      solve(b.data(), x.data());
+      MinvTt_.col(j) = x;
+    }
+    W_ = T_ * MinvTt_;
+    primary_ = 0;
+    for (int j = 0; j < m(); ++j)
+      if (contacts_[j].cam) {
+        primary_ = j;
+        break;
+      }
+  }
+  int n_ = 0, primary_ = 0;
+  Eigen::MatrixXd MinvTt_, T_, W_;
+  SparseMatrix L_;
+  Eigen::VectorXd q0_, v0_;
+  std::vector<MechanismContact> contacts_;
+  std::vector<std::string> node_names_;
+  ModelDescription desc_;
+  double force_scale_ = 0.0;
+  bool single_follower_ = false;
+};
+
+/// The linear mechanism of a network scene: r = f₀ − Kq − Cq̇.
+class Mechanism final : public MechanicalSystem {
+ public:
+  /// The mechanism of a scene: its network, or a rigid / elastic_bar follower as a
+  /// one-contact mechanism (src/mechanism/follower_builder.cpp).
+  /// @pre validate(scene) passed.
+  /// @throws std::invalid_argument on a mass matrix that is not positive definite.
+  explicit Mechanism(const Scene& scene);
+
+  const SparseMatrix& M() const { return M_; }
+  const SparseMatrix& K() const { return K_; }
+  const SparseMatrix& C() const { return C_; }  ///< zero-sized if undamped
+  bool damped() const { return C_.size() > 0; }
+  const Eigen::VectorXd& f0() const { return f0_; }
+
+  bool linear() const override { return true; }
+  void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
+                    bool homogeneous = false) const override;
+  bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
+                             Eigen::MatrixXd& dadv) const override;
+  /// A single follower: z_jᵀr₀ − (K z_j)ᵀ(q − q(0)) − (C z_j)ᵀv with z_j = M⁻¹T_jᵀ, O(n)
+  /// without a mass solve (as FollowerModel::contact_acceleration); networks: the default.
+  void contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta) const override;
+  double kinetic_energy(const double* v) const override;
+  /// ½qᵀKq − f₀ᵀq (up to a constant).
+  double potential_energy(const double* q) const override;
+  double damping_power(const double* v) const override;
+  bool dissipative() const override { return damped(); }
+
+ private:
+  /// A rigid or elastic_bar follower: FollowerModel's M, C, K, f₀ and q(0), contact row e₀ᵀ.
+  void build_follower(const Scene& scene);
+  /// After M_, K_, C_, f0_, q0_: the LDLᵀ of M and the shifted force origin.
+  void factor_and_origin();
+  SparseMatrix M_, K_, C_;
+  Eigen::SimplicialLDLT<SparseMatrix> Mldlt_;
+  Eigen::VectorXd f0_;
+  // r = f₀ − Kq − Cq̇ is evaluated as r₀ − K(q − q(0)) − Cq̇ with r₀ = f₀ − Kq(0): the same
+  // value, with round-off that scales with the motion since t = 0, not with |K||q| (a stiff
+  // bar at rest otherwise shows force noise of ~1e-7 of its preload).
+  Eigen::VectorXd r0_;
+  /// x ← M⁻¹x in place: diagonal M by its inverse diagonal, tridiagonal M (a chain: the
+  /// single bar) by two O(n) passes of its LDLᵀ, any other pattern by the sparse LDLᵀ.
+  void solve_mass(Eigen::Ref<Eigen::VectorXd> x) const;
+  void factor_mass();  // after M_: picks the solve above; @throws std::invalid_argument
+  enum class MassPattern { Diagonal, Tridiagonal, General } mass_pattern_ = MassPattern::General;
+  Eigen::VectorXd mass_dinv_, mass_l_;  // 1/D, and L's subdiagonal (tridiagonal)
+  // contact_free_acceleration's linear forms (single follower): z_jᵀr₀, K z_j, C z_j
+  Eigen::VectorXd ta_r0_;
+  Eigen::MatrixXd ta_q_, ta_v_;
+};
+
+/// A user's follower as the system the network methods integrate (src/mechanism/mechanism.cpp).
+/// @throws SceneError (file "<follower>") naming the offending contact field.
+std::shared_ptr<const MechanicalSystem> make_user_system(const Scene& scene,
+                                                         std::shared_ptr<const FollowerSystem> follower);
+
+}  // namespace camdyn

@@ -1,0 +1,60 @@
+// camdyn — the designer quantities of one contact state (designer_columns.hpp).
+#include "results/designer_columns.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "camdyn/hertz.hpp"
+
+namespace camdyn {
+namespace detail {
+
+namespace {
+constexpr double kDegPerRad = 57.295779513082320876798154814105;
+}
+
+const std::vector<std::string>& DesignerColumns::names() {
+  static const std::vector<std::string> n{"pressure_angle_deg", "radius_of_curvature", "contact_stress",
+                                          "side_load",          "cam_torque",          "cam_power"};
+  return n;
+}
+
+bool DesignerColumns::has_network_columns(const std::vector<std::string>& extra) {
+  const std::vector<std::string>& d = names();
+  return std::any_of(extra.begin(), extra.end(),
+                     [&](const std::string& c) { return std::find(d.begin(), d.end(), c) == d.end(); });
+}
+
+DesignerColumns::DesignerColumns(const Scene& scene) {
+  const CamSpec& c = scene.cam;
+  const bool face_ok = c.follower_face == FollowerFace::Flat || c.follower_face == FollowerFace::Roller;
+  if (c.width > 0 && face_ok) {
+    width_ = c.width;
+    E_star_ = contact_modulus(c.youngs_modulus, c.poisson_ratio, c.follower_youngs_modulus,
+                              c.follower_poisson_ratio);
+    Rf_ = c.follower_face == FollowerFace::Roller ? c.roller_radius : INFINITY;
+  }
+}
+
+ContactDesign DesignerColumns::eval(const CamPoint& p, double F, double omega) const {
+  ContactDesign d;
+  d.pressure_angle_deg = p.pressure_angle * kDegPerRad;
+  d.rho = p.rho;
+  // translating: the guide's side load; oscillating: the pivot takes it (NaN)
+  d.side = std::isnan(p.moment_arm) ? F * std::tan(p.pressure_angle) : NAN;
+  d.torque = F * p.dX_dtheta;
+  d.power = d.torque * omega;
+  d.stress = NAN;
+  const double curv = (std::isinf(Rf_) ? 0.0 : 1.0 / Rf_) + 1.0 / p.rho;
+  if (E_star_ > 0 && std::isfinite(p.rho) && curv > 0)
+    d.stress = hertz_line(F * p.normal_force_ratio, width_, p.rho, Rf_, E_star_).max_pressure;
+  return d;
+}
+
+void DesignerColumns::append(const CamPoint& p, double F, double omega, std::vector<double>& out) const {
+  const ContactDesign d = eval(p, F, omega);
+  out.insert(out.end(), {d.pressure_angle_deg, d.rho, d.stress, d.side, d.torque, d.power});
+}
+
+}  // namespace detail
+}  // namespace camdyn

@@ -1,0 +1,341 @@
+// camdyn — the scene-key reference: the key table (src/scene/scene.cpp, detail::key_table()) joined
+// with the defaults of the default-constructed specs and one documentation table (units and
+// meaning). scene_keys() refuses to run when the two tables disagree, so a new key without
+// documentation fails `camdyn scene --keys`, the docs build and the test suite.
+#include "camdyn/scene_keys.hpp"
+
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "camdyn/scene.hpp"
+#include "scene/key_table.hpp"
+
+namespace camdyn {
+
+namespace {
+
+struct KeyDoc {
+  const char* key;
+  const char* unit;
+  const char* text;
+  const char* type = nullptr;     // network keys: the value's type (the key table has the path only)
+  const char* rule = nullptr;     // network keys: the validator's rule
+  const char* fixed_default = nullptr;  // when the default is not a value ("(required)", "the [contact] value")
+  bool input_only = false;  // a designer-unit key converted at load (cam.speed_rpm, …): never written
+};
+
+// Units: lengths, masses and times in any consistent units ("length", "mass", "time").
+const KeyDoc kDocs[] = {
+    {"title", "—", "Title of the scene, written to summary.json (`scene`)."},
+    // [cam]
+    {"cam.profile", "—", "Profile representation: `points` (polar spline through knots), `lift` (lift table over a "
+                         "base circle, flat-faced follower), `circle` (eccentric circle; closed-form jump speed)."},
+    {"cam.angles_deg", "deg", "points: polar angles of the spline knots; strictly increasing, span < 360, at least 4."},
+    {"cam.radii", "length", "points: radii of the knots, > 0, as many as `cam.angles_deg`."},
+    {"cam.base_radius", "length", "lift: base-circle radius r_b."},
+    {"cam.lift_angles_deg", "deg", "lift: cam angles of the lift table; strictly increasing, span < 360, at least 4."},
+    {"cam.lift", "length", "lift: follower lift L(θ) at `cam.lift_angles_deg` (periodic spline); r_b + L > 0."},
+    {"cam.radius", "length", "circle: radius R."},
+    {"cam.eccentricity", "length", "circle: eccentricity e, 0 ≤ e < R (centre at (e, 0) in the cam frame)."},
+    {"cam.speed_rev_s", "rev/s", "Constant cam speed (any sign); ignored when a speed table is given."},
+    {"cam.speed_rpm", "rpm", "Constant cam speed in revolutions per minute, instead of `cam.speed_rev_s` (giving both "
+                             "is an error); needs `cam.rpm_of`. Converted when the scene is loaded (time in seconds): "
+                             "camshaft rpm / 60 or engine rpm / 120 = `cam.speed_rev_s`, which `--resolved` writes. "
+                             "Input only.", nullptr, nullptr, "(none)", true},
+    {"cam.rpm_of", "—", "Whose rpm `cam.speed_rpm` is: `camshaft`, or `engine` — the crankshaft of a four-stroke "
+                        "engine, which turns twice per camshaft revolution (camshaft rpm = engine rpm / 2). Required "
+                        "with `cam.speed_rpm`, refused without it. Input only.", nullptr, nullptr, "(none)", true},
+    {"cam.speed_table_t", "time", "Optional speed table: times, strictly increasing, first = 0; ω(t) piecewise "
+                                  "linear between entries and constant after the last."},
+    {"cam.speed_table_rev_s", "rev/s", "Speeds of the speed table, as many as `cam.speed_table_t`."},
+    {"cam.theta0_deg", "deg", "Cam angle at t = 0."},
+    {"cam.law", "—", "law: the motion-law segments, `KIND D H [...]` separated by `;` (dwell, ramp, harmonic, "
+                     "cycloidal, poly345, poly4567, poly, modtrap, modsine, polydyne); spans sum to 360 deg and the "
+                     "lift closes (docs/cam_laws.md)."},
+    {"cam.nose_radius", "length", "arc: nose-circle radius r_n."},
+    {"cam.nose_distance", "length", "arc: distance d of the nose-circle centre from the cam centre."},
+    {"cam.flank_radius", "length", "arc: radius R_f of the two flank arcs, tangent to base and nose circles."},
+    {"cam.follower_face", "—", "Follower face: `flat` (translating flat face), `knife_edge`, `roller` or `point` "
+                               "(lift imposed, no base radius needed)."},
+    {"cam.follower_offset", "length", "Offset ε of the translating follower's axis (knife edge, roller)."},
+    {"cam.roller_radius", "length", "Roller radius r_r (follower_face = roller)."},
+    {"cam.follower_motion", "—", "`translating` (default) or `oscillating`: a finger follower or rocker turning about "
+                                 "a pivot, flat pad or roller; profile law, circle or arc (docs/cam_laws.md)."},
+    {"cam.pivot_x", "length", "oscillating: X of the pivot relative to the cam centre (fixed frame)."},
+    {"cam.pivot_y", "length", "oscillating: Y of the pivot relative to the cam centre (fixed frame)."},
+    {"cam.arm_length", "length", "oscillating roller: distance from the pivot to the roller centre, > 0."},
+    {"cam.pad_offset", "length", "oscillating flat: signed distance of the pad line from the pivot."},
+    {"cam.valve_arm", "length", "oscillating: distance ℓ_v from the pivot to the valve end, > 0; the follower "
+                                "coordinate is X = ℓ_v ψ and a law gives X (the valve-end lift)."},
+    {"cam.land_on_breaks", "—", "Steps land on the law's joints and the arc cam's tangency points (stop times)."},
+    {"cam.width", "length", "Cam width of the line contact; > 0 turns on the Hertz stress results."},
+    {"cam.youngs_modulus", "force/length²", "Cam material's Young's modulus E₁ (Hertz stress)."},
+    {"cam.poisson_ratio", "—", "Cam material's Poisson ratio ν₁ (Hertz stress)."},
+    {"cam.follower_youngs_modulus", "force/length²", "Follower face's (or roller's) Young's modulus E₂ (Hertz stress)."},
+    {"cam.follower_poisson_ratio", "—", "Follower face's (or roller's) Poisson ratio ν₂ (Hertz stress)."},
+    // [follower]
+    {"follower.kind", "—", "`rigid` (one mass), `elastic_bar` (axial bar of N linear elements) or `network` "
+                           "(nodes, elements and contacts of [[nodes]], [[elements]], [[contacts]])."},
+    {"follower.mass", "mass", "Total mass of the rigid follower or the bar."},
+    {"follower.damping", "force·time/length", "rigid: viscous damper to ground."},
+    {"follower.youngs_modulus", "force/length²", "elastic_bar: Young's modulus E."},
+    {"follower.area", "length²", "elastic_bar: cross-section area A."},
+    {"follower.length", "length", "elastic_bar: bar length L."},
+    {"follower.elements", "—", "elastic_bar: number of two-node linear elements N."},
+    {"follower.mass_matrix", "—", "elastic_bar: consistent or lumped mass matrix."},
+    {"follower.rayleigh_alpha", "1/time", "elastic_bar: Rayleigh damping C = αM + βK, the α."},
+    {"follower.rayleigh_beta", "time", "elastic_bar: Rayleigh damping C = αM + βK, the β."},
+    // [spring]
+    {"spring.stiffness", "force/length", "Return-spring stiffness k on the follower's far end."},
+    {"spring.precompression", "length", "Pre-compression δ₀ (k·δ₀ is the preload)."},
+    // [contact]
+    {"contact.model", "—", "Contact method: `lee` (Lee's augmented multipliers), `penalty`, `holonomic` "
+                           "(held contact) or `event` (exact event-driven)."},
+    {"contact.error_variant", "—", "Lee classic step only: eqs. 12–13 (`eq12`) or 17–18 (`eq17`)."},
+    {"contact.lee_step", "—", "Lee's step: `located` (one consistent trajectory, switches located, dense output) "
+                              "or `classic` (the round-1 step). On cvode-bdf with an elastic follower the located "
+                              "step runs inside CVODE's step; so does a network (either step)."},
+    {"contact.tol_u", "length", "Displacement-level tolerance; 0 = the paper default, 1e-8 rigid, 1e-7 elastic_bar "
+                                "and network (filled in by `camdyn scene --resolved`)."},
+    {"contact.tol_v", "length/time", "Velocity-level tolerance; 0 = tol_u/Δt per step."},
+    {"contact.tol_a", "length/time²", "Acceleration-level tolerance (classic step); 0 = tol_u/Δt² per step."},
+    {"contact.max_iterations", "—", "Iterations per level before the step is retried with Δt/2."},
+    {"contact.separation", "—", "false: the follower never leaves the cam (bilateral contact)."},
+    {"contact.restitution", "—", "Newton restitution coefficient e at impact (0 = plastic, the paper); the default "
+                                 "of every network contact."},
+    {"contact.initial_gap", "length", "Clearance between cam and follower at t = 0 (valve lash); unused by networks."},
+    {"contact.penalty_law", "—", "penalty only: `linear` (k_p s + c_p ṡ) or `hunt_crossley`."},
+    {"contact.penalty_stiffness", "force/length", "penalty only: k_p (Hunt–Crossley: force/lengthⁿ); the default "
+                                                  "of every network contact."},
+    {"contact.penalty_damping", "force·time/length", "penalty only: c_p (Hunt–Crossley: α, time/length); the "
+                                                     "default of every network contact."},
+    {"contact.penalty_exponent", "—", "Hunt–Crossley exponent n."},
+    // [solver]
+    {"solver.integrator", "—", "`arkode-erk` (Dormand–Prince 5(4)), `arkode-dirk` (SDIRK, mass matrix), "
+                               "`cvode-bdf` (BDF), `ida` (the held contacts as a DAE, any mechanism; needs contact.model = holonomic)."},
+    {"solver.rtol", "—", "Relative local error tolerance."},
+    {"solver.atol", "length", "Absolute local error tolerance."},
+    {"solver.linear_solver", "—", "`auto` (dense for ≤ 16 unknowns, KLU beyond), `dense` or `klu`."},
+    {"solver.max_step", "time", "Largest step; 0 = no limit beyond the output times."},
+    {"solver.initial_step", "time", "First step; 0 = automatic."},
+    {"solver.stack", "—", "Step loop of a `rigid` or `elastic_bar` follower: `mechanism` (built as a one-contact "
+                          "mechanism and run by the methods and engines of networks; every method but "
+                          "contact.lee_step = classic), `follower` (the single-follower stack: Lee's classic step only, "
+                          "kept for the bench's comparison; any other method is an error), `auto` (the mechanism; the "
+                          "follower stack for contact.lee_step = classic; docs/one_mechanism.md §6)."},
+    // [run]
+    {"run.t_end", "time", "Final time."},
+    {"run.revolutions", "rev", "Length of the run in camshaft revolutions, instead of `run.t_end` (giving both is an "
+                               "error): run.t_end = revolutions / |cam speed|, set when the scene is loaded (a later "
+                               "`--set cam.speed_rev_s` keeps that t_end unless run.revolutions is set again). Needs a "
+                               "constant cam speed other than 0. Input only.", nullptr, nullptr, "(none)", true},
+    {"run.output_dt", "time", "Output spacing of history.csv; 0 = one row per accepted step."},
+    {"run.land_on_output", "—", "true: steps land on the output times instead of dense output (Lee located)."},
+    {"run.max_steps", "—", "Safety bound on accepted + rejected steps."},
+    {"run.poincare_angle_deg", "deg", "Cam angle of the once-per-revolution (Poincaré) samples of (u_c, v_c), "
+                                      "relative to cam.theta0_deg."},
+    {"run.settle_revolutions", "—", "Revolutions left out of the Poincaré samples and the period detector."},
+    {"run.period_tol", "—", "Relative tolerance of the period detector (|Δu_c| ≤ tol·lift, |Δv_c| ≤ tol·lift·|ω|)."},
+    {"run.designer_columns", "—", "true: history.csv gets pressure_angle_deg, radius_of_curvature, contact_stress, "
+                                  "side_load, cam_torque, cam_power per row (docs/cam_laws.md)."},
+    // [[nodes]]
+    {"nodes.name", "—", "Node name: history columns `u_<name>`, `v_<name>`.", "string",
+     "non-empty, unique, not \"ground\", letters, digits, '_' and '-' only", "(required)"},
+    {"nodes.mass", "mass", "Lumped mass of the node.", "real", "must be >= 0"},
+    {"nodes.initial_displacement", "length", "q(0), from the installed position.", "real", "must be finite"},
+    {"nodes.initial_velocity", "length/time", "q̇(0).", "real", "must be finite"},
+    // [[elements]]
+    {"elements.name", "—", "Element name, for messages.", "string", "any string", "\"<type> #<index>\""},
+    {"elements.type", "—", "Element type; decides the other keys allowed.", "enum",
+     "must be one of \"spring\", \"dashpot\", \"bar\", \"lever\"", "(required)"},
+    {"elements.nodes", "—", "[lower, upper] (lever: [input, output]); \"ground\" may end a spring, dashpot or bar.",
+     "names", "exactly two different node names", "(required)"},
+    {"elements.stiffness", "force/length", "Spring stiffness k.", "real", "must be >= 0"},
+    {"elements.preload", "force", "Compressive force P at q = 0 (> 0 pushes the ends apart).", "real",
+     "must be finite"},
+    {"elements.damping", "force·time/length", "Viscous damping c (spring: parallel damper).", "real",
+     "spring: must be >= 0; dashpot: must be > 0"},
+    {"elements.mass", "mass", "spring: the coil's own mass (surge); bar: total mass.", "real",
+     "spring: must be >= 0; bar: must be > 0"},
+    {"elements.masses", "—", "spring: internal surge masses N (N ≥ 1 exactly when mass > 0).", "integer",
+     "must be >= 0 and <= 100000"},
+    {"elements.youngs_modulus", "force/length²", "bar: Young's modulus E.", "real", "must be > 0"},
+    {"elements.area", "length²", "bar: cross-section area A.", "real", "must be > 0"},
+    {"elements.length", "length", "bar: length L.", "real", "must be > 0"},
+    {"elements.elements", "—", "bar: number of two-node elements.", "integer", "must be >= 1 and <= 100000"},
+    {"elements.mass_matrix", "—", "bar: `lumped` or `consistent`.", "enum",
+     "must be one of \"lumped\", \"consistent\""},
+    {"elements.rayleigh_alpha", "1/time", "bar: Rayleigh α (C = αM + βK).", "real", "must be >= 0"},
+    {"elements.rayleigh_beta", "time", "bar: Rayleigh β.", "real", "must be >= 0"},
+    {"elements.ratio", "—", "lever: q_output = ratio · q_input (negative: against the output's axis).", "real",
+     "finite and != 0"},
+    // [[contacts]]
+    {"contacts.name", "—", "Contact name: history columns `F_<name>`, `gap_<name>`, `in_<name>`; the `contact` column of events.csv.",
+     "string", "non-empty, unique", "(required)"},
+    {"contacts.type", "—", "`cam` (g = q + clearance − X_C), `lash` (g = q_upper − q_lower + clearance) or `stop` "
+                           "(a seat or a stop).",
+     "enum", "must be one of \"cam\", \"lash\", \"stop\"", "(required)"},
+    {"contacts.nodes", "—", "cam, stop: [node]; lash: [lower, upper]; never \"ground\".", "names",
+     "one node (cam, stop) or two different nodes (lash)", "(required)"},
+    {"contacts.clearance", "length", "Gap at q = 0 (cam: on the base circle).", "real", "must be >= 0"},
+    {"contacts.side", "—", "stop: `below` (g = q + clearance, a valve seat) or `above` (g = clearance − q).",
+     "enum", "must be one of \"below\", \"above\""},
+    {"contacts.restitution", "—", "Newton restitution coefficient of this contact.", "real",
+     "must be >= 0 and <= 1", "contact.restitution"},
+    {"contacts.penalty_stiffness", "force/length", "Penalty stiffness of this contact.", "real", "must be > 0",
+     "contact.penalty_stiffness"},
+    {"contacts.penalty_damping", "force·time/length", "Penalty damping of this contact.", "real", "must be >= 0",
+     "contact.penalty_damping"},
+};
+
+std::string value_text(const SceneEntry& e) {
+  switch (e.kind) {
+    case SceneEntry::Kind::Real: return detail::format_number(e.real);
+    case SceneEntry::Kind::Int: return std::to_string(e.integer);
+    case SceneEntry::Kind::Bool: return e.boolean ? "true" : "false";
+    case SceneEntry::Kind::Str: return "\"" + e.text + "\"";
+    case SceneEntry::Kind::Array: {
+      std::string s = "[";
+      for (std::size_t i = 0; i < e.array.size(); ++i) s += (i ? ", " : "") + detail::format_number(e.array[i]);
+      return s + "]";
+    }
+    case SceneEntry::Kind::Names: {
+      std::string s = "[";
+      for (std::size_t i = 0; i < e.names.size(); ++i) s += (i ? ", \"" : "\"") + e.names[i] + "\"";
+      return s + "]";
+    }
+  }
+  return "";
+}
+
+/// Defaults: the default-constructed Scene for the tables; one default-constructed entry of
+/// every element and contact type for the network keys (the first type that has the key).
+std::map<std::string, std::string> defaults() {
+  std::map<std::string, std::string> d;
+  for_each_scene_entry(Scene{}, [&](const SceneEntry& e) {
+    d[e.table.empty() ? e.key : e.table + "." + e.key] = value_text(e);
+  });
+  Scene s;
+  s.network.nodes.emplace_back();
+  for (ElementKind k : {ElementKind::Spring, ElementKind::Dashpot, ElementKind::Bar, ElementKind::Lever}) {
+    ElementSpec e;
+    e.kind = k;
+    s.network.elements.push_back(e);
+  }
+  for (ContactPointKind k : {ContactPointKind::Cam, ContactPointKind::Lash, ContactPointKind::Stop}) {
+    ContactPointSpec c;
+    c.kind = k;
+    s.network.contacts.push_back(c);
+  }
+  for_each_network_entry(s, [&](const std::string& array, std::size_t, const std::vector<SceneEntry>& keys) {
+    for (const SceneEntry& e : keys) d.emplace(array + "." + e.key, value_text(e));
+  });
+  return d;
+}
+
+std::string json_str(const std::string& s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\';
+    o += c;
+  }
+  return o + "\"";
+}
+
+std::string md_cell(const std::string& s) {
+  std::string o;
+  for (char c : s) o += c == '|' ? std::string("\\|") : std::string(1, c);
+  return o;
+}
+
+}  // namespace
+
+std::vector<SceneKeyInfo> scene_keys() {
+  std::map<std::string, const KeyDoc*> docs;
+  for (const KeyDoc& d : kDocs) docs[d.key] = &d;
+  const std::map<std::string, std::string> dflt = defaults();
+  std::vector<SceneKeyInfo> out;
+  std::set<std::string> seen;
+  for (const detail::KeyTableRow& row : detail::key_table()) {
+    auto it = docs.find(row.key);
+    if (it == docs.end())
+      throw std::logic_error("scene key '" + row.key + "' has no documentation: add it to kDocs in src/scene/keys.cpp");
+    const KeyDoc& d = *it->second;
+    SceneKeyInfo k;
+    k.key = row.key;
+    k.type = d.type ? d.type : row.type;
+    k.unit = d.unit;
+    k.rule = d.rule ? d.rule : row.rule;
+    k.description = d.text;
+    k.applies_to = row.applies_to;
+    k.input_only = d.input_only;
+    if (d.fixed_default) {
+      k.default_value = d.fixed_default;
+    } else {
+      auto v = dflt.find(row.key);
+      k.default_value = v != dflt.end() ? v->second : "(none)";
+    }
+    seen.insert(row.key);
+    out.push_back(std::move(k));
+  }
+  for (const KeyDoc& d : kDocs)
+    if (!seen.count(d.key))
+      throw std::logic_error(std::string("src/scene/keys.cpp documents '") + d.key + "', which is no scene key");
+  return out;
+}
+
+std::string scene_keys_markdown() {
+  std::ostringstream o;
+  o << "# Scene keys\n\n"
+       "Every key a scene file takes, with its type, unit, default and rule. Lengths, masses and times are in "
+       "any consistent units. *Rule* is the key's own check as the loader words it; rules between keys are in "
+       "the description. *Default* is the value of a key left out of the file. The file format around the keys "
+       "(tables, the arrays of a network, sign conventions) is in [the interface](../interface.md).\n\n"
+       "This page is generated by `camdyn scene --keys` (JSON: `--keys --json`; C++: `camdyn::scene_keys()`) "
+       "from the scene's key table in `src/scene/scene.cpp` — the table that parses, validates, applies `--set` and "
+       "writes `to_toml` — with the defaults of the default-constructed scene and the units and descriptions "
+       "of one table next to it (`src/scene/keys.cpp`); the program refuses to print it when that table misses "
+       "a key or names one that does not exist, and the test `SceneKeys.*` checks that every key the scene "
+       "writers visit is here.\n";
+  std::string section = "\x01";
+  for (const SceneKeyInfo& k : scene_keys()) {
+    const auto dot = k.key.find('.');
+    const std::string table = dot == std::string::npos ? "" : k.key.substr(0, dot);
+    const bool network = table == "nodes" || table == "elements" || table == "contacts";
+    if (table != section) {
+      section = table;
+      o << "\n## " << (table.empty() ? "Top level" : network ? "[[" + table + "]]" : "[" + table + "]") << "\n\n";
+      o << (network ? "| key | for | type | unit | default | rule | description |\n|---|---|---|---|---|---|---|\n"
+                    : "| key | type | unit | default | rule | description |\n|---|---|---|---|---|---|\n");
+    }
+    o << "| `" << k.key << "` | ";
+    if (network) {
+      std::string f;
+      for (const auto& a : k.applies_to) f += (f.empty() ? "" : ", ") + a;
+      o << (f.empty() ? "all" : f) << " | ";
+    }
+    o << k.type << " | " << k.unit << " | `" << md_cell(k.default_value) << "` | " << md_cell(k.rule) << " | "
+      << md_cell(k.description) << " |\n";
+  }
+  return o.str();
+}
+
+std::string scene_keys_json() {
+  std::ostringstream o;
+  o << "[\n";
+  const std::vector<SceneKeyInfo> keys = scene_keys();
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const SceneKeyInfo& k = keys[i];
+    o << "  {\"key\": " << json_str(k.key) << ", \"type\": " << json_str(k.type) << ", \"unit\": "
+      << json_str(k.unit) << ", \"default\": " << json_str(k.default_value) << ", \"rule\": " << json_str(k.rule)
+      << ", \"description\": " << json_str(k.description) << ", \"applies_to\": [";
+    for (std::size_t j = 0; j < k.applies_to.size(); ++j) o << (j ? ", " : "") << json_str(k.applies_to[j]);
+    o << "]}" << (i + 1 < keys.size() ? "," : "") << "\n";
+  }
+  o << "]\n";
+  return o.str();
+}
+
+}  // namespace camdyn

@@ -1,0 +1,517 @@
+// camdyn — work–precision benchmark (bench.hpp).
+#include "camdyn/bench.hpp"
+#include "camdyn/model.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "camdyn/output.hpp"
+#include "camdyn/simulator.hpp"
+#include "study/bench_compare.hpp"
+
+namespace camdyn {
+
+namespace {
+
+using namespace bench_detail;
+
+
+class Bench {
+ public:
+  explicit Bench(const BenchOptions& o) : o_(o) {}
+
+  void log(const std::string& s) const {
+    if (o_.log) o_.log(s);
+  }
+
+  /// Run one configuration: time it, compare it, append the row. Returns false when the
+  /// run blew the budget (the caller skips the rest of its series).
+  bool measure(const SceneInfo& si, const Scene& sc, BenchRow row, bool budgeted = true) {
+    Run first = run_once(sc, budgeted ? o_.time_budget_seconds : 0.0, true);
+    row.steps = first.sum.steps;
+    row.rhs_evals = first.sum.rhs_evals;
+    std::vector<double> cpu{first.sum.cpu_seconds};
+    bool ok = first.sum.finished && !first.over_budget;
+    if (ok) {
+      // With repeats > 1, runs under 0.1 s are repeated up to 0.2 s of CPU in all (at most
+      // 50 times): a sub-millisecond clock reading is too noisy for a median of 3.
+      int reps = std::max(1, o_.repeats);
+      if (reps > 1 && first.sum.cpu_seconds < 0.1)
+        reps = std::max(reps, int(std::min(50.0, std::ceil(0.2 / std::max(first.sum.cpu_seconds, 4e-3)))));
+      if (first.sum.cpu_seconds <= o_.repeat_cap_seconds) {
+        for (int i = 1; i < reps; ++i) {
+          Run again = run_once(sc, 0.0, false);
+          cpu.push_back(again.sum.cpu_seconds);
+        }
+      } else if (reps > 1) {
+        row.note += "timed once (> " + g3(o_.repeat_cap_seconds) + " s)";
+      }
+    }
+    row.cpu_seconds = median(cpu);
+    if (ok) {
+      Grid g = to_grid(first.rows, si.dt, si.n);
+      add_kicks(g, first.events, si.dt);
+      if (!complete(g)) {
+        ok = false;
+        row.note += (row.note.empty() ? "" : "; ") +
+                    std::string("rows do not land on the output grid");
+      } else {
+        Comparison c = compare(si, g, first.events);
+        row.err_u = c.err_u;
+        row.err_force = c.err_force;
+        row.osc_index = c.osc;
+        row.impulse_err = c.impulse_err;
+        row.event_err = c.event_err;
+        if (!si.ref_events.empty() && c.events != long(si.ref_events.size()))
+          row.note += (row.note.empty() ? "" : "; ") + std::to_string(c.events) +
+                      " separations+impacts (reference " +
+                      std::to_string(si.ref_events.size()) + ")";
+        if (si.chaotic) {
+          row.note += (row.note.empty() ? "" : "; ") + std::string("contact fraction ") +
+                      g3(c.contact_frac) + " (ref " + g3(si.ref_contact_frac) + ")";
+        }
+      }
+    }
+    row.finished = ok;
+    if (first.over_budget) {
+      row.note += (row.note.empty() ? "" : "; ") + std::string("stopped: over the ") +
+                  g3(o_.time_budget_seconds) + " s CPU budget at t = " +
+                  g3(first.sum.t_end);
+    } else if (!first.sum.finished) {
+      row.note += (row.note.empty() ? "" : "; ") + std::string("failed: ") +
+                  first.sum.message.substr(0, 160);
+    }
+    log("  " + row.scene + " " + row.method + " " + row.engine + " " + row.variant +
+        " tol " + g3(row.tol) + (std::isnan(row.kp) ? "" : " kp " + g3(row.kp) + " cp " +
+                                                           g3(row.cp)) +
+        ": cpu " + g3(row.cpu_seconds) + " s, err_u " + g3(row.err_u) + ", err_F " +
+        g3(row.err_force) + (std::isnan(row.event_err) ? "" : ", event_err " + g3(row.event_err)) +
+        (row.note.empty() ? "" : "  [" + row.note + "]"));
+    rows_.push_back(std::move(row));
+    return !first.over_budget;
+  }
+
+  void skip(BenchRow row, const std::string& why) {
+    row.finished = false;
+    row.note = "skipped: " + why;
+    rows_.push_back(std::move(row));
+  }
+
+  /// Lee runs on one engine and variant over tolerances tol_u (rtol = 10·tol_u), with
+  /// the step-size cap max_step (NaN: none). After a run over the budget the tighter
+  /// settings are recorded as skipped.
+  void lee_series(const SceneInfo& si, const Scene& base, Integrator eng, ErrorVariant var,
+                  const std::vector<double>& tols, double max_step) {
+    for (double tol : tols) {
+      BenchRow row;
+      row.scene = si.label;
+      row.method = "lee";
+      row.engine = to_string(eng);
+      row.variant = to_string(var);
+      row.tol = tol;
+      row.max_step = max_step;
+      const std::string key = si.label + " " + row.engine + " " + row.variant + " " + g3(max_step);
+      if (blown_.count(key)) {
+        skip(row, blown_[key]);
+        continue;
+      }
+      Scene s = base;
+      s.contact.model = ContactModel::Lee;
+      s.contact.error_variant = var;
+      s.contact.tol_u = tol;
+      s.contact.tol_v = 0;
+      s.contact.tol_a = 0;
+      s.solver.integrator = eng;
+      s.solver.rtol = std::min(1e-1, tol * 10);
+      if (std::isfinite(max_step)) s.solver.max_step = max_step;
+      if (!measure(si, s, row))
+        blown_[key] = "Lee " + row.engine + " " + row.variant +
+                      (std::isnan(max_step) ? "" : " max_step " + g3(max_step)) + " at tol_u " +
+                      g3(tol) + " took over " + g3(o_.time_budget_seconds) + " s";
+    }
+  }
+
+  void scene(const std::string& label, Scene base) {
+    SceneInfo si;
+    si.label = label;
+    resolve_defaults(base);
+    si.rigid = base.follower.kind == FollowerKind::Rigid;
+    // The reference runs on the finest grid first (1e-4 unless given); the common grid is
+    // chosen from what it shows (see BenchOptions::output_dt) and the reference is
+    // sampled on it (every grid is a multiple of 1e-4).
+    base.run.output_dt = o_.output_dt > 0 ? o_.output_dt : 1e-4;
+    if (o_.t_end > 0) {
+      base.run.t_end = o_.t_end;
+    } else if (o_.quick && base.follower.kind == FollowerKind::ElasticBar) {
+      base.run.t_end = std::min(base.run.t_end, o_.quick_elastic_t_end);
+    }
+    validate(base);
+
+    // ---- reference and its convergence check ----
+    // Rigid follower: contact phases are closed form, free flight by arkode-erk (DP5) at
+    // rtol 1e-12 (cvode-bdf there re-detects the gap root right after a separation and
+    // creeps through thousands of round-off "impacts"; at rtol 1e-11 it is also 3e-9 off
+    // on A7). Elastic follower: cvode-bdf (the bar is stiff).
+    Scene ref = base;
+    ref.contact.model = ContactModel::Event;
+    ref.solver.integrator = si.rigid ? Integrator::ArkodeErk : Integrator::CvodeBdf;
+    ref.solver.rtol = si.rigid ? 1e-12 : 1e-10;
+    ref.solver.atol = si.rigid ? 1e-14 : 1e-10;
+    Scene chk = ref;
+    chk.solver.rtol *= 10;
+    chk.solver.atol *= 10;
+    Run rr = run_once(ref, 0.0, true);
+    si.dt = o_.output_dt > 0 ? o_.output_dt
+                             : (!si.rigid ? 1e-4 : rr.sum.separations > 0 ? 1e-3 : 1e-2);
+    base.run.output_dt = si.dt;
+    chk.run.output_dt = si.dt;
+    const bool ref_ok = setup_scene_info(si, base, rr, si.dt);
+    log("scene " + label + ": " + base.title + ", t_end " + g3(base.run.t_end) +
+        ", output grid " + g3(si.dt) + (si.jumps ? " (the reference separates)" : ""));
+    if (!ref_ok) {
+      BenchRow row;
+      row.scene = label;
+      row.method = "reference";
+      row.engine = to_string(ref.solver.integrator);
+      row.variant = "event";
+      row.tol = ref.solver.rtol;
+      row.cpu_seconds = rr.sum.cpu_seconds;
+      row.note = "reference run failed: " + rr.sum.message + "; scene not benchmarked";
+      rows_.push_back(row);
+      log("  reference failed: " + rr.sum.message);
+      return;
+    }
+    ref_info_.push_back({label, rr.sum.cpu_seconds, rr.sum.separations, si.chaotic,
+                         si.dt * double(si.k_point), ref.solver.rtol, ref.solver.atol,
+                         to_string(ref.solver.integrator), si.dt});
+    BenchRow chkrow;
+    chkrow.scene = label;
+    chkrow.method = "reference-check";
+    chkrow.engine = to_string(chk.solver.integrator);
+    chkrow.variant = "event";
+    chkrow.tol = chk.solver.rtol;
+    chkrow.note = "event run one decade looser than the reference (rtol " +
+                  g3(ref.solver.rtol) + " atol " + g3(ref.solver.atol) + "; ref cpu " +
+                  g3(rr.sum.cpu_seconds) + " s)";
+    measure(si, chk, chkrow, false);
+
+    // ---- Lee ----
+    std::vector<double> tols = o_.quick ? std::vector<double>{1e-5, 1e-8}
+                                        : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7,
+                                                              1e-8, 1e-9, 1e-10};
+    std::vector<Integrator> engines =
+        o_.quick ? std::vector<Integrator>{Integrator::ArkodeErk}
+                 : std::vector<Integrator>{Integrator::ArkodeErk, Integrator::ArkodeDirk,
+                                           Integrator::CvodeBdf};
+    for (Integrator eng : engines)
+      for (ErrorVariant var : {ErrorVariant::Eq12, ErrorVariant::Eq17})
+        lee_series(si, base, eng, var, tols, kNaN);
+
+    // ---- Lee with a step-size cap (rigid scenes that separate) ----
+    // Where the follower separates and lands, the classic step's error came from the step
+    // in which the contact opens or closes, which the error estimate did not see; the
+    // located step lands on those instants. This series caps Δt (solver.max_step) at
+    // tol_u = 1e-8 to show that the cap no longer changes the error.
+    if (si.rigid && !si.ref_events.empty()) {
+      const std::vector<double> caps = o_.quick ? std::vector<double>{1e-3, 1e-4}
+                                                : std::vector<double>{1e-3, 3e-4, 1e-4, 3e-5, 1e-5};
+      for (ErrorVariant var : {ErrorVariant::Eq12, ErrorVariant::Eq17}) {
+        if (o_.quick && var == ErrorVariant::Eq12) continue;
+        for (double cap : caps) lee_series(si, base, Integrator::ArkodeErk, var, {1e-8}, cap);
+      }
+    }
+
+    // ---- penalty ----
+    // The headline takes the best penalty setting, so the search over it must not be
+    // coarse where runs are cheap: rigid scenes get k_p in half decades and four rtol.
+    std::vector<double> kps = o_.quick ? std::vector<double>{1e4, 1e7, 1e10}
+                                       : std::vector<double>{1e3, 1e4, 1e5, 1e6,
+                                                             1e7, 1e8, 1e9, 1e10};
+    std::vector<double> rtols = o_.quick ? std::vector<double>{si.rigid ? 1e-8 : 1e-6}
+                                         : std::vector<double>{1e-6, 1e-9};
+    if (!o_.quick && si.rigid) {
+      kps.clear();
+      for (int i = 6; i <= 20; ++i) kps.push_back(std::stod(g3(std::pow(10.0, 0.5 * i))));  // 3.16e3 …
+      rtols = {1e-6, 1e-7, 1e-8, 1e-9};
+    }
+    for (double rtol : rtols) {
+      // c_p: none, 10 % and 100 % of critical for a mass m on the spring k_p (critical
+      // damping makes a plastic-like impact, which the references' e = 0 is).
+      // Each penalty run has its own budget and none is skipped: the cost is not monotone
+      // in k_p (on B2 a soft k_p = 1e3 bounces for longer than a stiff one takes).
+      for (int damped = 0; damped <= 2; ++damped) {
+        for (double kp : kps) {
+          BenchRow row;
+          row.scene = label;
+          row.method = "penalty";
+          row.engine = to_string(Integrator::CvodeBdf);
+          row.variant = damped == 0 ? "undamped" : damped == 1 ? "damped" : "critical";
+          row.tol = rtol;
+          row.kp = kp;
+          row.cp = (damped == 0 ? 0.0 : damped == 1 ? 0.1 : 1.0) * 2.0 *
+                   std::sqrt(kp * base.follower.mass);
+          Scene s = base;
+          s.contact.model = ContactModel::Penalty;
+          s.contact.penalty_law = PenaltyLaw::Linear;
+          s.contact.penalty_stiffness = kp;
+          s.contact.penalty_damping = row.cp;
+          s.solver.integrator = Integrator::CvodeBdf;
+          s.solver.rtol = rtol;
+          measure(si, s, row);
+        }
+      }
+    }
+
+    // A baseline run (holonomic or event) of scene s: its row named by its model, engine
+    // and rtol.
+    auto baseline = [&](Scene s) {
+      BenchRow row;
+      row.scene = label;
+      row.method = to_string(s.contact.model);
+      row.engine = to_string(s.solver.integrator);
+      row.variant = "-";
+      row.tol = s.solver.rtol;
+      measure(si, s, row);
+    };
+    // ---- event-driven on every engine (elastic scenes, full sweep) ----
+    // The comparator of Lee on the same engine and tolerance (issue 14): stiff bars are
+    // where the engines differ.
+    if (!o_.quick && !si.rigid) {
+      for (Integrator eng : engines)
+        for (double rtol : {1e-6, 1e-8}) {
+          Scene s = base;
+          s.contact.model = ContactModel::Event;
+          s.solver.integrator = eng;
+          s.solver.rtol = rtol;
+          s.solver.atol = std::min(s.solver.atol, 1e-3 * rtol);
+          baseline(s);
+        }
+    }
+
+    // ---- holonomic and event at the scene's default tolerance ----
+    for (ContactModel model : {ContactModel::Holonomic, ContactModel::Event}) {
+      Scene s = base;
+      s.contact.model = model;
+      baseline(s);
+    }
+  }
+
+  struct RefInfo {
+    std::string label;
+    double cpu;
+    long separations;
+    bool chaotic;
+    double pointwise_until;
+    double rtol, atol;
+    std::string engine;
+    double dt;
+  };
+
+  BenchOptions o_;
+  std::vector<BenchRow> rows_;
+  std::map<std::string, std::string> blown_;  // Lee series over the budget → why
+  std::vector<RefInfo> ref_info_;
+};
+
+/// Cheapest finished run of `method` in `scene` (on `engine`, if not empty) with
+/// err_force ≤ target; null if none.
+const BenchRow* cheapest(const std::vector<BenchRow>& rows, const std::string& scene,
+                         const std::string& method, double target, const std::string& engine = "") {
+  const BenchRow* best = nullptr;
+  for (const auto& r : rows) {
+    if (r.scene != scene || r.method != method || !r.finished) continue;
+    if (!engine.empty() && r.engine != engine) continue;
+    if (!(r.err_force <= target)) continue;
+    if (!best || r.cpu_seconds < best->cpu_seconds) best = &r;
+  }
+  return best;
+}
+
+std::string describe(const BenchRow& r) {
+  std::string s = r.method + " " + r.engine;
+  if (r.method == "lee") s += " " + r.variant + " tol_u " + g3(r.tol);
+  if (!std::isnan(r.max_step)) s += " max_step " + g3(r.max_step);
+  if (r.method == "penalty")
+    s += " k_p " + g3(r.kp) + " c_p " + g3(r.cp) + " rtol " + g3(r.tol);
+  return s + " (" + g3(r.cpu_seconds) + " s, err_F " + g3(r.err_force) + ")";
+}
+
+}  // namespace
+
+bool is_bench_case(const std::string& name) {
+  return name == "A" || name == "A7" || name == "B1" || name == "B2" || name == "stiff" ||
+         name == "B1_1000";
+}
+
+Scene bench_case(const std::string& name) {
+  if (name == "A7") {
+    Scene s = paper_case("A");
+    s.title = "Case A7 \u2014 rigid follower, 7 rev/s: separates and lands once per revolution";
+    s.cam.speed_rev_s = 7.0;
+    return s;
+  }
+  if (name == "stiff") {  // examples/stiff_bar.toml (a test checks they are equal)
+    Scene s = paper_case("B2");
+    s.title = "Stiff bar: E = 5e8, 200 elements, 5 rev/s";
+    s.follower.youngs_modulus = 5e8;
+    s.follower.elements = 200;
+    s.contact.tol_u = 1e-7;
+    s.solver.integrator = Integrator::ArkodeDirk;
+    s.solver.rtol = 1e-6;
+    s.run.t_end = 0.05;
+    s.run.output_dt = 1e-4;
+    return s;
+  }
+  if (name == "B1_1000") {
+    Scene s = paper_case("B1");
+    s.title = "Case B1 on 1000 elements";
+    s.follower.elements = 1000;
+    s.run.t_end = 0.05;
+    return s;
+  }
+  if (!is_bench_case(name))
+    throw SceneError("bench", 0, "scene", name, "a scene file or one of A, A7, B1, B2, stiff, B1_1000");
+  return paper_case(name);
+}
+
+const std::vector<std::string>& bench_columns() {
+  static const std::vector<std::string> c{
+      "scene",     "method", "engine", "variant",  "tol",       "kp",          "cp",
+      "cpu_seconds", "steps", "rhs_evals", "err_u", "err_force", "osc_index", "impulse_err",
+      "event_err", "max_step", "finished",  "note"};
+  return c;
+}
+
+std::string bench_csv(const std::vector<BenchRow>& rows) {
+  std::string s;
+  for (const auto& c : bench_columns()) s += (s.empty() ? "" : ",") + c;
+  s += "\n";
+  for (const auto& r : rows) {
+    s += csv_text(r.scene) + "," + r.method + "," + r.engine + "," + r.variant + "," +
+         csv_num(r.tol) + "," + csv_num(r.kp) + "," + csv_num(r.cp) + "," +
+         csv_num(r.cpu_seconds) + "," + std::to_string(r.steps) + "," +
+         std::to_string(r.rhs_evals) + "," + csv_num(r.err_u) + "," + csv_num(r.err_force) +
+         "," + csv_num(r.osc_index) + "," + csv_num(r.impulse_err) + "," +
+         csv_num(r.event_err) + "," + csv_num(r.max_step) + "," + (r.finished ? "1" : "0") + "," + csv_text(r.note) + "\n";
+  }
+  return s;
+}
+
+BenchResult run_bench(const BenchOptions& options) {
+  BenchOptions o = options;
+  if (o.repeats < 1) throw SceneError("bench", 0, "repeats", std::to_string(o.repeats), "must be ≥ 1");
+  if (!(o.output_dt >= 0) || !std::isfinite(o.output_dt))
+    throw SceneError("bench", 0, "output_dt", g3(o.output_dt), "must be ≥ 0 (0: per scene)");
+  if (o.scenes.empty()) {
+    // the stiff scenes only in the full sweep (Lee on arkode-erk alone takes ~20 s there)
+    for (const char* c : {"A", "A7", "B1", "B2", "stiff", "B1_1000"}) {
+      if (o.quick && (std::string(c) == "stiff" || std::string(c) == "B1_1000")) continue;
+      o.scenes.push_back(bench_case(c));
+      o.labels.push_back(c);
+    }
+  }
+  if (o.labels.size() != o.scenes.size()) {
+    o.labels.clear();
+    for (size_t i = 0; i < o.scenes.size(); ++i) o.labels.push_back("S" + std::to_string(i + 1));
+  }
+  ensure_output_dir(o.out_dir);
+
+  Bench b(o);
+  for (size_t i = 0; i < o.scenes.size(); ++i) b.scene(o.labels[i], o.scenes[i]);
+
+  BenchResult res;
+  res.rows = b.rows_;
+  constexpr double kTarget = 1e-3;
+  for (const auto& label : o.labels) {
+    const BenchRow* lee = cheapest(res.rows, label, "lee", kTarget);
+    const BenchRow* pen = cheapest(res.rows, label, "penalty", kTarget);
+    std::string text;
+    double ratio = kNaN;
+    if (!lee) {
+      text = "no Lee run reaches a contact-force error of 1e-3";
+    } else if (!pen) {
+      text = "penalty cannot reach 1e-3 (no penalty run reaches a contact-force error of "
+             "1e-3); cheapest Lee run reaching it: " + describe(*lee);
+    } else {
+      ratio = pen->cpu_seconds / lee->cpu_seconds;
+      text = "at contact-force error ≤ 1e-3: penalty/Lee CPU = " + g3(ratio) +
+             "; cheapest Lee: " + describe(*lee) + "; cheapest penalty: " + describe(*pen);
+    }
+    if (o.quick && std::isfinite(ratio))
+      text += " [quick sweep: a coarse penalty search (3 k_p, one rtol); the full sweep's best "
+              "penalty setting can be cheaper]";
+    // Per engine: the cheapest Lee and event-driven runs at the same target.
+    std::string per;
+    for (Integrator eng : {Integrator::ArkodeErk, Integrator::ArkodeDirk, Integrator::CvodeBdf}) {
+      const std::string en = to_string(eng);
+      const BenchRow* l = cheapest(res.rows, label, "lee", kTarget, en);
+      const BenchRow* e = cheapest(res.rows, label, "event", kTarget, en);
+      if (!l && !e) continue;
+      per += (per.empty() ? "" : "; ") + en + ": lee " + (l ? g3(l->cpu_seconds) + " s" : std::string("—")) +
+             ", event " + (e ? g3(e->cpu_seconds) + " s" : std::string("—"));
+      if (l && e) per += " (lee/event " + g3(l->cpu_seconds / e->cpu_seconds) + ")";
+    }
+    if (!per.empty()) text += ". Cheapest at contact-force error ≤ 1e-3 per engine: " + per;
+    res.headline_scene.push_back(label);
+    res.headline_text.push_back(text);
+    res.headline_ratio.push_back(ratio);
+  }
+
+  // ---- files ----
+  res.csv_path = join_path(o.out_dir, "work_precision.csv");
+  res.md_path = join_path(o.out_dir, "work_precision.md");
+  write_file_atomic(res.csv_path, bench_csv(res.rows));
+
+  std::ostringstream md;
+  md << "# camdyn work–precision benchmark\n\n"
+     << "Mode: " << (o.quick ? "quick" : "full") << "; timing: median of "
+     << o.repeats << " repeats of Summary::cpu_seconds (runs over "
+     << g3(o.repeat_cap_seconds) << " s timed once); budget " << g3(o.time_budget_seconds)
+     << " s CPU per run; common output grid per scene (below).\n\n"
+     << "Errors against an event-driven reference (per scene below) on the scene's common "
+        "output grid, on which every run lands its steps. err_u = max |u_c − u_ref|; "
+        "err_force: a rigid follower that never separates max |F − F_ref| / max F_ref, "
+        "otherwise (elastic follower, or an impact) the error of the contact impulse over "
+        "1 ms windows / largest window impulse; osc = total variation of F / that of the "
+        "reference (on the grid); impulse_err = contact impulse per revolution, max "
+        "relative error; event_err = separation and impact times, max |t − t_ref| to the "
+        "nearest event of the same kind. Chaotic scenes (elastic follower that separates) "
+        "are compared pointwise only over the first revolution. Penalty runs start in their "
+        "own equilibrium (pressed into the cam by s₀ so that k_p s₀ carries the initial "
+        "contact force).\n\n";
+  for (size_t i = 0; i < res.headline_scene.size(); ++i)
+    md << "**Headline, scene " << res.headline_scene[i] << ":** " << res.headline_text[i]
+       << "\n\n";
+  for (const auto& ri : b.ref_info_) {
+    md << "## Scene " << ri.label << "\n\n"
+       << "Output grid " << g3(ri.dt) << ". Reference: event, " << ri.engine << ", rtol "
+       << g3(ri.rtol) << ", atol " << g3(ri.atol)
+       << ", cpu " << g3(ri.cpu) << " s, " << ri.separations << " separations"
+       << (ri.chaotic ? "; chaotic: pointwise errors up to t = " + g3(ri.pointwise_until)
+                      : std::string())
+       << ". Its convergence: the `reference-check` row (one decade looser).\n\n";
+    md << "| method | engine | variant | tol | max_step | k_p | c_p | cpu s | steps | err_u | "
+          "err_F | osc | impulse_err | event_err | note |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const auto& r : res.rows) {
+      if (r.scene != ri.label) continue;
+      md << "| " << r.method << " | " << r.engine << " | " << r.variant << " | " << g3(r.tol)
+         << " | " << g3(r.max_step) << " | " << g3(r.kp) << " | " << g3(r.cp) << " | " << g3(r.cpu_seconds) << " | "
+         << r.steps << " | " << g3(r.err_u) << " | " << g3(r.err_force) << " | "
+         << g3(r.osc_index) << " | " << g3(r.impulse_err) << " | " << g3(r.event_err) << " | "
+         << (r.finished ? "" : "**not finished** ") << r.note << " |\n";
+    }
+    md << "\n";
+  }
+  write_file_atomic(res.md_path, md.str());
+  return res;
+}
+
+}  // namespace camdyn
