@@ -61,9 +61,9 @@ fi
   -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
   -DTOML_HEADER_ONLY=0 \
   "${TOML_INC[@]}" -I"$SRC/include" -I"$SRC/src" -isystem /usr/include/eigen3 \
-  "$SRC/tests/fuzz/fuzz_scene.cpp" "$SRC/src/scene.cpp" "$SRC/src/scene_network.cpp" "$SRC/src/scene_units.cpp" "$SRC/src/cam.cpp" "$SRC/src/cam_profiles.cpp" \
-  "$SRC/src/scene_format.cpp" "$SRC/src/scene_validate.cpp" "$SRC/src/scene_override.cpp" "$SRC/src/scene_write.cpp" \
-  "$SRC/src/follower_geometry.cpp" "$SRC/src/follower_oscillating.cpp" "$SRC/src/motion_law.cpp" "$SRC/src/motion_law_parse.cpp" \
+  "$SRC/tests/fuzz/fuzz_scene.cpp" "$SRC/src/scene/scene.cpp" "$SRC/src/scene/network_reader.cpp" "$SRC/src/scene/units.cpp" "$SRC/src/cam/cam.cpp" "$SRC/src/cam/profiles.cpp" \
+  "$SRC/src/scene/format.cpp" "$SRC/src/scene/validate.cpp" "$SRC/src/scene/override.cpp" "$SRC/src/scene/write.cpp" \
+  "$SRC/src/cam/follower_geometry.cpp" "$SRC/src/cam/follower_oscillating.cpp" "$SRC/src/cam/motion_law.cpp" "$SRC/src/cam/motion_law_parse.cpp" \
   "$OUT/toml_impl.cpp" "${RUN_FLAGS[@]}" -o "$OUT/fuzz_scene"
 
 for f in "$SRC"/examples/*.toml "$SRC"/tests/hard/*.toml; do
