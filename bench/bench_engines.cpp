@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <memory>
 
-#include "camdyn/model.hpp"
 #include "mechanism/mechanism.hpp"
 #include "engine/ode_engine.hpp"
 

@@ -1,10 +1,11 @@
-// camdyn — the simulator: scene → model → engine + contact method → history/summary.
+// camdyn — the simulator: scene → mechanism → engine + contact method → history/summary.
 //
-// One step loop (simulator.cpp) drives every contact method:
+// Every follower (rigid, elastic_bar, network, your own FollowerSystem) runs as a mechanism
+// with one contact method:
 //   lee        Lee (1997): augmented-multiplier iteration at displacement, velocity and
 //              acceleration level around each integrator step (docs/method.md §3–4).
 //   penalty    spring–damper contact force inside the right-hand side.
-//   holonomic  node 0 constrained to the cam at all times.
+//   holonomic  the contacts held at all times (a DAE on ida).
 //   event      exact event-driven: contact / free phases switched by rootfinding.
 #pragma once
 
@@ -20,8 +21,7 @@
 
 namespace camdyn {
 
-class FollowerModel;   // camdyn/model.hpp
-class FollowerSystem;  // camdyn/follower_system.hpp (Eigen): include it to use Simulator::model()
+class FollowerSystem;  // camdyn/follower_system.hpp
 
 /// One output row (docs/interface.md history.csv, then energy columns).
 struct HistoryRow {
@@ -49,24 +49,18 @@ enum class EventKind {
   Separation,  ///< the contact opens
   Tensile,     ///< holonomic contact: the constraint force starts to pull (first time)
 };
-/// "impact", "separation", "tensile" (events.csv's `kind` column, ContactEvent::kind).
+/// "impact", "separation", "tensile" (events.csv's `kind` column).
 const char* to_string(EventKind k);
 
 /// A contact event.
 struct ContactEvent {
   double t = 0;
-  /// Deprecated: use `type`. Kept for source compatibility; every event the library makes
-  /// has kind == to_string(type). events_csv() writes `kind` when it is not empty, else
-  /// to_string(type); the library compares `type` only.
-  std::string kind;
   double impact_velocity = 0;   ///< relative approach velocity (impacts), else 0
   double theta = 0;             ///< cam angle at the event [rad] (as history.csv's theta)
   double impulse = 0;           ///< contact impulse applied at the instant (impacts resolved
                                 ///< as a Newton impulse: event-driven, Lee "located"), else 0
   std::string contact;          ///< network scenes: the contact's name ("" otherwise)
-  /// What the event is. Last member, so brace-initialisers written for the members above
-  /// still compile (they leave type = Impact: set it).
-  EventKind type = EventKind::Impact;
+  EventKind type = EventKind::Impact;  ///< what the event is (to_string(type): events.csv's kind)
 };
 
 /// One Poincaré sample: the follower's contact face when the cam passes the section angle
@@ -234,6 +228,23 @@ struct Summary {
   std::string FullReport() const;
 };
 
+/// An accepted step [t0, t0 + h] (Observer::on_step). The pointers are valid during the
+/// call only. The holonomic method on ida reports one step per output interval (IDA's
+/// internal steps are not seen).
+struct StepInfo {
+  double t0 = 0;  ///< the step's start
+  double h = 0;   ///< its length: it ends at t0 + h, the state the rows after it report
+  long step = 0;  ///< accepted steps so far, this one included (Summary::steps)
+  int contacts = 0;  ///< entries of the force arrays: one per contact, in the contacts'
+                     ///< order (one for a rigid or elastic_bar follower: the cam)
+  /// Contact forces (≥ 0 unilateral) at t0, as the previous step ended (the initial forces
+  /// for the first step). An impact, separation or cam joint at t0 (on_event) changes the
+  /// forces the step starts from after that.
+  const double* force_start = nullptr;
+  /// Contact forces at t0 + h (after an impact resolved at t0 + h: the held forces then).
+  const double* force_end = nullptr;
+};
+
 /// What an observer wants after seeing a row (Observer::on_output).
 enum class ObserverAction { Continue, Stop };
 
@@ -256,23 +267,9 @@ struct Observer {
   virtual void on_event(const ContactEvent&) {}
   /// Called about every 0.2 s of wall time.
   virtual void on_progress(double /*t*/, double /*t_end*/, long /*steps*/) {}
-  /// Lee only: called once per accepted step [t0, t0 + h], before its rows, with the
-  /// contact force ramp F(t) = F0 + (F1 − F0)(t − t0)/h of the velocity level — the ramp
-  /// whose integration gave the accepted velocity (F0 = the previous step's accepted
-  /// force, F1 = the velocity level's end value; the reported contact force at t0 + h
-  /// is the acceleration level's, which starts the next ramp). Integrating the step
-  /// sequence with these ramps and no iteration replays the run (bench/bench_overhead).
-  virtual void on_lee_step(double /*t0*/, double /*h*/, double /*F0*/, double /*F1*/) {}
-  /// Lee "located" only: called once per accepted step [t0, t0 + h], before its rows, with
-  /// the force shape F(t) = F0 + (F1 − F0)x + Fc·4x(1 − x), x = (t − t0)/h, whose single
-  /// integration gave the accepted state (F ≡ 0 in free flight), and the impact impulse
-  /// applied on node 0 at t0 + h (0 if none). Integrating the step sequence with these
-  /// shapes and impulses replays the run (bench/bench_overhead). On cvode-bdf (elastic
-  /// follower) the shape is the line through the step's end forces (Fc = 0): the force
-  /// there is sampled at the step ends, and a replay integrates the piecewise-linear
-  /// force history natively.
-  virtual void on_lee_shape(double /*t0*/, double /*h*/, double /*F0*/, double /*F1*/,
-                            double /*Fc*/, double /*impulse*/) {}
+  /// Called once per accepted step of every contact method, before the step's rows
+  /// (StepInfo: the step and its contact forces at both ends).
+  virtual void on_step(const StepInfo& /*step*/) {}
 };
 
 class Simulator {
@@ -296,8 +293,6 @@ class Simulator {
   Summary run(Observer* observer = nullptr, const std::atomic<bool>* stop = nullptr,
               const std::string& stop_reason = "stopped by caller");
   const Scene& scene() const { return scene_; }
-  /// @pre the scene is not a network (follower.kind ≠ "network").
-  const FollowerModel& model() const { return *model_; }
   /// The model description (any follower kind).
   const ModelDescription& description() const;
   /// Names of HistoryRow::extra, in order: network scenes F_<c>, gap_<c>, in_<c> per
@@ -307,16 +302,10 @@ class Simulator {
   /// The scene's plausibility warnings (scene_warnings(), camdyn/scene_warnings.hpp), known
   /// before the run; run() copies them into Summary::warnings.
   const std::vector<std::string>& warnings() const { return warnings_; }
-  /// true: the scene runs on the one-mechanism stack (a network always; a rigid or
-  /// elastic_bar follower unless it runs Lee's classic step, SolverSpec::stack docs).
-  /// @throws SceneError (solver.stack = "mechanism" with contact.lee_step = classic;
-  /// solver.stack = "follower" with any method but Lee's classic step).
-  static bool runs_on_mechanism(const Scene& scene);
 
  private:
   Scene scene_;
-  std::shared_ptr<const FollowerModel> model_;      // rigid, elastic_bar (the classic step's; the mechanism's source)
-  std::shared_ptr<const class MechanicalSystem> mech_;  // network, user's follower, or on the mechanism stack
+  std::shared_ptr<const class MechanicalSystem> mech_;  // the scene's follower, or the user's
   std::vector<std::string> extra_columns_;
   std::vector<std::string> warnings_;
   void add_designer_columns();

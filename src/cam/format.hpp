@@ -1,8 +1,10 @@
-// camdyn (private) — number formatting shared by the cam sources' error messages.
+// camdyn (private) — number formatting for error and run messages (cam, mechanism, contact,
+// run).
 #pragma once
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -36,5 +38,14 @@ inline std::string fmt_list(const std::vector<double>& v) {
   if (cut) s += " (" + std::to_string(n) + " values)";
   return s;
 }
+
+namespace detail {
+/// Six significant digits ("%.6g"): times, gaps and forces in run messages.
+inline std::string fmt(double x) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.6g", x);
+  return b;
+}
+}  // namespace detail
 
 }  // namespace camdyn

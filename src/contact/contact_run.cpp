@@ -11,7 +11,9 @@
 #include "camdyn/initial_state.hpp"
 #include "contact/active_set.hpp"
 #include "cam/joints.hpp"  // one_sided_motion
-#include "legacy/run_context.hpp"  // StepFailure, Clock, fmt
+#include "contact/run_clock.hpp"
+#include "contact/run_failure.hpp"
+#include "contact/step_control.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -39,7 +41,7 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
   // The base circle, so that a cam contact's gap sees the lift X_C − X_base
   // (cam_lift_base, include/camdyn/initial_state.hpp: cam.base_radius for a lift table,
   // min over θ of X_C otherwise).
-  // A single follower's gap sees the cam's X_C itself (u_c = q₀, as on the follower stack).
+  // A single follower's gap sees the cam's X_C itself (u_c = q₀).
   if (!mk_.single_follower() && (sc.cam.profile == CamProfileKind::Lift || mk_.cam_contacts() > 0))
     x_base_ = cam_lift_base(cam_, sc.cam);
 }
@@ -286,7 +288,7 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
 
 void ContactRun::record_event(EventKind type, int contact, double v, double impulse, double t_event) {
   const double te = std::isnan(t_event) ? t_ : t_event;
-  ContactEvent e{te, to_string(type), v, drive_.theta(te), impulse, mk_.contacts()[contact].name, type};
+  ContactEvent e{te, v, drive_.theta(te), impulse, mk_.contacts()[contact].name, type};
   // The designer results follow the primary contact (the cam's). A cam contact with lash
   // opens at the end of every lift event as the cam returns to its base circle, a few µm
   // above the clearance (the chain's deflection under load): only a separation while the
@@ -387,6 +389,17 @@ void ContactRun::after_step(double h, double dW, double P_prev, double P_end, do
     sum_.max_contact_force = std::max(sum_.max_contact_force, F_[j]);
   }
   check_complementarity(cm);
+  if (obs_) {
+    StepInfo info;
+    info.t0 = t_ - h;
+    info.h = h;
+    info.step = sum_.steps;
+    info.contacts = m_;
+    info.force_start = step_F0_.data();
+    info.force_end = F_.data();
+    obs_->on_step(info);
+  }
+  step_F0_ = F_;
   for (int j = 0; j < m_ && !unilateral_ && sum_.first_tensile_time < 0; ++j)
     if (active_[j] && F_[j] < 0.0) {  // a bilateral contact pulls: where a follower would leave
       sum_.first_tensile_time = t_;
@@ -478,6 +491,7 @@ Summary ContactRun::run() {
   V0_ = potential(0.0, y_);
   E0_ = mk_.kinetic_energy(y_.data() + n_) + V0_;
   emit_row();
+  step_F0_ = F_;
   {
     const int p = mk_.primary();
     const MechanismContact& c = mk_.contacts()[p];

@@ -1,12 +1,11 @@
-// camdyn (private) — the run machinery of the several-contact (network) methods:
+// camdyn (private) — the run machinery every contact method shares:
 //
 //   scene (any follower: a rigid or elastic_bar follower as a one-contact mechanism,
 //   src/mechanism/follower_builder.cpp; a network; a user FollowerSystem) → Mechanism
 //   (src/mechanism/mechanism.hpp) → OdeEngine (src/engine/ode_engine.hpp) or IDA (src/engine/ida_engine.hpp) + a
 //   contact method (a ContactRun subclass, one file each: methods/lee_located.cpp,
 //   methods/lee_cvode.cpp, methods/penalty.cpp, methods/event.cpp, methods/holonomic_ida.cpp; chosen
-//   by make_contact_method, contact_run.cpp) → HistoryRow stream + Summary. Every method
-//   but Lee's classic step (src/legacy/lee_classic.cpp) runs here.
+//   by make_contact_method, contact_run.cpp) → HistoryRow stream + Summary.
 //
 // The state is y = [q; v] over the mechanism's unknowns, F the contact forces (one per
 // contact, ≥ 0), `active` the contacts that are closed and carry force. Shared here: the
@@ -31,6 +30,8 @@
 #include "results/designer_stats.hpp"
 #include "mechanism/mechanism.hpp"
 #include "engine/ode_engine.hpp"
+#include "contact/run_failure.hpp"
+#include "contact/step_control.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -54,7 +55,8 @@ class ContactRun {
   /// Method-specific start after the common initial state and its held forces, before
   /// the t = 0 row and the energy ledger's origin (penalty: its own equilibrium).
   virtual void prepare_start() {}
-  /// Dense output inside the step just accepted (see RunContext); false: step-end row.
+  /// Dense output inside the step just accepted: emit the row at `to` (< t_) and return
+  /// true; false: the caller emits the step-end row.
   virtual bool dense_row_at(double /*to*/) { return false; }
   /// Penalty: energy stored in the contact springs at (t, q), and the power its dampers
   /// dissipate at (t, y); 0 for the other methods.
@@ -201,6 +203,7 @@ class ContactRun {
   Summary sum_;
   double t_ = 0, work_ = 0, dissipated_ = 0, E0_ = 0, V0_ = 0, last_row_t_ = -1;
   Eigen::VectorXd y_, F_;
+  Eigen::VectorXd step_F0_;  // the forces the last accepted step ended with (StepInfo::force_start)
   std::vector<char> active_;
   Eigen::VectorXd sys_y_, sys_F_;  // contact_system()'s buffers
   mutable Eigen::VectorXd hf_ta_;  // held_forces' T a_free

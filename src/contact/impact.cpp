@@ -9,7 +9,7 @@
 
 #include "contact/active_set.hpp"  // solve_contact_lcp
 #include "contact/contact_run.hpp"
-#include "legacy/run_context.hpp"  // StepFailure, fmt
+#include "contact/run_failure.hpp"  // StepFailure, fmt
 
 namespace camdyn {
 namespace detail {

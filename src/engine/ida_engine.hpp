@@ -9,7 +9,8 @@
 
 #include "camdyn/cam.hpp"
 #include "camdyn/scene.hpp"
-#include "legacy/engine.hpp"
+#include "engine/engine_stats.hpp"
+#include "engine/sundials_error.hpp"
 #include "mechanism/mechanism.hpp"
 
 namespace camdyn {

@@ -27,9 +27,10 @@
 #include <memory>
 #include <vector>
 
-#include "camdyn/model.hpp"  // SparseMatrix
+#include "mechanism/sparse_matrix.hpp"
 #include "camdyn/scene.hpp"
-#include "legacy/engine.hpp"  // SundialsError, check_flag, EngineStats
+#include "engine/engine_stats.hpp"
+#include "engine/sundials_error.hpp"
 
 namespace camdyn {
 

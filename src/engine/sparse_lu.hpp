@@ -16,8 +16,8 @@
 #include <Eigen/Dense>
 #include <functional>
 
-#include "camdyn/model.hpp"  // SparseMatrix (CSC, long indices)
-#include "legacy/engine.hpp"        // EngineStats
+#include "mechanism/sparse_matrix.hpp"
+#include "engine/engine_stats.hpp"
 #include "engine/sundials_raii.hpp"
 
 

@@ -5,7 +5,7 @@
 // −1 … −12 and −20 … −27 (cvode.h, arkode.h); IDA (ida.h) differs from −8 on.
 #include <string>
 
-#include "legacy/engine.hpp"
+#include "engine/sundials_error.hpp"
 
 namespace camdyn {
 namespace {

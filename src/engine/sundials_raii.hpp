@@ -16,7 +16,7 @@
 #include <cmath>
 #include <memory>
 
-#include "legacy/engine.hpp"
+#include "engine/sundials_error.hpp"
 
 namespace camdyn {
 namespace detail {

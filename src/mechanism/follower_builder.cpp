@@ -1,43 +1,28 @@
-// camdyn — a rigid or elastic_bar follower as a Mechanism (issue 23: one mechanism).
+// camdyn — a rigid or elastic_bar follower as a Mechanism.
 //
-//   The follower model of the scene (src/mechanism/follower_model.cpp: M, C, K, f₀ and the preloaded initial
-//   shape q(0)) with one contact, the cam on node 0:
-//     T = e₀ᵀ,   g = q₀ − X_C(θ)   (X_C absolute: u_c = q₀ as on the follower stack).
+//   The follower's matrices (src/mechanism/follower_matrices.cpp: M, C, K, f₀ and the
+//   preloaded initial shape q(0)) with one contact, the cam on node 0:
+//     T = e₀ᵀ,   g = q₀ − X_C(θ)   (X_C absolute: u_c = q₀).
 //   rigid: M = [m], K = [k], C = [c] (only if c > 0); elastic_bar: the bar's sparse
 //   M, K, C = αM + βK. The network methods and engines run it as they run a network.
 #include <cmath>
 
 #include "camdyn/cam.hpp"
-#include "camdyn/model.hpp"
+#include "mechanism/follower_matrices.hpp"
 #include "mechanism/mechanism.hpp"
 
 namespace camdyn {
 
 void Mechanism::build_follower(const Scene& scene) {
-  const std::shared_ptr<const FollowerModel> fm = build_model(scene);
-  const FollowerModel& f = *fm;
-  n_ = f.n();
-  if (f.rigid()) {
-    using Trip = Eigen::Triplet<double, long>;
-    auto scalar = [](double x) {
-      SparseMatrix A(1, 1);
-      const Trip t(0, 0, x);
-      A.setFromTriplets(&t, &t + 1);
-      A.makeCompressed();
-      return A;
-    };
-    M_ = scalar(f.m_rigid());
-    K_ = scalar(f.k_rigid());
-    if (f.damped()) C_ = scalar(f.c_rigid());
-  } else {
-    M_ = f.M();
-    K_ = f.K();
-    if (f.damped()) C_ = f.C();
-  }
-  f0_ = f.f0();
-  q0_ = f.initial_displacement();
+  const FollowerMatrices f = follower_matrices(scene);
+  n_ = f.n;
+  M_ = f.M;
+  K_ = f.K;
+  C_ = f.C;
+  f0_ = f.f0;
+  q0_ = f.q0;
   v0_ = Eigen::VectorXd::Zero(n_);
-  // Touching at t = 0 (no initial gap): node 0 moves with the cam (as the follower stack).
+  // Touching at t = 0 (no initial gap): node 0 moves with the cam.
   if (scene.contact.initial_gap == 0.0) {
     const Cam cam(scene.cam);
     const CamDrive drive(scene.cam);
@@ -63,12 +48,12 @@ void Mechanism::build_follower(const Scene& scene) {
     X = Eigen::Map<const Eigen::VectorXd>(b, n_);
     solve_mass(X);
   });
-  force_scale_ = std::abs(f.spring_preload());
+  force_scale_ = std::abs(f.spring_preload);
   ta_r0_ = MinvTt_.transpose() * r0_;  // contact_free_acceleration's linear forms
   ta_q_ = K_ * MinvTt_;
   if (damped()) ta_v_ = C_ * MinvTt_;
   single_follower_ = true;
-  desc_ = f.description();
+  desc_ = f.description;
   desc_.sparse = true;
   desc_.contact += " (one-contact mechanism)";
 }

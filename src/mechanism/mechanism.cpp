@@ -7,8 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "legacy/engine.hpp"       // resolve_linear_solver
-#include "legacy/run_context.hpp"  // detail::fmt
+#include "engine/engine_stats.hpp"  // resolve_linear_solver
+#include "cam/format.hpp"            // detail::fmt
 
 namespace camdyn {
 

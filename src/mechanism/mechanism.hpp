@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "camdyn/follower_system.hpp"
-#include "camdyn/model.hpp"  // SparseMatrix
+#include "mechanism/sparse_matrix.hpp"
 #include "camdyn/model_description.hpp"
 #include "camdyn/scene.hpp"
 

@@ -219,19 +219,7 @@ const char* events_header(bool with_contact) {
 void append_event(std::string& out, const ContactEvent& e, bool with_contact) {
   append_double(out, e.t);
   out += ',';
-  // kind: the (deprecated) string when set, else the type's name
-  const std::string_view kind = e.kind.empty() ? std::string_view(to_string(e.type)) : e.kind;
-  // kinds are plain words; quote defensively if one ever holds a comma or quote
-  if (kind.find_first_of(",\"\n") == std::string_view::npos) {
-    out += kind;
-  } else {
-    out += '"';
-    for (char c : kind) {
-      if (c == '"') out += '"';
-      out += c;
-    }
-    out += '"';
-  }
+  out += to_string(e.type);  // a plain word
   out += ',';
   append_double(out, e.impact_velocity);
   out += ',';

@@ -10,17 +10,18 @@
 #include "camdyn/scene.hpp"
 
 namespace camdyn {
-class FollowerModel;
 class MechanicalSystem;
 namespace detail {
 
-/// Rigid and elastic_bar followers: gap = q₀(0) − X_C(θ₀) (X_C absolute).
-/// @throws SceneError (key contact.initial_gap).
-void check_start(const Scene& scene, const FollowerModel& model);
-/// Networks (user = false: keys nodes[i].initial_displacement, contacts[j].clearance) and
-/// user followers (user = true: file "<follower>", keys initial_state(), contacts()[j]).
-/// @throws SceneError.
-void check_start(const Scene& scene, const MechanicalSystem& mech, bool user);
+/// Where the start of a mechanism comes from (the keys a message names).
+enum class StartKeys {
+  Scene,  ///< the scene's follower: rigid and elastic_bar (gap = q₀(0) − X_C(θ₀), X_C
+          ///< absolute; key contact.initial_gap) or a network (keys
+          ///< nodes[i].initial_displacement, contacts[j].clearance)
+  User,   ///< a user FollowerSystem (file "<follower>", keys initial_state(), contacts()[j])
+};
+/// @throws SceneError naming the first contact the start penetrates.
+void check_start(const Scene& scene, const MechanicalSystem& mech, StartKeys keys);
 
 }  // namespace detail
 }  // namespace camdyn

@@ -9,11 +9,10 @@
 #include <cmath>
 #include <string>
 
-#include "camdyn/model.hpp"
 #include "contact/laws/penalty_law.hpp"
 #include "run/initial_check.hpp"
 #include "mechanism/mechanism.hpp"
-#include "legacy/run_context.hpp"  // fmt
+#include "cam/format.hpp"  // detail::fmt
 
 namespace camdyn {
 
@@ -119,30 +118,14 @@ std::string rule(const std::string& contact, const std::string& bound, const std
 
 }  // namespace
 
-void check_start(const Scene& sc, const FollowerModel& model) {
-  const Cam cam(sc.cam);
-  const CamDrive drive(sc.cam);
-  const double th0 = drive.theta(0.0);
-  const CamMotion cm = cam.motion(th0, drive.omega(0.0), drive.omega_dot(0.0));
-  const double gap = model.initial_displacement()[0] - cm.X;
-  double depth = 0.0;
-  if (sc.contact.model == ContactModel::Penalty) {
-    const Eigen::VectorXd v = Eigen::VectorXd::Zero(model.n());
-    const double a = model.contact_acceleration(model.initial_displacement().data(), v.data(), 0.0);
-    depth = penalty_depth(sc, sc.contact.penalty_stiffness, (cm.Xddot - a) / model.mstar());
-  }
-  if (gap >= -(depth + sc.contact.tol_u)) return;
-  throw SceneError(sc.source, 0, "contact.initial_gap", fmt(sc.contact.initial_gap),
-                   rule("cam", below(sc, gap, depth),
-                        {"the follower's face q(0) = " + fmt(model.initial_displacement()[0]),
-                         "the cam's X_C(0) = " + fmt(cm.X) + " (absolute)"}));
-}
-
-void check_start(const Scene& sc, const MechanicalSystem& mech, bool user) {
+void check_start(const Scene& sc, const MechanicalSystem& mech, StartKeys keys) {
+  const bool user = keys == StartKeys::User;
+  // A rigid or elastic_bar follower's gap sees the cam's X_C itself (u_c = q₀).
+  const bool absolute = mech.single_follower();
   const int n = mech.n(), m = mech.m();
   const Cam cam(sc.cam);
   const CamDrive drive(sc.cam);
-  const double base = mech.cam_contacts() > 0 ? cam_lift_base(cam, sc.cam) : 0.0;
+  const double base = !absolute && mech.cam_contacts() > 0 ? cam_lift_base(cam, sc.cam) : 0.0;
   const CamMotion cm = cam.motion(drive.theta(0.0), drive.omega(0.0), drive.omega_dot(0.0));
   const Eigen::VectorXd& q = mech.q0();
   Eigen::VectorXd a0(n);
@@ -165,7 +148,13 @@ void check_start(const Scene& sc, const MechanicalSystem& mech, bool user) {
     // The keys that set this gap.
     std::string file, key, value;
     std::vector<std::string> terms;
-    if (user) {
+    if (absolute) {
+      file = sc.source;
+      key = "contact.initial_gap";
+      value = fmt(sc.contact.initial_gap);
+      terms.push_back("the follower's face q(0) = " + fmt(q[0]));
+      terms.push_back("the cam's X_C(0) = " + fmt(cm.X) + " (absolute)");
+    } else if (user) {
       file = "<follower>";
       key = "initial_state()";
       std::string qs;
@@ -189,7 +178,7 @@ void check_start(const Scene& sc, const MechanicalSystem& mech, bool user) {
       }
       terms.push_back("contacts[" + std::to_string(j) + "].clearance = " + fmt(c.g0));
     }
-    if (c.cam)
+    if (c.cam && !absolute)
       terms.push_back("the cam's lift X_C(0) - X_base = " + fmt(lift) + " (X_C(0) = " + fmt(cm.X) + ", X_base = " +
                       fmt(base) + ": " +
                       (sc.cam.profile == CamProfileKind::Lift ? "cam.base_radius" : "the smallest X_C over a revolution") +

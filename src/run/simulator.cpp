@@ -1,8 +1,8 @@
-// camdyn — the simulator: scene → model → engine + contact method → history/summary.
+// camdyn — the simulator: scene → mechanism → engine + contact method → history/summary.
 //
-//   Simulator validates the scene and builds the model once; each run() makes the contact
-//   method the scene asks for from the registry (src/legacy/registry.cpp; the shared run
-//   machinery is src/legacy/run_context.hpp) and runs it.
+//   Simulator validates the scene and builds the mechanism once (any follower kind, or the
+//   user's FollowerSystem); each run() makes the contact method the scene asks for
+//   (make_contact_method, src/contact/contact_run.hpp) and runs it.
 #include "camdyn/simulator.hpp"
 #include "camdyn/scene_warnings.hpp"
 
@@ -17,7 +17,7 @@
 #include "results/verdict.hpp"
 #include "run/initial_check.hpp"
 #include "mechanism/mechanism.hpp"
-#include "legacy/run_context.hpp"
+#include "cam/format.hpp"  // detail::fmt
 
 namespace camdyn {
 
@@ -170,54 +170,36 @@ void describe_tolerance(const Scene& sc, Summary& sum) {
 
 }  // namespace detail
 
+namespace {
+
+// Keys of the retired single-follower stack (one release of grace): a scene that still
+// sets them runs on the mechanism with a warning, except Lee's classic step, which is gone.
+void retired_keys(const Scene& sc, std::vector<std::string>& warnings) {
+  if (sc.contact.lee_step == LeeStepKind::Classic)
+    throw SceneError(sc.source, 0, "contact.lee_step", "classic",
+                     "Lee's classic step was retired (docs/background/changelog.md): use contact.lee_step = "
+                     "\"located\" (the default), or remove the key");
+  if (sc.solver.stack != StackKind::Auto)
+    warnings.push_back(std::string("solver.stack = \"") + to_string(sc.solver.stack) +
+                       "\" is deprecated and ignored: every follower runs on the mechanism (remove the key)");
+  if (sc.contact.error_variant != ErrorVariant::Eq12)
+    warnings.push_back(std::string("contact.error_variant = \"") + to_string(sc.contact.error_variant) +
+                       "\" is deprecated and ignored: it chose the classic step's equations; the located "
+                       "step has one form (remove the key)");
+}
+
+}  // namespace
+
 Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   resolve_defaults(scene_);
   validate(scene_);
   check_tolerances(scene_);
-  if (scene_.follower.kind == FollowerKind::Network) {
-    runs_on_mechanism(scene_);  // @throws SceneError for the classic step
-    mech_ = std::make_shared<const Mechanism>(scene_);
-    extra_columns_ = detail::ContactRun::extra_columns(*mech_);
-    detail::check_start(scene_, *mech_, false);
-    warnings_ = scene_warnings(scene_);
-  } else {
-    model_ = build_model(scene_);
-    detail::check_start(scene_, *model_);
-    if (runs_on_mechanism(scene_)) mech_ = std::make_shared<const Mechanism>(scene_);
-  }
+  warnings_ = scene_warnings(scene_);
+  retired_keys(scene_, warnings_);
+  mech_ = std::make_shared<const Mechanism>(scene_);
+  extra_columns_ = detail::ContactRun::extra_columns(*mech_);
+  detail::check_start(scene_, *mech_, detail::StartKeys::Scene);
   add_designer_columns();
-}
-
-namespace {
-// Lee's classic step runs on the single-follower stack only (src/legacy/lee_classic.cpp).
-constexpr const char* kClassicOnlySingle =
-    "runs on a rigid or elastic_bar follower only (a network or a user follower runs Lee's located step: "
-    "contact.lee_step = \"located\")";
-}  // namespace
-
-bool Simulator::runs_on_mechanism(const Scene& sc) {
-  const bool classic = sc.contact.model == ContactModel::Lee && sc.contact.lee_step == LeeStepKind::Classic;
-  if (sc.follower.kind == FollowerKind::Network) {
-    if (classic) throw SceneError(sc.source, 0, "contact.lee_step", "classic", kClassicOnlySingle);
-    return true;
-  }
-  switch (sc.solver.stack) {
-    case StackKind::Follower:
-      if (!classic)
-        throw SceneError(sc.source, 0, "solver.stack", "follower",
-                         "runs Lee's classic step only (contact.model = \"lee\", contact.lee_step = "
-                         "\"classic\"); every other method runs on the mechanism (use solver.stack = "
-                         "\"mechanism\" or \"auto\")");
-      return false;
-    case StackKind::Auto: return !classic;
-    case StackKind::Mechanism:
-      if (classic)
-        throw SceneError(sc.source, 0, "solver.stack", "mechanism",
-                         "runs Lee's located step (contact.lee_step = classic: use solver.stack = "
-                         "\"follower\" or \"auto\")");
-      return true;
-  }
-  return false;
 }
 
 void Simulator::add_designer_columns() {
@@ -229,44 +211,31 @@ void Simulator::add_designer_columns() {
 Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower) : scene_(std::move(scene)) {
   resolve_defaults(scene_);
   validate(scene_);
-  if (scene_.contact.model == ContactModel::Lee && scene_.contact.lee_step == LeeStepKind::Classic)
-    throw SceneError(scene_.source, 0, "contact.lee_step", "classic", kClassicOnlySingle);
   if (scene_.solver.integrator == Integrator::Ida)
     throw SceneError(scene_.source, 0, "solver.integrator", "ida",
                      "a user-defined follower runs on arkode-erk, arkode-dirk or cvode-bdf (ida needs a "
                      "linear mechanism: rigid, elastic_bar or network)");
   check_tolerances(scene_);
   warnings_ = scene_warnings(scene_, follower.get());
+  retired_keys(scene_, warnings_);
   mech_ = make_user_system(scene_, std::move(follower));
   extra_columns_ = detail::ContactRun::extra_columns(*mech_);
-  detail::check_start(scene_, *mech_, true);
+  detail::check_start(scene_, *mech_, detail::StartKeys::User);
   add_designer_columns();
 }
 
-const ModelDescription& Simulator::description() const {
-  return mech_ ? mech_->description() : model_->description();
-}
+const ModelDescription& Simulator::description() const { return mech_->description(); }
 
 Simulator::~Simulator() = default;
 
 Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
                        const std::string& stop_reason) {
-  if (mech_) {
-    auto method = detail::make_contact_method(scene_, mech_, observer, stop);
-    method->set_stop_reason(stop_reason);
-    Summary sum = method->run();
-    detail::describe_tolerance(scene_, sum);
-    sum.warnings = warnings_;
-    sum.verdict = detail::make_verdict(scene_, mech_->single_follower() ? nullptr : mech_.get(), sum.events);
-    sum.verdict_text = detail::verdict_one_line(sum.verdict);
-    return sum;
-  }
-  auto method = detail::make_contact_method(scene_, model_, observer, stop);
+  auto method = detail::make_contact_method(scene_, mech_, observer, stop);
   method->set_stop_reason(stop_reason);
   Summary sum = method->run();
   detail::describe_tolerance(scene_, sum);
   sum.warnings = warnings_;
-  sum.verdict = detail::make_verdict(scene_, nullptr, sum.events);
+  sum.verdict = detail::make_verdict(scene_, mech_->single_follower() ? nullptr : mech_.get(), sum.events);
   sum.verdict_text = detail::verdict_one_line(sum.verdict);
   return sum;
 }

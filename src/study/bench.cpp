@@ -1,6 +1,5 @@
 // camdyn — work–precision benchmark (bench.hpp).
 #include "camdyn/bench.hpp"
-#include "camdyn/model.hpp"
 
 #include <algorithm>
 #include <atomic>

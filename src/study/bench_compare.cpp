@@ -2,7 +2,7 @@
 // (bench_compare.hpp).
 #include "study/bench_compare.hpp"
 
-#include "camdyn/model.hpp"
+#include "mechanism/follower_matrices.hpp"
 
 namespace camdyn {
 namespace bench_detail {
@@ -14,11 +14,11 @@ bool setup_scene_info(SceneInfo& si, const Scene& base, const Run& rr, double dt
   si.scene = base;
   si.scene.run.output_dt = dt;
   if (si.rigid) {
-    Simulator sim(si.scene);
-    si.m = sim.model().m_rigid();
-    si.k = sim.model().k_rigid();
-    si.c = sim.model().c_rigid();
-    si.f0 = sim.model().f0()[0];
+    const FollowerMatrices f = follower_matrices(si.scene);
+    si.m = f.M.coeff(0, 0);
+    si.k = f.K.coeff(0, 0);
+    si.c = f.C.size() > 0 ? f.C.coeff(0, 0) : 0.0;
+    si.f0 = f.f0[0];
   }
   si.n = size_t(std::floor(base.run.t_end / dt + 1e-9)) + 1;
   si.k_window = std::max<size_t>(1, size_t(std::lround(1e-3 / dt)));

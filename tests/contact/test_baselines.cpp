@@ -51,7 +51,7 @@ TEST(Event, FreeFlightAndImpactTimeMatchClosedForm) {
   ASSERT_GE(r.summary.events.size(), 1u);
   const double t_star = std::acos(1.0 - gap / d0) / w;
   const ContactEvent& ev = r.summary.events[0];
-  EXPECT_EQ(ev.kind, "impact");
+  EXPECT_EQ(ev.type, EventKind::Impact);
   EXPECT_NEAR(ev.t, t_star, 1e-12);
   EXPECT_NEAR(ev.impact_velocity, d0 * w * std::sin(w * t_star), 1e-8);
   // Free-flight arc before the impact.

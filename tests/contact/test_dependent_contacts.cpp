@@ -286,11 +286,11 @@ TEST(ContactResults, OhcMatchTheRowsAndEvents) {
       }
     for (const ContactEvent& e : sum.events) {
       if (e.contact != name) continue;
-      if (e.kind == "impact") {
+      if (e.type == EventKind::Impact) {
         ++imp;
         vmax = std::max(vmax, e.impact_velocity);
         if (std::isnan(first_imp)) first_imp = deg(e.theta);
-      } else if (e.kind == "separation") {
+      } else if (e.type == EventKind::Separation) {
         ++sep;
         if (std::isnan(first_sep)) first_sep = deg(e.theta);
         if (!in_window(e.theta)) minF = 0.0;

@@ -1,8 +1,8 @@
-// Issue 23 — a rigid or elastic_bar follower built as a one-contact Mechanism and run by
-// the network methods and engines (solver.stack = "mechanism", the default), checked
-// against independent truth: case A's and A7's closed forms, the event-driven method at
-// tight tolerance (a second formulation), the follower model's M* and the history's
-// columns.
+// A rigid or elastic_bar follower built as a one-contact Mechanism and run by the contact
+// methods and engines, checked against independent truth: case A's and A7's closed forms,
+// the event-driven method at tight tolerance (a second formulation), the bar's mass and
+// stiffness assembled densely in the test, and the history's columns; the retired keys of
+// the single-follower stack.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,7 +11,7 @@
 
 #include "camdyn/cam.hpp"
 #include "camdyn/designer.hpp"
-#include "camdyn/model.hpp"
+#include <Eigen/Dense>
 #include "camdyn/simulator.hpp"
 #include "mechanism/mechanism.hpp"
 
@@ -40,10 +40,9 @@ CaseAErrors case_a_errors(const Scene& s, const RunResult& r) {
 
 class MechanismStackCaseA : public ::testing::TestWithParam<Integrator> {};
 
-TEST_P(MechanismStackCaseA, LeeMatchesTheClosedFormWithTheFollowerStacksBounds) {
+TEST_P(MechanismStackCaseA, LeeMatchesTheClosedForm) {
   // The bounds of LeeCaseA.MatchesClosedFormWithDefaultTolerances (test_lee.cpp).
   Scene s = paper_case("A");
-  s.solver.stack = StackKind::Mechanism;
   s.solver.integrator = GetParam();
   const RunResult r = simulate(s);
   ASSERT_TRUE(r.summary.finished) << r.summary.message;
@@ -113,8 +112,7 @@ TEST(MechanismStack, A7EventsMatchTheClosedForm) {
   for (ContactModel m : {ContactModel::Lee, ContactModel::Event})
     for (Integrator e : {Integrator::ArkodeErk, Integrator::ArkodeDirk}) {
       Scene s = ref;
-      s.solver.stack = StackKind::Mechanism;
-      s.contact.model = m;
+          s.contact.model = m;
       s.solver.integrator = e;
       s.solver.rtol = 1e-9;  // contact.tol_u stays 1e-8 (a rigid follower's default)
       const RunResult r = simulate(s);
@@ -132,31 +130,58 @@ TEST(MechanismStack, A7EventsMatchTheClosedForm) {
     }
 }
 
-// The one-contact mechanism's algebra against the follower model's: W = T M⁻¹ Tᵀ = M*
-// (a rigid follower: 1/m), the unknowns and the free acceleration.
-TEST(MechanismStack, OneContactMechanismHasTheFollowerModelsMassAndForces) {
+// The one-contact mechanism's algebra against the follower's equations written out here:
+// rigid, m a = −kδ₀ − k(q − q(0)) − c v; the bar, M and K of 2-node elements assembled
+// densely (M consistent: mₑ/6 [2 1; 1 2]), the spring on the far node, the preloaded shape
+// q_i(0) = x₀ − i kδ₀ h/(EA); W = e₀ᵀM⁻¹e₀ and a = M⁻¹(f₀ − Kq) by a dense LU.
+TEST(MechanismStack, OneContactMechanismHasTheFollowersMassAndForces) {
   for (const char* c : {"A", "B1"}) {
     Scene s = paper_case(c);
     s.follower.mass_matrix = MassMatrixKind::Consistent;
     resolve_defaults(s);
     const Mechanism mech(s);
-    const auto fm = build_model(s);
     ASSERT_TRUE(mech.single_follower());
-    ASSERT_EQ(mech.n(), fm->n()) << c;
     ASSERT_EQ(mech.m(), 1);
-    EXPECT_NEAR(mech.W()(0, 0), fm->mstar(), 1e-12 * fm->mstar()) << c;
-    if (fm->rigid()) EXPECT_NEAR(mech.W()(0, 0), 1.0 / s.follower.mass, 1e-15) << c;
-    // Free acceleration at a displaced, moving state: a = M⁻¹(f₀ − Kq − Cv).
-    Eigen::VectorXd q = fm->initial_displacement(), v(fm->n()), a(fm->n()), r(fm->n()), a_ref(fm->n());
-    for (int i = 0; i < fm->n(); ++i) {
+    const Cam cam(s.cam);
+    const CamDrive drive(s.cam);
+    const double x0 = cam.evaluate(drive.theta(0.0)).X_C + s.contact.initial_gap;
+    const double k = s.spring.stiffness, P = k * s.spring.precompression;
+    const bool rigid = s.follower.kind == FollowerKind::Rigid;
+    const int n = rigid ? 1 : int(s.follower.elements) + 1;
+    ASSERT_EQ(mech.n(), n) << c;
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), K = Eigen::MatrixXd::Zero(n, n);
+    Eigen::VectorXd q0(n), f0 = Eigen::VectorXd::Zero(n);
+    if (rigid) {
+      M(0, 0) = s.follower.mass;
+      K(0, 0) = k;
+      q0[0] = x0;
+    } else {
+      const int N = n - 1;
+      const double h = s.follower.length / N, EA = s.follower.youngs_modulus * s.follower.area;
+      const double me = s.follower.mass / N;
+      for (int e = 0; e < N; ++e) {
+        M.block(e, e, 2, 2) += me / 6.0 * (Eigen::Matrix2d() << 2, 1, 1, 2).finished();
+        K.block(e, e, 2, 2) += EA / h * (Eigen::Matrix2d() << 1, -1, -1, 1).finished();
+      }
+      K(N, N) += k;
+      for (int i = 0; i < n; ++i) q0[i] = x0 - i * P * h / EA;
+    }
+    f0[n - 1] = -P + k * q0[n - 1];
+    EXPECT_LE((mech.q0() - q0).cwiseAbs().maxCoeff(), 1e-14 * std::abs(x0)) << c;
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
+    const Eigen::VectorXd z = lu.solve(Eigen::VectorXd::Unit(n, 0));
+    EXPECT_NEAR(mech.W()(0, 0), z[0], 1e-12 * z[0]) << c;
+    if (rigid) EXPECT_NEAR(mech.W()(0, 0), 1.0 / s.follower.mass, 1e-15) << c;
+    // Free acceleration at a displaced, moving state (undamped: C = 0).
+    Eigen::VectorXd q = q0, v(n), a(n);
+    for (int i = 0; i < n; ++i) {
       q[i] += 1e-3 * std::sin(1.0 + i);
       v[i] = 0.1 * std::cos(2.0 + i);
     }
     mech.acceleration(0.0, q.data(), v.data(), Eigen::VectorXd(), a.data());
-    fm->internal_force(q.data(), v.data(), r.data());
-    fm->solve_mass(r.data(), a_ref.data());
+    const Eigen::VectorXd a_ref = lu.solve(f0 - K * q);
     EXPECT_LE((a - a_ref).cwiseAbs().maxCoeff(), 1e-9 * a_ref.cwiseAbs().maxCoeff()) << c;
-    EXPECT_NEAR(mech.kinetic_energy(v.data()), fm->kinetic_energy(v.data()), 1e-12 * fm->kinetic_energy(v.data()));
+    EXPECT_NEAR(mech.kinetic_energy(v.data()), 0.5 * v.dot(M * v), 1e-12 * v.dot(M * v)) << c;
   }
 }
 
@@ -191,41 +216,41 @@ TEST(MechanismStack, B1ForceAgreesWithTheEventMethodAndKeepsItsColumns) {
   EXPECT_LE(du, 1e-6);
 }
 
-TEST(MechanismStack, RefusesWhatItDoesNotRunWithExactMessages) {
-  struct Case {
-    StackKind stack;
-    Integrator e;
-    ContactModel m;
-    LeeStepKind k;
-    const char* value;
-    const char* msg;
-  };
-  const Case cases[] = {
-      {StackKind::Follower, Integrator::Ida, ContactModel::Holonomic, LeeStepKind::Located, "follower",
-       "runs Lee's classic step only (contact.model = \"lee\", contact.lee_step = \"classic\"); every other "
-       "method runs on the mechanism (use solver.stack = \"mechanism\" or \"auto\")"},
-      {StackKind::Follower, Integrator::ArkodeErk, ContactModel::Lee, LeeStepKind::Located, "follower",
-       "runs Lee's classic step only (contact.model = \"lee\", contact.lee_step = \"classic\"); every other "
-       "method runs on the mechanism (use solver.stack = \"mechanism\" or \"auto\")"},
-      {StackKind::Mechanism, Integrator::ArkodeErk, ContactModel::Lee, LeeStepKind::Classic, "mechanism",
-       "runs Lee's located step (contact.lee_step = classic: use solver.stack = "
-       "\"follower\" or \"auto\")"},
-  };
-  for (const Case& c : cases) {
-    Scene s = paper_case("A");
-    s.solver.stack = c.stack;
-    s.solver.integrator = c.e;
-    s.contact.model = c.m;
-    s.contact.lee_step = c.k;
+// The keys of the retired single-follower stack: Lee's classic step is refused on every
+// follower kind naming the key, the value and what to use; solver.stack and
+// contact.error_variant are ignored with a warning (the run is the same as without them).
+TEST(MechanismStack, RetiredKeysAreRefusedOrWarnedAbout) {
+  for (const char* file : {"case_A.toml", "ohc_bucket_tappet.toml"}) {
+    Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/" + file);
+    s.contact.lee_step = LeeStepKind::Classic;
     try {
       Simulator sim(s);
-      ADD_FAILURE() << "no error for " << c.msg;
+      ADD_FAILURE() << file << ": no error";
     } catch (const SceneError& e) {
-      EXPECT_EQ(e.key(), "solver.stack");
-      EXPECT_EQ(e.value(), c.value);
-      EXPECT_EQ(e.rule(), c.msg);
+      EXPECT_EQ(e.key(), "contact.lee_step") << file;
+      EXPECT_EQ(e.value(), "classic") << file;
+      EXPECT_EQ(e.rule(),
+                "Lee's classic step was retired (docs/background/changelog.md): use contact.lee_step = "
+                "\"located\" (the default), or remove the key")
+          << file;
     }
   }
+  Scene s = paper_case("A");
+  s.run.t_end = 0.02;
+  const Summary plain = Simulator(s).run();
+  s.solver.stack = StackKind::Follower;
+  s.contact.error_variant = ErrorVariant::Eq17;
+  const Simulator sim(s);
+  ASSERT_EQ(sim.warnings().size(), 2u);
+  EXPECT_EQ(sim.warnings()[0],
+            "solver.stack = \"follower\" is deprecated and ignored: every follower runs on the mechanism (remove the key)");
+  EXPECT_EQ(sim.warnings()[1],
+            "contact.error_variant = \"eq17\" is deprecated and ignored: it chose the classic step's equations; the "
+            "located step has one form (remove the key)");
+  const Summary r = Simulator(s).run();
+  ASSERT_TRUE(r.finished) << r.message;
+  EXPECT_EQ(r.steps, plain.steps);
+  EXPECT_EQ(r.warnings, sim.warnings());
 }
 
 // The force margin between rows and step ends (Summary::min_contact_force): the lift-table
@@ -237,8 +262,7 @@ TEST(MechanismStack, ForceMarginInsideStepsMatchesTheClosedForm) {
   const Scene base = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/lift_cam.toml");
   for (double speed : {3.0, 6.0, 8.5}) {
     Scene s = base;
-    s.solver.stack = StackKind::Mechanism;
-    s.cam.speed_rev_s = speed;
+      s.cam.speed_rev_s = speed;
     s.run.t_end = 1.0 / speed;
     s.run.output_dt = 0;
     s.solver.rtol = 1e-7;
@@ -260,26 +284,5 @@ TEST(MechanismStack, ForceMarginInsideStepsMatchesTheClosedForm) {
   }
 }
 
-}  // namespace
-}  // namespace camdyn
-
-namespace camdyn {
-namespace {
-// Lee's classic step runs on the single-follower stack only: a network asking for it is
-// bad input (it used to run the located step without a word).
-TEST(MechanismStack, ANetworkRefusesTheClassicStep) {
-  Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_bucket_tappet.toml");
-  s.contact.lee_step = LeeStepKind::Classic;
-  try {
-    Simulator sim(s);
-    ADD_FAILURE() << "no error";
-  } catch (const SceneError& e) {
-    EXPECT_EQ(e.key(), "contact.lee_step");
-    EXPECT_EQ(e.value(), "classic");
-    EXPECT_EQ(e.rule(),
-              "runs on a rigid or elastic_bar follower only (a network or a user follower runs Lee's located step: "
-              "contact.lee_step = \"located\")");
-  }
-}
 }  // namespace
 }  // namespace camdyn

@@ -30,7 +30,6 @@ namespace {
 
 Scene lee_on_cvode(const char* example, double t_end) {
   Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/" + example + ".toml");
-  if (s.follower.kind != FollowerKind::Network) s.solver.stack = StackKind::Mechanism;
   s.solver.integrator = Integrator::CvodeBdf;
   s.contact.model = ContactModel::Lee;
   s.run.t_end = t_end;
@@ -59,7 +58,6 @@ class MechanismStackCvode : public ::testing::TestWithParam<StackCase> {};
 TEST_P(MechanismStackCvode, FinishesWithoutPenetrationAndWithTheEventMethodsEvents) {
   const StackCase& c = GetParam();
   const Scene lee = lee_on_cvode(c.example, c.t_end);
-  ASSERT_TRUE(Simulator::runs_on_mechanism(lee));
   const Summary a = Simulator(lee).run();
   ASSERT_TRUE(a.finished) << a.message;
   EXPECT_LE(a.max_penetration, 10.0 * lee.contact.tol_u);

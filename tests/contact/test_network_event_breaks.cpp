@@ -35,7 +35,6 @@ Scene rigid_law(const std::string& law, double speed_rev_s, Integrator integ, do
   s.spring.stiffness = kK;
   s.spring.precompression = kDelta0;
   s.contact.model = ContactModel::Event;
-  s.solver.stack = StackKind::Mechanism;
   s.solver.rtol = 1e-7;
   s.solver.atol = 1e-10;
   s.run.output_dt = 0.0;

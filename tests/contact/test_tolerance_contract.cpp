@@ -14,7 +14,7 @@
 #include "camdyn/cam.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/simulator.hpp"
-#include "legacy/engine.hpp"
+#include "engine/sundials_error.hpp"
 
 namespace camdyn {
 namespace {

@@ -188,7 +188,7 @@ TEST(Ida, FirstTensileTimeIsTheRootOfTheClosedFormForce) {
   std::printf("IDA tensile at %.15g, closed form %.15g\n", r.summary.first_tensile_time, b);
   EXPECT_NEAR(r.summary.first_tensile_time, b, 1e-9);
   const auto it = std::find_if(r.summary.events.begin(), r.summary.events.end(),
-                               [](const ContactEvent& e) { return e.kind == "tensile"; });
+                               [](const ContactEvent& e) { return e.type == EventKind::Tensile; });
   ASSERT_NE(it, r.summary.events.end());
   EXPECT_EQ(it->t, r.summary.first_tensile_time);
 }

@@ -12,7 +12,7 @@
 
 #include "engine/ida_engine.hpp"
 #include "contact/contact_run.hpp"
-#include "legacy/run_context.hpp"
+#include "contact/run_failure.hpp"
 
 namespace camdyn {
 namespace detail {

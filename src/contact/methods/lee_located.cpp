@@ -31,7 +31,8 @@
 #include "contact/methods/lee_step_tools.hpp"
 #include "contact/methods/switch_search.hpp"
 #include "contact/contact_run.hpp"
-#include "legacy/run_context.hpp"  // StepFailure, IterationFailure, fmt
+#include "contact/run_failure.hpp"  // StepFailure, IterationFailure, fmt
+#include "contact/step_control.hpp"  // output_time
 
 namespace camdyn {
 namespace detail {
@@ -544,8 +545,6 @@ class LeeLocated final : public ContactRun {
         for (int j : set) least_force_inside(s, j);
       else
         for (int j : set) first_tensile_inside(s, j);
-      if (obs_) obs_->on_lee_shape(t_, hs, set.empty() ? 0.0 : F0_[set[0]], set.empty() ? 0.0 : F1_[set[0]],
-                                   set.empty() ? 0.0 : Fc_[set[0]], 0.0);
       s.power.clear();
       if (unilateral_ && !set.empty()) {
         s.power.assign(kSwitchSamples + 1, 0.0);

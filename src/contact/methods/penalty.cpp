@@ -9,7 +9,6 @@
 
 #include "contact/contact_run.hpp"
 #include "contact/laws/penalty_law.hpp"
-#include "legacy/run_context.hpp"
 
 namespace camdyn {
 namespace detail {

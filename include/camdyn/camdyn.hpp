@@ -1,0 +1,33 @@
+// camdyn — the whole public API in one include:
+//
+//   #include <camdyn/camdyn.hpp>
+//
+//   scene.hpp            Scene (the TOML file as a struct), load_scene_file, parse_scene,
+//                        validate, to_toml, SceneError; network.hpp (valve-train networks)
+//   simulator.hpp        Simulator, Observer (on_output, on_event, on_step, on_progress),
+//                        HistoryRow, ContactEvent, StepInfo, Summary, simulate()
+//   follower_system.hpp  FollowerSystem: bring your own follower
+//   initial_state.hpp    initial_state_on_cam and the cam's lift base
+//   cam.hpp, motion_law.hpp, hertz.hpp   the cam's profile, motion laws, Hertz stress
+//   designer.hpp         required contact force, jump speed, speed sweeps
+//   batch.hpp            run_batch: scenes in parallel
+//   output.hpp           history.csv, events.csv, summary.json writers
+//   scene_keys.hpp, scene_warnings.hpp, model_description.hpp
+//
+// Each header can also be included on its own. Nothing here needs Eigen or SUNDIALS.
+#pragma once
+
+#include "camdyn/batch.hpp"
+#include "camdyn/cam.hpp"
+#include "camdyn/designer.hpp"
+#include "camdyn/follower_system.hpp"
+#include "camdyn/hertz.hpp"
+#include "camdyn/initial_state.hpp"
+#include "camdyn/model_description.hpp"
+#include "camdyn/motion_law.hpp"
+#include "camdyn/network.hpp"
+#include "camdyn/output.hpp"
+#include "camdyn/scene.hpp"
+#include "camdyn/scene_keys.hpp"
+#include "camdyn/scene_warnings.hpp"
+#include "camdyn/simulator.hpp"
