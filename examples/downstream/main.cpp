@@ -3,8 +3,7 @@
 //   Eccentric circle cam (radius R, eccentricity e): X_C(θ) = e cos θ + R exactly.
 //   The program checks camdyn's contact point against that closed form, then runs the
 //   paper's case A (rigid follower) for a short time and prints the brief report.
-#include <camdyn/cam.hpp>
-#include <camdyn/simulator.hpp>
+#include <camdyn/camdyn.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -3,8 +3,7 @@
 //
 //   Build against an installed camdyn:  cmake -S examples/library -B build-lib && cmake --build build-lib
 //   or with pkg-config:                 c++ main.cpp $(pkg-config --cflags --libs camdyn)
-#include <camdyn/designer.hpp>   // jump_speed
-#include <camdyn/simulator.hpp>  // Scene, Simulator, Observer, Summary
+#include <camdyn/camdyn.hpp>  // the whole API: Scene, Simulator, Observer, Summary, jump_speed
 
 #include <cmath>
 #include <cstdio>

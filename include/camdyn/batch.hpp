@@ -1,11 +1,10 @@
 // camdyn — many runs at once: run_batch (summaries) and simulate_batch (summaries and
 // history rows), on worker threads from a dynamic queue.
 //
-// Thread safety: each run builds its own Simulator (model, Cam, engines, SUNDIALS
+// Thread safety: each run builds its own Simulator (mechanism, Cam, engines, SUNDIALS
 // context); nothing mutable is shared between runs. Cam is safe to share as well (its
-// contact-point search hint is a relaxed atomic), the scene key table and the contact
-// method registry are function-local statics initialised once. The one exception is
-// register_contact_method (a test hook): register before starting a batch.
+// contact-point search hint is a relaxed atomic), and the scene key table is a
+// function-local static initialised once.
 #pragma once
 
 #include <atomic>

@@ -3,7 +3,7 @@
 //
 //   Required contact force of a rigid follower riding the cam (docs/method.md §1–2):
 //     F_req(θ, ω, ω̇) = m Ẍ_C + c Ẋ_C + k δ₀ + k (X_C(θ) − x₀),   x₀ = X_C(θ₀) + initial_gap
-//   (the return spring's force on the follower is −(k δ₀ + k (u − x₀)), model.cpp), with
+//   (the return spring's force on the follower is −(k δ₀ + k (u − x₀))), with
 //   X_C = h(θ), Ẋ_C = h′ω, Ẍ_C = h″ω² + h′ω̇. At constant speed F_req is a quadratic
 //   in ω per cam angle; the follower leaves the cam at the smallest ω where
 //   min_θ F_req(θ, ω, 0) reaches zero: the jump speed.

@@ -1,6 +1,5 @@
-// camdyn — a C0 joint of the cam under closed contacts on the mechanism stack (issue 24 on
-// the network methods; the follower stack's RunContext::cam_joint_impact, for any number of
-// contacts). At a joint the cam's velocity Ẋ_C jumps (a constant-velocity ramp next to a
+// camdyn — a C0 joint of the cam under closed contacts, for any number of contacts
+// (ContactRun::cam_joint_impact). At a joint the cam's velocity Ẋ_C jumps (a constant-velocity ramp next to a
 // dwell); the steps land there (cam_stops.hpp), the step that ends on it sees the cam
 // before it, every step after it the cam after it (cam_joints.hpp). A closed cam contact
 // the cam now approaches (ġ⁺ < 0) is struck: a plastic impact on every contact taking part

@@ -333,8 +333,8 @@ class DirkOde final : public EngineBase {
         check(ARKStepSetNonlinConvCoef(mem, 0.01 / scale), "ARKStepSetNonlinConvCoef");
     } else {
       check(ARKStepSStolerances(mem, spec.rtol, spec.atol), "ARKStepSStolerances");
-      // As engines.cpp: the Newton matrix is reused across steps; ARKODE's default Newton
-      // tolerance (0.1 of the error test) left a stiff penalty run 34× less accurate.
+      // The Newton matrix is reused across steps: a Newton tolerance of 0.01 of the error
+      // test (ARKODE's default 0.1 costs a stiff penalty run accuracy: method_notes.md).
       check(ARKStepSetNonlinConvCoef(mem, 0.01), "ARKStepSetNonlinConvCoef");
       // Refactor the Newton matrix when γ moved by > 1 % (ARKODE's default: 20 %). With
       // the default, the undamped oscillator of tests/engine/test_ode_engine.cpp (ω = 50, rtol

@@ -1,6 +1,5 @@
-// camdyn (private) — the direct solver behind the implicit engines' Newton systems, shared by
-// the single-follower engines (engines.cpp: SchurSolver) and the mechanism engine
-// (ode_engine.cpp): both solve (I − γJ)x = b of a second-order system through the n × n
+// camdyn (private) — the direct solver behind the implicit engines' Newton systems
+// (ode_engine.cpp, SparseNewton): (I − γJ)x = b of a second-order system through the n × n
 // Schur complement S = M + γC̃ + γ²K̃, whose values change with γ but whose pattern does not.
 //
 //   SparseLu        KLU on a CSC matrix: one symbolic analysis per pattern (per run),

@@ -1,5 +1,5 @@
 // camdyn (private) — RAII owners of SUNDIALS objects, shared by the ODE engines
-// (engines.cpp, ode_engine.cpp) and the IDA DAE (ida_engine.cpp). Every creation is checked: a null
+// (ode_engine.cpp) and the IDA DAE (ida_engine.cpp). Every creation is checked: a null
 // result becomes a SundialsError naming the call.
 #pragma once
 

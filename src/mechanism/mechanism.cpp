@@ -351,7 +351,7 @@ void Mechanism::acceleration(double, const double* q, const double* v, const Eig
     return;
   }
   // A single follower: one pass over K's columns (no temporaries), a = r₀ − K(q − q(0)) − Cv
-  // as FollowerModel::internal_force, then M⁻¹ in place (diagonal or tridiagonal).
+  // (round-off scaling with the motion since t = 0), then M⁻¹ in place (diagonal or tridiagonal).
   const long* outer = K_.outerIndexPtr();
   const long* inner = K_.innerIndexPtr();
   const double* val = K_.valuePtr();

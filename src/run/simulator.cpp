@@ -182,6 +182,10 @@ void retired_keys(const Scene& sc, std::vector<std::string>& warnings) {
   if (sc.solver.stack != StackKind::Auto)
     warnings.push_back(std::string("solver.stack = \"") + to_string(sc.solver.stack) +
                        "\" is deprecated and ignored: every follower runs on the mechanism (remove the key)");
+  if (sc.contact.tol_a != 0.0)
+    warnings.push_back("contact.tol_a = " + detail::fmt(sc.contact.tol_a) +
+                       " is deprecated and ignored: it was the classic step's acceleration-level tolerance (remove "
+                       "the key)");
   if (sc.contact.error_variant != ErrorVariant::Eq12)
     warnings.push_back(std::string("contact.error_variant = \"") + to_string(sc.contact.error_variant) +
                        "\" is deprecated and ignored: it chose the classic step's equations; the located "

@@ -93,14 +93,15 @@ const KeyDoc kDocs[] = {
     // [contact]
     {"contact.model", "—", "Contact method: `lee` (Lee's augmented multipliers), `penalty`, `holonomic` "
                            "(held contact) or `event` (exact event-driven)."},
-    {"contact.error_variant", "—", "Lee classic step only: eqs. 12–13 (`eq12`) or 17–18 (`eq17`)."},
-    {"contact.lee_step", "—", "Lee's step: `located` (one consistent trajectory, switches located, dense output) "
-                              "or `classic` (the round-1 step). On cvode-bdf with an elastic follower the located "
-                              "step runs inside CVODE's step; so does a network (either step)."},
+    {"contact.error_variant", "—", "Deprecated, ignored (a warning): chose the retired classic step's equations."},
+    {"contact.lee_step", "—", "Lee's step: `located` (one consistent trajectory, switches located, dense output). "
+                              "On cvode-bdf with an elastic follower or a network it runs inside CVODE's step. "
+                              "`classic` (the retired round-1 step) is an error."},
     {"contact.tol_u", "length", "Displacement-level tolerance; 0 = the paper default, 1e-8 rigid, 1e-7 elastic_bar "
                                 "and network (filled in by `camdyn scene --resolved`)."},
     {"contact.tol_v", "length/time", "Velocity-level tolerance; 0 = tol_u/Δt per step."},
-    {"contact.tol_a", "length/time²", "Acceleration-level tolerance (classic step); 0 = tol_u/Δt² per step."},
+    {"contact.tol_a", "length/time²", "Deprecated, ignored (a warning when not 0): the retired classic step's "
+                                      "acceleration-level tolerance."},
     {"contact.max_iterations", "—", "Iterations per level before the step is retried with Δt/2."},
     {"contact.separation", "—", "false: the follower never leaves the cam (bilateral contact)."},
     {"contact.restitution", "—", "Newton restitution coefficient e at impact (0 = plastic, the paper); the default "
@@ -120,11 +121,7 @@ const KeyDoc kDocs[] = {
     {"solver.linear_solver", "—", "`auto` (dense for ≤ 16 unknowns, KLU beyond), `dense` or `klu`."},
     {"solver.max_step", "time", "Largest step; 0 = no limit beyond the output times."},
     {"solver.initial_step", "time", "First step; 0 = automatic."},
-    {"solver.stack", "—", "Step loop of a `rigid` or `elastic_bar` follower: `mechanism` (built as a one-contact "
-                          "mechanism and run by the methods and engines of networks; every method but "
-                          "contact.lee_step = classic), `follower` (the single-follower stack: Lee's classic step only, "
-                          "kept for the bench's comparison; any other method is an error), `auto` (the mechanism; the "
-                          "follower stack for contact.lee_step = classic; docs/one_mechanism.md §6)."},
+    {"solver.stack", "—", "Deprecated, ignored (a warning when not `auto`): every follower runs as a mechanism."},
     // [run]
     {"run.t_end", "time", "Final time."},
     {"run.revolutions", "rev", "Length of the run in camshaft revolutions, instead of `run.t_end` (giving both is an "

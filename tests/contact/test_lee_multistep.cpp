@@ -1,4 +1,4 @@
-// Lee's method on cvode-bdf (src/contact/lee_multistep.cpp, issue 14): the held contact's
+// Lee's method on cvode-bdf (src/contact/methods/lee_cvode.cpp): the held contact's
 // three levels inside CVODE's step, no restart per step. Checked against a second
 // formulation — the event-driven method, whose contact phase eliminates node 0 (the held
 // bar, a different model and right-hand side) — and against the located step on

@@ -54,7 +54,7 @@ inline FewSteps run_few_steps(const camdyn::Scene& scene) {
     // (a scene whose every step is slow under the sanitizers ran 13 s past the budget)
     void on_progress(double, double, long) override { check(); }
     void on_row(const camdyn::HistoryRow&) override { check(); }
-    void on_step(const StepInfo&) override { check(); }
+    void on_step(const camdyn::StepInfo&) override { check(); }
   } budget;
   FewSteps out;
   try {

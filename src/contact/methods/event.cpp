@@ -49,14 +49,12 @@ EventMethod::EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem
   eng_->set_projection([this](double t, const double* y, double* corr) { project(t, y, corr); });
 }
 
-// On a single follower run as a one-contact Mechanism, the follower stack's policy: an
-// elastic bar is undamped and stiff, its fast modes sit on the imaginary axis where BDF
-// orders 3–5 are not A-stable, so CVODE stays at BDF ≤ 2 at rtol > 1e-8 (B1, 0.1 s, lee at
-// rtol 1e-6: 66 431 steps at order ≤ 4 — steps collapsed to resolve the bar's top mode —,
-// 14 046 at ≤ 2, the follower stack's Lee on CVODE 15 829); at rtol ≤ 1e-8 its steps
-// resolve those modes anyway and higher orders pay, up to 5 with CVODE's stability-limit
-// detection (B1, 20 ms at rtol 1e-9: 51 338 steps at ≤ 2, 13 430 at ≤ 4, 14 029 at ≤ 5
-// with the detection). A rigid follower has no stiff mode: `network_order`.
+// On a single follower run as a one-contact Mechanism: an elastic bar is undamped and
+// stiff, its fast modes sit on the imaginary axis where BDF orders 3–5 are not A-stable,
+// so CVODE stays at BDF ≤ 2 at rtol > 1e-8; at rtol ≤ 1e-8 its steps resolve those modes
+// anyway and higher orders pay, up to 5 with CVODE's stability-limit detection (measured:
+// docs/background/method_notes.md, "BDF orders on a single elastic follower"). A rigid
+// follower has no stiff mode: `network_order`.
 void EventMethod::bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys) {
   sys.max_order = network_order;
   sys.stability_limit_detection = false;

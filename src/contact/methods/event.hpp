@@ -48,8 +48,7 @@ class EventMethod : public ContactRun {
   void project(double t, const double* y, double* corr);
 
   /// cvode-bdf's order limits for `sys`: `network_order` on a network; on a single
-  /// elastic follower BDF ≤ 2 (≤ 5 at rtol ≤ 1e-8), the policy the deleted follower
-  /// stack had.
+  /// elastic follower BDF ≤ 2 (≤ 5 at rtol ≤ 1e-8).
   static void bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys);
 
   OdeEngine* eng_;
@@ -74,13 +73,9 @@ class EventMethod : public ContactRun {
   // the stiff elements), the slow ones by their inertia.
   // A single elastic follower (a one-contact mechanism) takes γ = 10⁶·h: every mode follows
   // statically, the correction that changes the least strain (the rigid translation of
-  // the bar that the deleted follower stack's Lee on CVODE applied). With γ = h the bar's slow modes followed
-  // by their inertia, the corrections strained the first element, and the held force
-  // carried that strain: the stiff bar (E = 5e8, 200 elements, B2) on cvode-bdf at rtol
-  // 1e-2 / 1e-3 / 1e-4 had its row forces 2.3 / 2.6 / 1.5 % of the peak off the event
-  // method at rtol 1e-6 and its cam work 12 / 9.4 / 3.4 % high (energy residual 0.82 /
-  // 0.63 / 0.23 J of 6.59); with 10⁶·h 1.1 / 0.92 / 0.98 % and 7.0e-3 / 2.2e-3 / 2.3e-4 J
-  // (the deleted follower stack: 0.73 / 0.83 / 0.89 %, 1.2e-4 / 1.3e-4 / 3.9e-5 J).
+  // the bar). With γ = h the bar's slow modes follow by their inertia, the corrections
+  // strain the first element and the held force carries that strain (measured:
+  // docs/background/method_notes.md, "The projection's metric on cvode-bdf").
   void stiff_metric(double h);
   const double metric_scale_ = mk_.single_follower() && mk_.n() > 1 ? 1e6 : 1.0;
   bool stiff_metric_ = sc_.solver.integrator == Integrator::CvodeBdf && dynamic_cast<const Mechanism*>(&mk_);

@@ -227,8 +227,7 @@ class LeeLocated final : public ContactRun {
   // follower that floats, Summary::min_contact_force, ContactResult::min_force): the
   // switch search's samples, and where their interior minimum is below the least force so
   // far, golden section on the step's own interpolant — a minimum between the rows or the
-  // step ends, not the grid's (the follower stack samples its held force inside the step
-  // as well).
+  // step ends, not the grid's.
   std::vector<std::array<double, kSwitchSamples + 1>> samples_;
   Eigen::VectorXd least_;  // per contact, the least held force so far
   void least_force_inside(const StepData& s, int j) {

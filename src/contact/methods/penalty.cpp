@@ -110,8 +110,8 @@ class PenaltyMethod final : public ContactRun {
     // at which their laws (ŝ as at the start) carry the forces of the acceleration level, from
     // wherever they start on the contact (gap 0, or inside by at most s_j + tol_u: the start
     // check, src/run/initial_check.hpp), solved by Newton on the shift μ (q → q − Pμ):
-    //  * a single follower (rigid, elastic_bar): the dynamic equilibrium of the follower stack
-    //    (penalty.cpp): the forces at the shifted state, g̈_S = 0,
+    //  * a single follower (rigid, elastic_bar): the dynamic equilibrium, the forces at the
+    //    shifted state, g̈_S = 0,
     //      r(μ) = T_S a_free(q − Pμ) + W_SS F(s(μ)) − Ẍ_C,S = 0,   s(μ) = −g_S(q) + T_S P μ,
     //    the follower moved rigidly (P = 1: its preloaded shape kept, only the return spring
     //    relaxes, so F(0) = F₀ k_p/(k_p + k) for a rigid one); ∂(T_S a_free)/∂μ by columns at
