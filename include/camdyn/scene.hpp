@@ -161,22 +161,22 @@ struct SpringSpec {
 /// The contact law and its method.
 struct ContactSpec {
   ContactModel model = ContactModel::Lee;
-  /// Deprecated and ignored (one release): chose the retired classic step's equations.
-  /// Simulator warns when a scene sets "eq17".
   ErrorVariant error_variant = ErrorVariant::Eq12;
-  /// Lee's step: "located", one consistent trajectory per step (a two-parameter force
-  /// shape solved for displacement and velocity compatibility together), separations and
-  /// impacts located inside the step and landed on, error control that includes the
-  /// contact force, dense output. "classic" (the retired round-1 step) is refused by
-  /// Simulator with a SceneError naming the key.
+  /// Lee's step (model "lee" only).
+  ///  located: one consistent trajectory per step (a two-parameter force shape solved for
+  ///           displacement and velocity compatibility together), separations and impacts
+  ///           located inside the step and landed on, error control that includes the
+  ///           contact force, dense output (the default).
+  ///  classic: the round-1 step (linear force ramp, levels one after the other, q from
+  ///           the displacement level and v from the velocity level, switches found to
+  ///           within a step); error_variant selects eqs. 12–13 or 17–18. Kept for
+  ///           comparison.
   LeeStepKind lee_step = LeeStepKind::Located;
   /// Displacement-level tolerance [length], > 0. 0 in a scene file means "paper default":
   /// 1e-8 for a rigid follower, 1e-7 for an elastic one (resolved by resolve_defaults()).
   double tol_u = 0.0;
-  /// Velocity tolerance; 0 means tol_u/Δt (per step).
+  /// Velocity / acceleration tolerances; 0 means tol_u/Δt and tol_u/Δt² (per step).
   double tol_v = 0.0;
-  /// Deprecated and ignored (one release): the retired classic step's acceleration-level
-  /// tolerance. Simulator warns when a scene sets it.
   double tol_a = 0.0;
   /// Maximum iterations per level before the step is retried with Δt/2, 1 ≤ n ≤ 10⁴.
   int max_iterations = 60;
@@ -209,8 +209,16 @@ struct SolverSpec {
   double max_step = 0.0;
   /// First step [time], ≥ 0; 0 = automatic.
   double initial_step = 0.0;
-  /// Deprecated and ignored (one release): every follower runs as a mechanism. Simulator
-  /// warns when a scene sets "follower" or "mechanism".
+  /// Which step loop runs a rigid or elastic_bar follower (issue 23, docs/one_mechanism.md §6):
+  ///  mechanism: the follower built as a one-contact Mechanism (sparse M, C, K, contact row
+  ///             T = e₀ᵀ) and run by the network methods and engines — the one stack every
+  ///             method but Lee's classic step runs on;
+  ///  follower:  the single-follower stack (FollowerModel, src/legacy/engines.cpp), which runs
+  ///             Lee's classic step only, kept as the bench's comparison;
+  ///  auto:      the mechanism; the follower stack for contact.lee_step = "classic".
+  /// Networks and user followers always run on the mechanism stack.
+  /// @throws SceneError (from Simulator) for "follower" with any method but the classic
+  /// step, and for "mechanism" with the classic step.
   StackKind stack = StackKind::Auto;
 };
 

@@ -1,4 +1,4 @@
-// camdyn._camdyn — the compiled part of the Python package `camdyn` (issue 17).
+// camdyn._camdyn — the compiled part of the Python package `camdyn`.
 //
 // A thin layer over the C++ library: scenes come in as (kind, text, source, overrides) —
 // a file path, TOML text or the built-in default, plus "dotted.key=value" overrides — and
@@ -298,7 +298,7 @@ py::tuple run_scene(const std::string& kind, const std::string& text, const std:
 py::dict jump(const std::string& kind, const std::string& text, const std::string& source,
               const std::vector<std::string>& overrides, const py::dict& options, const py::object& follower) {
   const Scene sc = build_scene(kind, text, source, overrides);
-  // A user follower (issue 28): a C++ FollowerSystem, or a Python one's spec dict.
+  // A user follower: a C++ FollowerSystem, or a Python one's spec dict.
   std::shared_ptr<const FollowerSystem> fs;
   std::shared_ptr<PyFollower> pyf;
   if (!follower.is_none()) {

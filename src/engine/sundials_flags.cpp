@@ -1,5 +1,5 @@
 // camdyn — SUNDIALS return flags in words (SundialsError's message). A user reads "the
-// error test failed repeatedly", not "flag -3" (issue 25).
+// error test failed repeatedly", not "flag -3".
 //
 // CVODE, ARKODE (ARKStep, ERKStep) and the SUNDIALS objects share the meanings of flags
 // −1 … −12 and −20 … −27 (cvode.h, arkode.h); IDA (ida.h) differs from −8 on.

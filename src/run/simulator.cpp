@@ -82,15 +82,14 @@ double cam_scale(const CamSpec& c) {
   return r;
 }
 
-// Issue 25: a tolerance below what double precision holds for the scene is refused at the
+// A tolerance below what double precision holds for the scene is refused at the
 // start (not a step size underflow somewhere in the run). Lee's displacement level holds
 // the gap X_C − u₀, a difference of two numbers of the cam's size: below 1000 ulps of the
 // largest cam radius it is round-off.
 void check_tolerances(const Scene& sc) {
   {
     // One Poincaré sample (and one designer record) per revolution: a cam speed of 1e22
-    // rev/s asked for 1e19 of them in the first step (std::bad_alloc; found by
-    // tests/contact/test_tolerance_contract.cpp's fuzzed overrides).
+    // rev/s would ask for 1e19 of them in the first step (std::bad_alloc).
     const CamSpec& c = sc.cam;
     double w = c.speed_table_t.empty() ? std::abs(c.speed_rev_s) : 0.0;
     for (double x : c.speed_table_rev_s) w = std::max(w, std::abs(x));
@@ -103,8 +102,8 @@ void check_tolerances(const Scene& sc) {
       throw SceneError(sc.source, 0, c.speed_table_t.empty() ? "cam.speed_rev_s" : "cam.speed_table_rev_s", v, b);
     }
   }
-  // One history row per output time: run.output_dt = 1e-14 over 2 ms asked for 2e11 rows
-  // (a hang even with no history kept; found by tests/cli/test_fuzz_runs.cpp).
+  // One history row per output time: run.output_dt = 1e-14 over 2 ms would ask for 2e11
+  // rows (a hang even with no history kept).
   if (sc.run.output_dt > 0.0 && sc.run.t_end / sc.run.output_dt > 1e8) {
     char v[64], b[200];
     std::snprintf(v, sizeof v, "%g", sc.run.output_dt);
@@ -159,8 +158,7 @@ void describe_tolerance(const Scene& sc, Summary& sum) {
   }
   sum.tolerance_meaning = m;
   sum.tolerance_warning.clear();
-  // Measured (issue 25, case B1 over 1 s at rtol 1e-6): 1 ms contact impulses 2.3e-3 off on
-  // cvode-bdf against 2.6e-5 on arkode-erk.
+  // The numbers in the warning: docs/tolerances.md (case B1 over 1 s at rtol 1e-6).
   if (sc.solver.integrator == Integrator::CvodeBdf && elastic && sc.solver.rtol > 1e-9)
     sum.tolerance_warning =
         "cvode-bdf on an elastic follower: BDF orders 1-2 damp the modes the step resolves, so this "

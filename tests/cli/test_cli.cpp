@@ -375,7 +375,7 @@ TEST(Output, FullPrecisionCsv) {
   row.gap = std::nextafter(1.0, 2.0);
   row.in_contact = 1;
   w.on_row(row);
-  w.on_event({0.25, "impact", -0.125});
+  w.on_event({0.25, -0.125, 0.0, 0.0, "", camdyn::EventKind::Impact});
   const std::string csv = camdyn::history_csv(w.rows());
   const auto lines = lines_of(csv);
   ASSERT_EQ(lines.size(), 2u);
@@ -386,7 +386,7 @@ TEST(Output, FullPrecisionCsv) {
   EXPECT_EQ(std::strtod(f[5].c_str(), nullptr), row.contact_force);
   EXPECT_EQ(std::strtod(f[6].c_str(), nullptr), row.gap);
   EXPECT_EQ(f[7], "1");
-  w.on_event({0.5, "separation", 0.0, 7.5});
+  w.on_event({0.5, 0.0, 7.5, 0.0, "", camdyn::EventKind::Separation});
   // issue 15: the cam angle is a new column; issue 13: the impact impulse applied at the
   // instant the last
   EXPECT_EQ(camdyn::events_csv(w.events()),
@@ -440,8 +440,8 @@ TEST(Output, SummaryJsonHasEveryKey) {
   s.t_end = 0.1;
   s.min_gap = std::numeric_limits<double>::infinity();
   s.max_contact_force = std::nan("");
-  s.events.push_back({0.05, "impact", 0.3});
-  s.events.push_back({0.07, "separation", 0.0});
+  s.events.push_back({0.05, 0.3, 0.0, 0.0, "", camdyn::EventKind::Impact});
+  s.events.push_back({0.07, 0.0, 0.0, 0.0, "", camdyn::EventKind::Separation});
   camdyn::Scene scene;
   scene.title = "t\"itle";
   scene.contact.tol_u = 1e-8;

@@ -139,7 +139,7 @@ TEST(OneNodeValve, EventsAgreeWithATwoNodeValveOnAStiffStem) {
   ASSERT_EQ(a.events.size(), 4u);  // cam impact, seat separation; seat impact, cam separation
   ASSERT_EQ(b.events.size(), a.events.size());
   for (size_t i = 0; i < a.events.size(); ++i) {
-    EXPECT_EQ(a.events[i].kind, b.events[i].kind) << i;
+    EXPECT_EQ(to_string(a.events[i].type), std::string(to_string(b.events[i].type))) << i;
     EXPECT_EQ(a.events[i].contact, b.events[i].contact) << i;
     EXPECT_NEAR(a.events[i].theta * 180 / M_PI, b.events[i].theta * 180 / M_PI, 0.25) << i;
   }
@@ -231,7 +231,7 @@ TEST_P(UserTwoRows, SameLiftAndEventsAsTheNetwork) {
   const Summary net = Simulator(s).run();
   ASSERT_EQ(sum.events.size(), net.events.size());
   for (size_t i = 0; i < net.events.size(); ++i) {
-    EXPECT_EQ(sum.events[i].kind, net.events[i].kind) << i;
+    EXPECT_EQ(to_string(sum.events[i].type), std::string(to_string(net.events[i].type))) << i;
     EXPECT_EQ(sum.events[i].contact, net.events[i].contact) << i;
     EXPECT_NEAR(sum.events[i].t, net.events[i].t, 1e-9) << i;
   }

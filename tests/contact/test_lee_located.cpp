@@ -141,7 +141,7 @@ TEST(LeeLocated, SeparationAngleMatchesClosedForm) {
   const RunResult r = simulate(s);
   ASSERT_TRUE(r.summary.finished) << r.summary.message;
   ASSERT_GE(r.summary.events.size(), 1u);
-  ASSERT_EQ(r.summary.events[0].kind, "separation");
+  ASSERT_EQ(std::string(to_string(r.summary.events[0].type)), "separation");
   const double w = 2 * kPi * s.cam.speed_rev_s, k = s.spring.stiffness, m = s.follower.mass,
                e = s.cam.eccentricity, d0 = s.spring.precompression;
   const double c = (k * d0 + k * e) / (m * e * w * w - k * e);
@@ -164,8 +164,8 @@ EventErrors event_errors(Scene s, double tol) {
   const auto& ev = r.summary.events;
   EXPECT_GE(ev.size(), 2u);
   if (ev.size() < 2) return e;
-  EXPECT_EQ(ev[0].kind, "separation");
-  EXPECT_EQ(ev[1].kind, "impact");
+  EXPECT_EQ(std::string(to_string(ev[0].type)), "separation");
+  EXPECT_EQ(std::string(to_string(ev[1].type)), "impact");
   const double ts = exact_separation(s), ti = exact_impact(s, ev[0].t);
   e.sep = std::abs(ev[0].t - ts);
   e.imp = std::abs(ev[1].t - ti);

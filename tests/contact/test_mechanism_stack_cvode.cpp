@@ -1,6 +1,5 @@
-// Lee's method inside CVODE's own step on the mechanism stack (solver.stack = "mechanism":
-// a rigid or elastic_bar follower run as a one-contact Mechanism by
-// src/contact/methods/lee_cvode.cpp), issue 23:
+// Lee's method inside CVODE's own step (src/contact/methods/lee_cvode.cpp) on a rigid or
+// elastic_bar follower run as a one-contact Mechanism, and on networks:
 //   * A7 (rigid, 7 rev/s: one separation on the nose, one plastic impact) and B2 (bar of 40
 //     elements, 5 rev/s: separations and re-impacts) run to their end without a contact
 //     sinking into the cam by more than the issue-28 check's 10 tol_u (both stopped there

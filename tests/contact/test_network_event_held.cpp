@@ -57,7 +57,7 @@ TEST_P(HeldEvent, ClosedGapsStayAtZeroAndNoSpuriousEvents) {
   ASSERT_EQ(r.sum.events.size(), 4u);
   for (size_t i = 1; i < r.sum.events.size(); ++i)
     EXPECT_GT(r.sum.events[i].t - r.sum.events[i - 1].t, 1e-6)
-        << r.sum.events[i - 1].kind << ' ' << r.sum.events[i - 1].contact << " then " << r.sum.events[i].kind
+        << to_string(r.sum.events[i - 1].type) << ' ' << r.sum.events[i - 1].contact << " then " << to_string(r.sum.events[i].type)
         << ' ' << r.sum.events[i].contact;
 }
 
@@ -109,7 +109,7 @@ TEST(HeldEventTolerance, ErrorFallsMonotonicallyWithRtol) {
       ASSERT_EQ(r.sum.events.size(), ref.sum.events.size()) << to_string(integ) << " rtol " << rtol;
       double e = distance(r, ref);
       for (size_t i = 0; i < r.sum.events.size(); ++i) {
-        EXPECT_EQ(r.sum.events[i].kind, ref.sum.events[i].kind);
+        EXPECT_EQ(to_string(r.sum.events[i].type), std::string(to_string(ref.sum.events[i].type)));
         EXPECT_EQ(r.sum.events[i].contact, ref.sum.events[i].contact);
         e = std::max(e, 1e-2 * std::abs(r.sum.events[i].t - ref.sum.events[i].t));  // 1 cm/s × Δt: metres
       }

@@ -154,8 +154,8 @@ TEST_P(UserFollower, SeparationAndFreeFlightMatchTheIndependentSolution) {
   const Summary sum = sim.run();
   ASSERT_TRUE(sum.finished) << sum.message;
   ASSERT_GE(sum.events.size(), 2u) << c.name;
-  EXPECT_EQ(sum.events[0].kind, "separation");
-  EXPECT_EQ(sum.events[1].kind, "impact");
+  EXPECT_EQ(std::string(to_string(sum.events[0].type)), "separation");
+  EXPECT_EQ(std::string(to_string(sum.events[1].type)), "impact");
   std::printf("%s: separation %.3g s off, impact %.3g s off, approach %.6g vs %.6g m/s\n", c.name,
               sum.events[0].t - t_sep, sum.events[1].t - t_imp, sum.events[1].impact_velocity, v_imp);
   EXPECT_NEAR(sum.events[0].t, t_sep, 1e-9 * t_sep) << c.name;

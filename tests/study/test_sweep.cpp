@@ -260,7 +260,7 @@ TEST(Designer, SeparationAngleFromTheCircleFormula) {
   EXPECT_EQ(r.min_contact_force, 0.0);
   EXPECT_NEAR(r.min_force_theta_deg, 300.0, 1e-6);
   ASSERT_FALSE(r.events.empty());
-  EXPECT_EQ(r.events.front().kind, "separation");
+  EXPECT_EQ(std::string(to_string(r.events.front().type)), "separation");
   EXPECT_NEAR(std::fmod(r.events.front().theta * 180 / kPi, 360.0), 300.0, 1e-6);
   // An impact follows in free flight: its angle and velocity are reported with the event.
   if (r.impacts > 0) {
