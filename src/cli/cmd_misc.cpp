@@ -52,7 +52,7 @@ int cmd_cam(const CamOpts& o) {
                           ",\n  \"follower_motion\": " + json_string(to_string(sc.cam.follower_motion)) +
                           ",\n  \"pivot_x\": " + json_number(sc.cam.pivot_x) +
                           ",\n  \"pivot_y\": " + json_number(sc.cam.pivot_y) +
-                          ",\n  \"continuity\": " + json_string(cam.law() ? cam.law()->continuity_report() : "") +
+                          ",\n  \"continuity\": " + json_string(cam.continuity_report()) +
                           "\n}\n");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "camdyn: warning: %s\n", e.what());
@@ -61,7 +61,9 @@ int cmd_cam(const CamOpts& o) {
     std::printf("wrote %s (%d points): lift %s, smallest radius of curvature %s\n",
                 path.c_str(), o.points, fmt_g(cam.lift()).c_str(),
                 fmt_g(cam.min_radius_of_curvature()).c_str());
-    if (cam.law()) std::printf("motion law: continuity at the joints: %s\n", cam.law()->continuity_report().c_str());
+    if (!cam.joints().empty())
+      std::printf("%s: continuity at the joints: %s\n", cam.law() ? "motion law" : "arcs",
+                  cam.continuity_report().c_str());
     if (!cam.breakpoints().empty())
       std::printf("breakpoints: %zu (steps land on them: cam.land_on_breaks = %s)\n", cam.breakpoints().size(),
                   sc.cam.land_on_breaks ? "true" : "false");
