@@ -21,7 +21,11 @@ namespace {
 Scene corner_scene(bool arcs) {
   Scene s;
   if (arcs) {
-    s.cam.profile = CamProfileKind::Arc;  // base 2, nose 0.5 at 1.5, flanks 6 (the defaults)
+    s.cam.profile = CamProfileKind::Arc;  // base 2, nose 0.6 at 1.8, flanks 5
+    s.cam.base_radius = 2.0;
+    s.cam.nose_radius = 0.6;
+    s.cam.nose_distance = 1.8;
+    s.cam.flank_radius = 5.0;
     s.cam.follower_face = FollowerFace::KnifeEdge;
   } else {
     s.cam.profile = CamProfileKind::Law;

@@ -133,7 +133,8 @@ class EventMethod : public ContactRun {
   // cam's largest X_C), at least 1000 ulps of X: an impact is located to the integrator's
   // accuracy, so the event times fall with rtol, and tol_u caps the offset
   // (docs/tolerances.md "The event method").
-  double gap_thr_ = 1e-3 * event_gap_tolerance(sc_.contact.tol_u, sc_.solver.rtol, cam_x_scale(cam_));
+  double gap_tol_ = event_gap_tolerance(sc_.contact.tol_u, sc_.solver.rtol, cam_x_scale(cam_));
+  double gap_thr_ = 1e-3 * gap_tol_;
   // A contact released where its force reaches zero leaves the cam from the root's state
   // put on the held set's manifold (g = ġ = 0 exactly), so its gap root is the normal one
   // at once. (A band of 10 (rtol·|q| + atol) below the cam, for the interpolation error of
