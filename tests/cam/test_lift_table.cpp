@@ -4,7 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <camdyn/cam.hpp>
@@ -69,4 +73,23 @@ TEST(LiftTable, BadTablesNameLineAndColumn) {
   EXPECT_NE(error(rows).find("at least 4 rows"), std::string::npos);
   EXPECT_NE(error(rows + "360,0\n").find("less than 360"), std::string::npos);
   EXPECT_EQ(parse_lift_table_csv(rows + "270,0.5\n", "t.csv").lift.size(), 4u);
+}
+
+TEST(LiftTable, CamCommandWritesTheTableOfTheArcExample) {
+  // `camdyn cam` on examples/arc_cam_dwell.toml writes lift_table.csv; read back, its
+  // largest lift is the dwell's R_d − R_b = 8 (roller centre: (28 + 6) − (20 + 6) on the axis
+  // offset 1.5: √(34² − 1.5²) − √(26² − 1.5²)).
+  const std::string dir = ::testing::TempDir() + "camdyn_lift_table_cli";
+  const std::string cmd = std::string(CAMDYN_CLI_PATH) + " cam " + CAMDYN_SOURCE_DIR +
+                          "/examples/arc_cam_dwell.toml --out " + dir + " --points 720 --no-plot --quiet";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::ifstream in(dir + "/lift_table.csv");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const LiftTable t = parse_lift_table_csv(ss.str(), "lift_table.csv");
+  ASSERT_EQ(t.angle_deg.size(), 720u);
+  ASSERT_EQ(t.dlift_ddeg.size(), 720u);
+  double top = 0;
+  for (double L : t.lift) top = std::max(top, L);
+  EXPECT_NEAR(top, std::sqrt(34.0 * 34.0 - 2.25) - std::sqrt(26.0 * 26.0 - 2.25), 1e-12);
 }
