@@ -31,7 +31,9 @@ const KeyDoc kDocs[] = {
     {"title", "—", "Title of the scene, written to summary.json (`scene`)."},
     // [cam]
     {"cam.profile", "—", "Profile representation: `points` (polar spline through knots), `lift` (lift table over a "
-                         "base circle, flat-faced follower), `circle` (eccentric circle; closed-form jump speed)."},
+                         "base circle, flat-faced follower), `circle` (eccentric circle; closed-form jump speed), "
+                         "`law` (motion-law segments), `arc` (base, flanks and nose: four tangent arcs), `arcs` (any "
+                         "closed chain of arcs, `cam.arc_*`)."},
     {"cam.angles_deg", "deg", "points: polar angles of the spline knots; strictly increasing, span < 360, at least 4."},
     {"cam.radii", "length", "points: radii of the knots, > 0, as many as `cam.angles_deg`."},
     {"cam.base_radius", "length", "lift: base-circle radius r_b."},
