@@ -354,3 +354,57 @@ TEST(CamExtremes, SmallestRadiusOfCurvatureOfALawCamAgainstItsClosedForm) {
   std::printf("cycloidal law: smallest ρ %.15g, closed form %.15g\n", cam.min_radius_of_curvature(), best);
   EXPECT_NEAR(cam.min_radius_of_curvature(), best, 1e-9 * best);
 }
+
+TEST(ArcList, TheFourArcCamAsAListIsTheFourArcCam) {
+  // The four-arc cam written as a list (its tangency points solved here from |F| = R_f − R_b,
+  // |F − N| = R_f − r_n) gives the same follower motion as profile = "arc" for every face,
+  // translating and oscillating.
+  const double Rb = 16.0, rn = 6.0, d = 14.0, Rf = 40.0;
+  const double a = Rf - Rb, b = Rf - rn, fx = (d * d - b * b + a * a) / (2 * d), fy = std::sqrt(a * a - fx * fx);
+  const double gn = std::atan2(fy, d - fx) / kDeg, gb = std::atan2(fy, -fx) / kDeg;
+  CamSpec arc;
+  arc.profile = CamProfileKind::Arc;
+  arc.base_radius = Rb;
+  arc.nose_radius = rn;
+  arc.nose_distance = d;
+  arc.flank_radius = Rf;
+  CamSpec list;
+  list.profile = CamProfileKind::Arcs;
+  list.arc_centre_x = {d, fx, 0.0, fx};
+  list.arc_centre_y = {0.0, -fy, 0.0, fy};
+  list.arc_radius = {rn, Rf, Rb, Rf};
+  list.arc_from_deg = {-gn, gn, gb, 360 - gb};
+  list.arc_to_deg = {gn, gb, 360 - gb, 360 - gn};
+  struct Setup {
+    FollowerFace face;
+    FollowerMotion motion;
+    double rr, eps;
+  };
+  for (const Setup& s : {Setup{FollowerFace::Flat, FollowerMotion::Translating, 0, 0},
+                         Setup{FollowerFace::KnifeEdge, FollowerMotion::Translating, 0, 2.0},
+                         Setup{FollowerFace::Roller, FollowerMotion::Translating, 5.0, -3.0},
+                         Setup{FollowerFace::Roller, FollowerMotion::Oscillating, 8.0, 0},
+                         Setup{FollowerFace::Flat, FollowerMotion::Oscillating, 0, 0}}) {
+    for (CamSpec* c : {&arc, &list}) {
+      c->follower_face = s.face;
+      c->follower_motion = s.motion;
+      c->roller_radius = s.rr;
+      c->follower_offset = s.eps;
+      c->pivot_x = 40.0;
+      c->pivot_y = s.face == FollowerFace::Roller ? 18.0 : 30.0;
+      c->arm_length = 30.0;
+      c->pad_offset = 5.0;
+      c->valve_arm = 45.0;
+    }
+    SCOPED_TRACE(std::string(to_string(s.face)) + " " + to_string(s.motion));
+    const Cam A(arc), L(list);
+    ASSERT_EQ(A.breakpoints().size(), L.breakpoints().size());
+    double err = 0;
+    for (int i = 0; i < 3600; ++i) {
+      const double th = 2 * kPi * (i + 0.5) / 3600;
+      const CamPoint p = A.evaluate(th), q = L.evaluate(th);
+      err = std::max({err, std::fabs(p.X_C - q.X_C), std::fabs(p.d2X_dtheta2 - q.d2X_dtheta2)});
+    }
+    EXPECT_LT(err, 1e-11);
+  }
+}
