@@ -59,7 +59,9 @@ CamExtremum cam_extremum(const Cam& cam, const std::function<double(const CamPoi
   };
   for (int i = 0; i < n; ++i) {
     const double vi = v[std::size_t(i)], vl = v[std::size_t((i + n - 1) % n)], vr = v[std::size_t((i + 1) % n)];
-    if (!(vi >= vl && vi >= vr) || !std::isfinite(vi)) continue;
+    // A local maximum of the scan; not inside a plateau (a constant stretch, an arc's ρ: its
+    // ends are refined from the neighbouring samples, and the breakpoints are taken anyway).
+    if (!(vi >= vl && vi >= vr) || (vi == vl && vi == vr) || !std::isfinite(vi)) continue;
     // Bracket [θ_{i−1}, θ_{i+1}] cut at the breakpoints inside it.
     const double a = dth * (i - 1), b = dth * (i + 1);
     std::vector<double> cuts{a};
