@@ -13,8 +13,10 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "camdyn/motion_law.hpp"
@@ -96,11 +98,34 @@ class Cam {
   const std::vector<double>& breakpoints() const;
   /// The motion law of cam.profile = "law" (nullptr otherwise).
   const MotionLaw* law() const;
+  /// The cam's joints with their continuity order and jumps: a law's joints, or where a
+  /// translating follower passes from one arc to the next (circle/arc/arcs cams); empty
+  /// otherwise. A C0 joint (order 0: the follower's velocity jumps, a knife edge over a
+  /// corner) is an impact of the cam on a held follower (docs/cam_laws.md).
+  const std::vector<Breakpoint>& joints() const;
+  /// "C1 at 12.5°, C0 at 40°, …" over joints() ("" when there are none).
+  std::string continuity_report() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  void refine_min_rho();
 };
+
+/// An extreme of a quantity over one turn of the cam and the cam angle where it is taken.
+struct CamExtremum {
+  double value = std::numeric_limits<double>::quiet_NaN();
+  double theta = std::numeric_limits<double>::quiet_NaN();  ///< [rad, in [0, 2π)]
+};
+
+/// The largest (`maximise`) or smallest value of f(cam.evaluate(θ)) over one turn: a scan of
+/// `samples` cam angles; each local extremum of the scan refined by golden section between
+/// its neighbours, the bracket cut at the cam's breakpoints; and the one-sided values at
+/// every breakpoint (θ_b ∓ 1e-12 rad), so that an extreme at an arc joint or a law joint is
+/// found to ~1e-12 of its slope, not to the scan's spacing. NaN values of f are skipped
+/// (all NaN: a NaN result). @pre samples ≥ 16.
+CamExtremum cam_extremum(const Cam& cam, const std::function<double(const CamPoint&)>& f, bool maximise,
+                         int samples = 3600);
 
 /// Cam drive θ(t), ω(t), ω̇(t): constant speed, or a piecewise-linear speed table
 /// (θ integrated exactly, ω̇ piecewise constant).

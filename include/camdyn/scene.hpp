@@ -19,7 +19,7 @@ namespace camdyn {
 
 // ---- enumerations, each with a to_string / parse pair so the CLI and reports need no
 // ---- extra code. parse_enum returns false on an unknown spelling.
-enum class CamProfileKind { Points, Lift, Circle, Law, Arc };
+enum class CamProfileKind { Points, Lift, Circle, Law, Arc, Arcs };
 enum class FollowerFace { Flat, KnifeEdge, Roller, Point };
 enum class FollowerMotion { Translating, Oscillating };
 enum class FollowerKind { Rigid, ElasticBar, Network };
@@ -95,6 +95,19 @@ struct CamSpec {
   double nose_distance = 1.5;
   /// arc: flank radius R_f [length], > base_radius (tangent to base and nose arcs).
   double flank_radius = 6.0;
+  /// arcs: the arcs of cam.profile = "arcs", one entry per arc in each list, in order
+  /// counter-clockwise round the cam (docs/cam_laws.md "Arc cams as a list"). The centre
+  /// in the cam frame, Cartesian (arc_centre_x, arc_centre_y) [length] or polar
+  /// (arc_centre_r [length], arc_centre_deg [deg]): one of the two pairs.
+  std::vector<double> arc_centre_x, arc_centre_y, arc_centre_r, arc_centre_deg;
+  /// arcs: signed radius [length]: > 0 a convex arc (the cam on the centre's side), < 0 a
+  /// concave arc (the centre outside the cam).
+  std::vector<double> arc_radius;
+  /// arcs: the arc's first and last point as directions from its own centre [deg],
+  /// traversed counter-clockwise round the cam: to > from for a convex arc, to < from for
+  /// a concave one; 0 < |to − from| ≤ 360. Consecutive arcs (and the last and the first)
+  /// must meet; where their tangents differ the joint is a corner.
+  std::vector<double> arc_from_deg, arc_to_deg;
   /// Contact face of the translating follower: flat (the paper's), knife_edge, roller, or
   /// point (law only: the lift is imposed, no cam shape, no base radius needed).
   FollowerFace follower_face = FollowerFace::Flat;

@@ -122,9 +122,11 @@ Cam::Cam(const CamSpec& spec) : impl_(std::make_unique<Impl>()) {
     impl_->min_rho = g->min_rho();
     impl_->breaks = g->breaks();
     impl_->osc = std::move(g);
+    refine_min_rho();
     return;
   }
   const bool geo = spec.profile == CamProfileKind::Law || spec.profile == CamProfileKind::Arc ||
+                   spec.profile == CamProfileKind::Arcs ||
                    spec.follower_face != FollowerFace::Flat;
   if (geo && spec.profile == CamProfileKind::Circle) impl_->build_circle(spec);  // its checks
   if (geo) {
@@ -133,6 +135,7 @@ Cam::Cam(const CamSpec& spec) : impl_(std::make_unique<Impl>()) {
     impl_->min_rho = g->min_rho();
     impl_->breaks = g->breaks();
     impl_->geo = std::move(g);
+    refine_min_rho();
     return;
   }
   switch (spec.profile) {
@@ -140,13 +143,35 @@ Cam::Cam(const CamSpec& spec) : impl_(std::make_unique<Impl>()) {
     case CamProfileKind::Circle: impl_->build_circle(spec); break;
     case CamProfileKind::Lift: impl_->build_lift(spec); break;
     case CamProfileKind::Law:
-    case CamProfileKind::Arc: break;  // handled above
+    case CamProfileKind::Arc:
+    case CamProfileKind::Arcs: break;  // handled above
   }
+}
+void Cam::refine_min_rho() {
+  // The smallest radius of curvature of the convex parts, located between the geometry's
+  // samples and at its joints.
+  const CamExtremum r = cam_extremum(
+      *this, [](const CamPoint& p) { return p.rho > 0 ? p.rho : std::numeric_limits<double>::quiet_NaN(); }, false);
+  if (!std::isnan(r.value) && !(impl_->min_rho <= r.value)) impl_->min_rho = r.value;
 }
 const std::vector<double>& Cam::breakpoints() const { return impl_->breaks; }
 const MotionLaw* Cam::law() const {
   if (impl_->osc) return impl_->osc->law();
   return impl_->geo ? impl_->geo->law() : nullptr;
+}
+const std::vector<Breakpoint>& Cam::joints() const {
+  static const std::vector<Breakpoint> kNone;
+  if (const MotionLaw* l = law()) return l->breakpoints();
+  return impl_->geo ? impl_->geo->arc_joints() : kNone;
+}
+std::string Cam::continuity_report() const {
+  if (const MotionLaw* l = law()) return l->continuity_report();
+  std::string s;
+  for (const Breakpoint& b : joints()) {
+    if (!s.empty()) s += ", ";
+    s += "C" + std::to_string(std::min(b.order, 2)) + " at " + fmt_num(std::round(b.theta / kDeg * 1e6) / 1e6) + "°";
+  }
+  return s;
 }
 Cam::Cam(const Cam& o) : impl_(std::make_unique<Impl>(*o.impl_)) {}
 Cam& Cam::operator=(const Cam& o) {

@@ -147,10 +147,10 @@ TranslatingGeometry::TranslatingGeometry(const CamSpec& spec)
                  fmt_num(d_ + law_->min_lift()) + " must be > 0");
       check_law_profile(spec);
     }
-  } else if (kind_ == CamProfileKind::Circle || kind_ == CamProfileKind::Arc) {
+  } else if (kind_ == CamProfileKind::Circle || kind_ == CamProfileKind::Arc || kind_ == CamProfileKind::Arcs) {
     if (face_ == FollowerFace::Point)
       fail("cam.follower_face", "\"point\"", "is for cam.profile = \"law\" only (a profile needs a follower face)");
-    arcs_ = make_arcs(spec);
+    arcs_ = kind_ == CamProfileKind::Arcs ? make_arc_list(spec) : make_arcs(spec);
     if (face_ != FollowerFace::Flat) {
       // The axis must cut every pitch circle from the cam centre's side: |ε| below the
       // smallest distance of the pitch curve from O (base circle + roller, or R − e + R_r).
@@ -158,6 +158,10 @@ TranslatingGeometry::TranslatingGeometry(const CamSpec& spec)
       for (int k = 0; k < kScan; ++k) {
         const double a = kTwoPi * k / kScan;
         const auto p = profile_point(a);
+        if (kind_ == CamProfileKind::Arcs) {  // the pitch curve: the offset arcs (corners: a circle R_r)
+          rmin = std::min(rmin, std::hypot(p[0], p[1]) - rr_);  // a bound: |pitch| ≥ |profile| − R_r
+          continue;
+        }
         rmin = std::min(rmin, std::hypot(p[0], p[1]));
       }
       if (!(std::fabs(eps_) < rmin + rr_))
@@ -165,6 +169,19 @@ TranslatingGeometry::TranslatingGeometry(const CamSpec& spec)
              "must be smaller in magnitude than the smallest pitch radius " + fmt_num(rmin + rr_));
     }
     if (arcs_.size() > 1) breaks_ = arc_switches([this](double th) { return select_arc(th); }, kScan);
+    // Each switch's continuity from the two arcs' closed forms at the switch angle.
+    for (double b : breaks_) {
+      const int l = select_arc(b - 1e-9), r = select_arc(b + 1e-9);
+      const FollowerState L = on_arc(arcs_[l], l, b), R = on_arc(arcs_[r], r, b);
+      Breakpoint j;
+      j.theta = b;
+      j.jump = {R.s - L.s, R.s1 - L.s1, R.s2 - L.s2, R.s3 - L.s3};
+      const double tol = 1e-9 * std::max(1.0, std::fabs(L.s));
+      j.order = 3;
+      for (int k = 3; k >= 1; --k)
+        if (std::fabs(j.jump[k]) > tol) j.order = k - 1;
+      joints_.push_back(j);
+    }
   } else {
     fail("cam.follower_face", to_string(face_),
          std::string("cam.profile = \"") + to_string(kind_) +
@@ -269,11 +286,13 @@ FollowerState TranslatingGeometry::on_arc(const Arc& a, int i, double theta) con
     f.cy = cY.v;
     return f;
   }
-  const double A = a.R + rr_;
+  // Pitch circle of signed radius A (< 0: a concave arc, whose contact faces +X with the
+  // point on the far side of its centre): s = c_X + sgn(A) √(A² − q²).
+  const double A = a.R + rr_, sg = A < 0 ? -1.0 : 1.0;
   const Jet q = constant(eps_) - cY;
   const Jet root = jsqrt(constant(A * A) - q * q);
-  set_motion(f, cX + root);
-  f.phi = std::atan2(q.v, root.v);
+  set_motion(f, cX + Jet{sg * root.v, sg * root.d1, sg * root.d2, sg * root.d3});
+  f.phi = std::atan2(sg * q.v, root.v);
   f.cx = cX.v + a.R * std::cos(f.phi);
   f.cy = cY.v + a.R * std::sin(f.phi);
   return f;
@@ -296,9 +315,10 @@ int TranslatingGeometry::select_arc(double theta) const {
     const Arc& a = arcs_[i];
     const double cX = a.cx * c - a.cy * s, cY = a.cx * s + a.cy * c;
     const double A = a.R + rr_, q = eps_ - cY, disc = A * A - q * q;
-    if (!(disc >= 0)) continue;
-    const double X = cX + std::sqrt(disc);
-    const double n = std::atan2(q, std::sqrt(disc)) - theta;  // cam-frame normal angle
+    if (!(disc >= 0) || A == 0.0) continue;  // A = 0: a knife edge meets a corner at one instant only
+    const double sg = A < 0 ? -1.0 : 1.0;
+    const double X = cX + sg * std::sqrt(disc);
+    const double n = std::atan2(sg * q, std::sqrt(disc)) - theta;  // cam-frame normal angle
     const double t = reduce(n, a.n0);
     const double miss = t <= a.n1 ? 0.0 : std::min(t - a.n1, a.n0 + kTwoPi - t);
     if (miss == 0.0 && X > bestX) {
@@ -325,6 +345,7 @@ std::array<double, 2> TranslatingGeometry::profile_point(double a) const {
     const double c = std::cos(a), s = std::sin(a);  // fixed → cam frame: rotate by −a
     return {f.cx * c + f.cy * s, -f.cx * s + f.cy * c};
   }
+  if (kind_ == CamProfileKind::Arcs) return arc_chain_point(arcs_, a);
   return arc_profile_point(arcs_, a);
 }
 

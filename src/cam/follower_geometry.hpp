@@ -41,8 +41,16 @@ struct FollowerState {
   int arc = -1;                         ///< arc index (circle/arc cams), else −1
 };
 
+/// One circular arc of a cam profile: centre (cam frame), signed radius R (> 0 convex,
+/// < 0 concave, 0 a corner: the point c itself, its normal sweeping the range), and the
+/// range [n0, n1] (n0 < n1) of its outward normal angle [rad]. The point with outward
+/// normal angle n is c + R (cos n, sin n). `drawn`: the index of the arc in cam.arc_*
+/// (−1: a corner inserted between two drawn arcs, or the four-arc/circle cams' arcs).
 struct Arc {
-  double cx, cy, R, n0, n1;  // centre (cam frame), radius, normal-angle range [rad], n0 < n1
+  double cx, cy, R, n0, n1;
+  int drawn = -1;
+  /// The arc's length parameter for plots: its share of the chain [0, 1) (set by the chain).
+  double u0 = 0, u1 = 0;
 };
 
 class TranslatingGeometry {
@@ -53,6 +61,9 @@ class TranslatingGeometry {
   FollowerState eval(double theta) const;
   /// Cam angles [rad, in [0, 2π)] where s″ or s‴ may jump (law joints, arc switches).
   const std::vector<double>& breaks() const { return breaks_; }
+  /// The arc joints (circle/arc/arcs cams) with their continuity order and jumps, one per
+  /// entry of breaks(); empty for a law (its joints are the law's).
+  const std::vector<Breakpoint>& arc_joints() const { return joints_; }
   double lift() const { return smax_ - smin_; }
   double min_position() const { return smin_; }
   /// Smallest radius of curvature of the convex parts of the profile (NaN: none/point).
@@ -69,6 +80,7 @@ class TranslatingGeometry {
   std::shared_ptr<const MotionLaw> law_;
   std::vector<Arc> arcs_;
   std::vector<double> breaks_;
+  std::vector<Breakpoint> joints_;
   double smin_ = 0, smax_ = 0, min_rho_ = 0;
   FollowerState eval_law(double theta) const;
   FollowerState eval_arcs(double theta) const;
@@ -80,6 +92,16 @@ class TranslatingGeometry {
 /// The arcs of an arc cam (base, upper flank, nose, lower flank; nose centre on +x) or of
 /// a circle cam (one arc). @throws SceneError on dimensions that do not close tangently.
 std::vector<Arc> make_arcs(const CamSpec& spec);
+/// The arcs of cam.profile = "arcs" (cam.arc_*), in order round the cam, with a corner arc
+/// (R = 0) inserted at each convex corner. Checks: list lengths, radii, each arc's range,
+/// that consecutive arcs meet (naming the joint and the gap), that the tangent turns once
+/// round in total, and what the follower face can take (a flat face: no concave arc or
+/// corner; a roller: no concave corner, no concave arc tighter than the roller).
+/// @throws SceneError naming key, value and rule.
+std::vector<Arc> make_arc_list(const CamSpec& spec);
+/// The cam-frame point of a chain of arcs at plot parameter a ∈ [0, 2π) (the arcs' u ranges
+/// scaled by 2π; every arc of a cam.arc_* chain carries them).
+std::array<double, 2> arc_chain_point(const std::vector<Arc>& arcs, double a);
 /// The cam-frame point of a chain of arcs with outward normal angle a [rad].
 std::array<double, 2> arc_profile_point(const std::vector<Arc>& arcs, double a);
 /// Sorted cam angles in [0, 2π) where select(θ) (the arc in contact) changes: found on an

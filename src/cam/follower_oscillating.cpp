@@ -71,9 +71,10 @@ OscillatingGeometry::OscillatingGeometry(const CamSpec& spec)
   if (face_ != FollowerFace::Flat && face_ != FollowerFace::Roller)
     throw SceneError("<cam>", 0, "cam.follower_face", std::string("\"") + to_string(face_) + "\"",
                      "an oscillating follower has a flat pad or a roller: \"flat\" or \"roller\"");
-  if (kind_ != CamProfileKind::Law && kind_ != CamProfileKind::Circle && kind_ != CamProfileKind::Arc)
+  if (kind_ != CamProfileKind::Law && kind_ != CamProfileKind::Circle && kind_ != CamProfileKind::Arc &&
+      kind_ != CamProfileKind::Arcs)
     throw SceneError("<cam>", 0, "cam.profile", std::string("\"") + to_string(kind_) + "\"",
-                     "an oscillating follower needs cam.profile \"law\", \"circle\" or \"arc\"");
+                     "an oscillating follower needs cam.profile \"law\", \"circle\", \"arc\" or \"arcs\"");
   if (spec.follower_offset != 0.0)
     fail("cam.follower_offset", spec.follower_offset, "applies to translating followers only; must be 0" + why);
   if (!std::isfinite(px_)) fail("cam.pivot_x", px_, "must be finite");
@@ -97,7 +98,11 @@ OscillatingGeometry::OscillatingGeometry(const CamSpec& spec)
     law_ = std::make_shared<MotionLaw>(MotionLaw::parse(spec.law));
     for (const Breakpoint& b : law_->breakpoints()) breaks_.push_back(b.theta);
   } else {
-    arcs_ = make_arcs(spec);
+    arcs_ = kind_ == CamProfileKind::Arcs ? make_arc_list(spec) : make_arcs(spec);
+    for (const Arc& a : arcs_)
+      if (a.R < 0)
+        throw SceneError("<cam>", 0, "cam.arc_radius", fmt_num(a.R),
+                         "an oscillating follower needs a convex cam (every arc radius > 0)");
     r0 = INFINITY;
     for (int k = 0; k < kScan; ++k) {
       const auto p = profile_point(kTwoPi * k / kScan);

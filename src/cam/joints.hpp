@@ -51,8 +51,8 @@ inline bool one_sided_motion(const Cam& cam, const CamDrive& drive, const std::v
 class CamJoints {
  public:
   CamJoints(const Scene& sc, const Cam& cam) : drive_(sc.cam) {
-    if (sc.cam.land_on_breaks && cam.law())
-      for (const Breakpoint& b : cam.law()->breakpoints())
+    if (sc.cam.land_on_breaks)
+      for (const Breakpoint& b : cam.joints())
         if (b.order == 0) angles_.push_back(b.theta);
   }
   bool empty() const { return angles_.empty(); }

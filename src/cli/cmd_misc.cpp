@@ -1,6 +1,7 @@
 // camdyn — command-line tool: `camdyn cam`, `camdyn scene`, `camdyn plot` and `camdyn report`.
 #include "commands.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "camdyn/cam.hpp"
+#include "camdyn/lift_table.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/scene_keys.hpp"
@@ -34,6 +36,16 @@ int cmd_cam(const CamOpts& o) {
     std::fprintf(stderr, "camdyn: cannot write '%s': %s\n", path.c_str(), e.what());
     return kExitFailed;
   }
+  // The follower's lift table (docs/cam_laws.md "Lift tables"), for other cam tools.
+  const std::string lift_path = join_path(o.out, "lift_table.csv");
+  try {
+    write_file_atomic(lift_path, lift_table_csv(lift_table_of(cam, std::max(o.points, 4))));
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "camdyn: cannot write '%s': %s\n", lift_path.c_str(), e.what());
+    return kExitFailed;
+  }
   double speed = sc.cam.speed_rev_s;
   if (!sc.cam.speed_table_rev_s.empty()) speed = sc.cam.speed_table_rev_s.front();
   // Side file for the figures ('camdyn plot DIR' redraws them at the same speed).
@@ -52,7 +64,7 @@ int cmd_cam(const CamOpts& o) {
                           ",\n  \"follower_motion\": " + json_string(to_string(sc.cam.follower_motion)) +
                           ",\n  \"pivot_x\": " + json_number(sc.cam.pivot_x) +
                           ",\n  \"pivot_y\": " + json_number(sc.cam.pivot_y) +
-                          ",\n  \"continuity\": " + json_string(cam.law() ? cam.law()->continuity_report() : "") +
+                          ",\n  \"continuity\": " + json_string(cam.continuity_report()) +
                           "\n}\n");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "camdyn: warning: %s\n", e.what());
@@ -61,7 +73,10 @@ int cmd_cam(const CamOpts& o) {
     std::printf("wrote %s (%d points): lift %s, smallest radius of curvature %s\n",
                 path.c_str(), o.points, fmt_g(cam.lift()).c_str(),
                 fmt_g(cam.min_radius_of_curvature()).c_str());
-    if (cam.law()) std::printf("motion law: continuity at the joints: %s\n", cam.law()->continuity_report().c_str());
+    std::printf("wrote %s (angle_deg,lift,dlift_ddeg,d2lift_ddeg2)\n", lift_path.c_str());
+    if (!cam.joints().empty())
+      std::printf("%s: continuity at the joints: %s\n", cam.law() ? "motion law" : "arcs",
+                  cam.continuity_report().c_str());
     if (!cam.breakpoints().empty())
       std::printf("breakpoints: %zu (steps land on them: cam.land_on_breaks = %s)\n", cam.breakpoints().size(),
                   sc.cam.land_on_breaks ? "true" : "false");

@@ -214,6 +214,9 @@ class ContactRun {
   long next_out_ = 1;
   double F_ref_ = 0.0;        // largest contact force so far (force thresholds)
   double v_impact_ref_ = 0.0;  // first approach velocity (sticking threshold)
+  // The gap tolerance of an impact's sticking speed (impact.cpp): contact.tol_u; the event
+  // method's own gap tolerance (event.hpp: event_gap_tolerance), with which it roots gaps.
+  double stick_gap_tol_ = sc_.contact.tol_u;
   double last_progress_ = 0;
   std::vector<std::unique_ptr<OdeEngine>> engines_;  // for the statistics
   // cam_at's last results (the cam is evaluated once per time, not once per use)

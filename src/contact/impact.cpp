@@ -80,13 +80,13 @@ void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion
   Eigen::VectorXd a_free;
   acceleration(t_, y_, Eigen::VectorXd::Zero(m_), a_free);
   // Sticking speed of each contact: below it an approach is a touch (the speed a contact
-  // reaches falling through 10⁻³ tol_u under its relative acceleration, ×4).
+  // reaches falling through 10⁻³ of the gap tolerance under its relative acceleration, ×4).
   for (int j : closing)
     if (v_impact_ref_ == 0.0 && -gd[j] > 0.0) v_impact_ref_ = -gd[j];
   Eigen::VectorXd v_stick(m_);
   for (int j = 0; j < m_; ++j) {
     const double rel_acc = std::abs(mk_.contacts()[j].t.dot(a_free) - cam_acc(j, cm));
-    v_stick[j] = std::max(1e-6 * v_impact_ref_, 4.0 * std::sqrt(2.0 * rel_acc * 1e-3 * sc_.contact.tol_u));
+    v_stick[j] = std::max(1e-6 * v_impact_ref_, 4.0 * std::sqrt(2.0 * rel_acc * 1e-3 * stick_gap_tol_));
   }
   bool soft = true;  // every closing contact only touches
   for (int j : closing) {

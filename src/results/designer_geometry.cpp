@@ -16,9 +16,9 @@ constexpr double kTwoPi = 6.283185307179586476925286766559;
 void DesignerStats::geometry_init(const Scene& scene, const Cam& cam) {
   cam_ = std::make_shared<const Cam>(cam);  // a copy: the run's Cam outlives no guarantee here
   cols_ = std::make_shared<const DesignerColumns>(scene);
-  double phi = 0;
-  for (int k = 0; k < 3600; ++k) phi = std::max(phi, std::fabs(cam.evaluate(kTwoPi * k / 3600).pressure_angle));
-  geo_max_phi_ = phi * 360.0 / kTwoPi;
+  // Extremes over the cam located between the samples and at the joints (cam_extremum).
+  const CamExtremum phi = cam_extremum(cam, [](const CamPoint& p) { return std::fabs(p.pressure_angle); }, true);
+  geo_max_phi_ = std::isnan(phi.value) ? 0.0 : phi.value * 360.0 / kTwoPi;
   geo_min_rho_ = cam.min_radius_of_curvature();
 }
 
@@ -57,7 +57,7 @@ void DesignerStats::geometry_step(double t) {
 
 void DesignerStats::geometry_finish(Summary& s) const {
   s.max_pressure_angle_deg = geo_max_phi_;
-  if (cam_->law()) s.cam_continuity = cam_->law()->continuity_report();
+  s.cam_continuity = cam_->continuity_report();
   s.min_radius_of_curvature = geo_min_rho_;
   s.max_side_load = max_side_;
   s.max_hertz_stress = max_hertz_;

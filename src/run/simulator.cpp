@@ -75,6 +75,15 @@ double cam_scale(const CamSpec& c) {
     case CamProfileKind::Arc:
       r = std::max(r, c.nose_distance + c.nose_radius);
       break;
+    case CamProfileKind::Arcs:
+      for (std::size_t i = 0; i < c.arc_radius.size(); ++i) {
+        const double d = i < c.arc_centre_r.size() ? std::abs(c.arc_centre_r[i])
+                         : i < c.arc_centre_x.size() && i < c.arc_centre_y.size()
+                             ? std::hypot(c.arc_centre_x[i], c.arc_centre_y[i])
+                             : 0.0;
+        r = std::max(r, d + std::abs(c.arc_radius[i]));
+      }
+      break;
     case CamProfileKind::Law:  // the base circle: the lift is of its order or smaller
       r = std::max(r, std::abs(c.base_radius));
       break;
@@ -111,7 +120,9 @@ void check_tolerances(const Scene& sc) {
                   sc.run.t_end / sc.run.output_dt);
     throw SceneError(sc.source, 0, "run.output_dt", v, b);
   }
-  if (sc.follower.kind == FollowerKind::Network || sc.contact.model != ContactModel::Lee) return;
+  // The floor holds for every method: Lee's displacement level and the event method's gap
+  // roots (docs/tolerances.md) both measure the gap against tol_u.
+  if (sc.follower.kind == FollowerKind::Network) return;
   const double floor = 1000.0 * std::numeric_limits<double>::epsilon() * cam_scale(sc.cam);
   if (sc.contact.tol_u < floor) {
     char b[256];

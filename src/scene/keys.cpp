@@ -31,7 +31,9 @@ const KeyDoc kDocs[] = {
     {"title", "—", "Title of the scene, written to summary.json (`scene`)."},
     // [cam]
     {"cam.profile", "—", "Profile representation: `points` (polar spline through knots), `lift` (lift table over a "
-                         "base circle, flat-faced follower), `circle` (eccentric circle; closed-form jump speed)."},
+                         "base circle, flat-faced follower), `circle` (eccentric circle; closed-form jump speed), "
+                         "`law` (motion-law segments), `arc` (base, flanks and nose: four tangent arcs), `arcs` (any "
+                         "closed chain of arcs, `cam.arc_*`)."},
     {"cam.angles_deg", "deg", "points: polar angles of the spline knots; strictly increasing, span < 360, at least 4."},
     {"cam.radii", "length", "points: radii of the knots, > 0, as many as `cam.angles_deg`."},
     {"cam.base_radius", "length", "lift: base-circle radius r_b."},
@@ -57,6 +59,13 @@ const KeyDoc kDocs[] = {
     {"cam.nose_radius", "length", "arc: nose-circle radius r_n."},
     {"cam.nose_distance", "length", "arc: distance d of the nose-circle centre from the cam centre."},
     {"cam.flank_radius", "length", "arc: radius R_f of the two flank arcs, tangent to base and nose circles."},
+    {"cam.arc_centre_x", "length", "arcs: x of each arc's centre in the cam frame (with `cam.arc_centre_y`; or polar `cam.arc_centre_r`/`cam.arc_centre_deg`)."},
+    {"cam.arc_centre_y", "length", "arcs: y of each arc's centre in the cam frame."},
+    {"cam.arc_centre_r", "length", "arcs: distance of each arc's centre from the cam centre (polar form, with `cam.arc_centre_deg`)."},
+    {"cam.arc_centre_deg", "deg", "arcs: polar angle of each arc's centre in the cam frame."},
+    {"cam.arc_radius", "length", "arcs: signed radius of each arc: > 0 convex, < 0 concave (centre outside the cam)."},
+    {"cam.arc_from_deg", "deg", "arcs: direction from the arc's centre to its first point; the arcs run counter-clockwise round the cam."},
+    {"cam.arc_to_deg", "deg", "arcs: direction from the arc's centre to its last point: > from (convex), < from (concave); consecutive arcs must meet (tangent, or a corner: a C0 joint)."},
     {"cam.follower_face", "—", "Follower face: `flat` (translating flat face), `knife_edge`, `roller` or `point` "
                                "(lift imposed, no base radius needed)."},
     {"cam.follower_offset", "length", "Offset ε of the translating follower's axis (knife edge, roller)."},

@@ -144,6 +144,13 @@ const std::vector<Field>& fields() {
     v.push_back(ruled(F_REAL(cam, nose_radius), Rule::Gt, 0));
     v.push_back(ruled(F_REAL(cam, nose_distance), Rule::Gt, 0));
     v.push_back(ruled(F_REAL(cam, flank_radius), Rule::Gt, 0));
+    v.push_back(F_ARR(cam, arc_centre_x));
+    v.push_back(F_ARR(cam, arc_centre_y));
+    v.push_back(F_ARR(cam, arc_centre_r));
+    v.push_back(F_ARR(cam, arc_centre_deg));
+    v.push_back(F_ARR(cam, arc_radius));
+    v.push_back(F_ARR(cam, arc_from_deg));
+    v.push_back(F_ARR(cam, arc_to_deg));
     v.push_back(F_ENUM(cam, follower_face, kFaceNames));
     v.push_back(F_REAL(cam, follower_offset));
     v.push_back(ruled(F_REAL(cam, roller_radius), Rule::Ge, 0));

@@ -110,6 +110,16 @@ JumpResult jump_closed_form(const Scene& s, const JumpOptions& o, double dir) {
       best_th = th_best;
     }
   }
+  // The one-sided values at the cam's joints: F_req jumps there (an arc corner, a law
+  // joint), and a minimum on a joint is not a minimum of either smooth piece's interior.
+  for (double b : cam.breakpoints())
+    for (double th : {b - 1e-12, b + 1e-12}) {
+      const double f = w(th);
+      if (f < best) {
+        best = f;
+        best_th = th;
+      }
+    }
   res.jump_speed_rev_s = dir * best / kTwoPi;
   res.theta_deg = detail::angle_deg_mod360(best_th);
   return res;

@@ -29,6 +29,7 @@ namespace detail {
 EventMethod::EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                            const std::atomic<bool>* stop, int max_order)
     : ContactRun(sc, std::move(mech), obs, stop) {
+  stick_gap_tol_ = gap_tol_;  // an impact's sticking speed from the gap tolerance the roots use
   OdeSystem sys = contact_system([this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& F) {
     held_forces_into(t, y, cam_at(t), set_, F);
   });

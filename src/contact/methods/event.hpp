@@ -14,6 +14,8 @@
 #include <Eigen/Dense>
 #include <Eigen/QR>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -21,6 +23,20 @@
 
 namespace camdyn {
 namespace detail {
+
+/// The event method's gap tolerance: min(tol_u, rtol·X), at least 1000 ulps of X (X: the
+/// scale of the cam's X_C, > 0). An open contact's root sits 10⁻³ of it below zero.
+inline double event_gap_tolerance(double tol_u, double rtol, double X) {
+  const double x = std::max(X, 1e-300);
+  return std::min(tol_u, std::max(rtol * x, 1000.0 * 2.220446049250313e-16 * x));
+}
+
+/// The largest |X_C| over one turn (360 samples): the scale of a cam contact's gap.
+inline double cam_x_scale(const Cam& cam) {
+  double x = 0;
+  for (int k = 0; k < 360; ++k) x = std::max(x, std::abs(cam.evaluate(6.283185307179586 * k / 360).X_C));
+  return x;
+}
 
 class EventMethod : public ContactRun {
  public:
@@ -108,7 +124,12 @@ class EventMethod : public ContactRun {
   // stack took 774 steps for two revolutions with the restarts, 32 without, same rows).
   bool restart_at_breaks_ = sc_.solver.integrator == Integrator::CvodeBdf;
   Eigen::VectorXd yv_, yg_, rc_, rF_, rFh_;
-  double gap_thr_ = 1e-3 * sc_.contact.tol_u;
+  // An open contact's root is its gap at −10⁻³ tol_e, tol_e = min(tol_u, rtol·X) (X: the
+  // cam's largest X_C), at least 1000 ulps of X: an impact is located to the integrator's
+  // accuracy, so the event times fall with rtol, and tol_u caps the offset
+  // (docs/tolerances.md "The event method").
+  double gap_tol_ = event_gap_tolerance(sc_.contact.tol_u, sc_.solver.rtol, cam_x_scale(cam_));
+  double gap_thr_ = 1e-3 * gap_tol_;
   // A contact released where its force reaches zero leaves the cam from the root's state
   // put on the held set's manifold (g = ġ = 0 exactly), so its gap root is the normal one
   // at once. (A band of 10 (rtol·|q| + atol) below the cam, for the interpolation error of

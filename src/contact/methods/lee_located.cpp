@@ -270,6 +270,7 @@ class LeeLocated final : public ContactRun {
   }
 
   StepSizeMemory steps_;  // the step-size controller (lee_step_tools.hpp)
+  double brk_t_ = NAN;    // the last breakpoint a step landed on
   static constexpr int kMaxRelocations = 4;
   double reloc_t_ = -1.0;  // the step start of the last relocation, and their count there
   int reloc_count_ = 0;
@@ -387,6 +388,10 @@ class LeeLocated final : public ContactRun {
     const double gap_thr = 1e-3 * tol_u;
     double h = initial_step(), h_try = -1.0;
     Eigen::VectorXd y1(2 * n_);
+    {
+      CamMotion m;  // a start on a breakpoint: the first step sees the segment after it
+      if (one_sided_motion(cam_, drive_, break_angles_, t_, 1, &m)) brk_t_ = t_;
+    }
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       if (cam_joint_impact()) slope_.setZero();  // closed contacts on a C0 joint of the cam
       const double t_next = stop_before(land ? next_output_time() : sc_.run.t_end);
@@ -396,6 +401,11 @@ class LeeLocated final : public ContactRun {
       if (hs <= 1e-14 * std::max(1.0, std::abs(t_))) throw StepSizeUnderflow(hs);
       const double t1 = (!relocating && hs == t_next - t_) ? t_next : t_ + hs;
       hs = t1 - t_;
+      // The step's cam: the segment after a breakpoint it starts from, the one before a
+      // breakpoint it lands on (the cam's acceleration jumps there: an arc's corner, a C1
+      // joint of a law).
+      const double t_brk = next_break_time();
+      set_cam_window(t_ == brk_t_ ? t_ : NAN, t1 == t_brk ? t1 : NAN);
       const CamMotion cm1 = cam_at(t1);
       const double P_prev = dissipation_power(t_, y_);
       const std::vector<int> set = active_list();
@@ -591,6 +601,21 @@ class LeeLocated final : public ContactRun {
         settle_active(cm1);
       }
       if (changed) slope_.setZero();
+      if (t_ == t_brk) {
+        // Landed on a breakpoint: the held forces the next step starts from are those of
+        // the segment after it (its shape starts at F_; a force from the segment before
+        // put the jump of m Ẍ_C into the next step's force shape, and its work off).
+        brk_t_ = t_;
+        set_cam_window(t_, NAN);
+        if (!changed) {
+          const std::vector<int> held = active_list();
+          if (!held.empty()) {
+            const Eigen::VectorXd Fb = held_forces(t_, y_, cam_at(t_), held);
+            for (int j : held) F_[j] = unilateral_ ? std::max(Fb[j], 0.0) : Fb[j];
+            slope_.setZero();
+          }
+        }
+      }
       dense_ = land ? nullptr : &sd_;
       after_step(hs, dE.work, P_prev, closing.empty() ? NAN : P_end, dE.dissipated);
       dense_ = nullptr;
