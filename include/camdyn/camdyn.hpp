@@ -23,6 +23,7 @@
 #include "camdyn/follower_system.hpp"
 #include "camdyn/hertz.hpp"
 #include "camdyn/initial_state.hpp"
+#include "camdyn/lift_table.hpp"
 #include "camdyn/model_description.hpp"
 #include "camdyn/motion_law.hpp"
 #include "camdyn/network.hpp"
