@@ -26,6 +26,7 @@
 #include "camdyn/designer.hpp"
 #include "camdyn/follower_system.hpp"
 #include "camdyn/output.hpp"
+#include "camdyn/scene_keys.hpp"
 #include "study/thread_pool.hpp"
 
 namespace camdyn {
@@ -126,6 +127,9 @@ void check_sweep_key(const Scene& scene, const std::string& key) {
   if (!numeric)
     throw SceneError("--key", 0, "key", key,
                      "is " + kind + ", not a number: only numeric keys can be swept (" + numeric_keys(scene) + ")");
+  // A key the scene does not read gives the same run at every point.
+  const std::string unused = unused_key_reason(scene, key);
+  if (!unused.empty()) throw SceneError("--key", 0, "key", key, unused + ": every point would be the same run");
 }
 
 SweepAxis make_sweep_axis(const Scene& scene, const std::string& key, double from, double to,
@@ -168,8 +172,13 @@ SweepAxis make_sweep_axis(const Scene& scene, const std::string& key, double fro
       ax.values.push_back(v);
     }
   }
+  // An integer key takes whole numbers only: a value like 1.5 is refused, not rounded.
   if (is_int_key(scene, key))
-    for (double& v : ax.values) v = std::round(v);
+    for (std::size_t i = 0; i < ax.values.size(); ++i)
+      if (ax.values[i] != std::round(ax.values[i]))
+        throw SceneError(have_step ? "--step" : "--points", 0, "key", key,
+                         "is an integer key, but the sweep's point " + std::to_string(i) + " is " + num(ax.values[i]) +
+                             ": give whole-number --from/--to and --step (or --points that land on whole numbers)");
   return ax;
 }
 
