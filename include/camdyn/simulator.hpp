@@ -155,7 +155,7 @@ struct RunContract {
   std::vector<std::string> violations;
   /// Largest |cam work| and |dissipated energy| over the run: the energy ledger's scale.
   double energy_scale = 0;
-  /// The energy residual the contract allows: min(100·rtol, 0.01)·energy_scale.
+  /// The energy residual the contract allows: min(max(100·rtol, 1e-5), 0.01)·energy_scale.
   double energy_bound = 0;
 };
 

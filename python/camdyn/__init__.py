@@ -231,7 +231,7 @@ def _scene_spec(scene: Any, overrides: Mapping[str, Any]) -> Tuple[str, str, str
                 raise TypeError("camdyn: nodes/elements/contacts overrides need a dict scene "
                                 "(or Python >= 3.11 for a file or TOML text)") from e
             kind, text, source = _scene_args(scene)
-            base = tomllib.loads(_camdyn.resolved_scene(kind, text, source, []))
+            base = tomllib.loads(_camdyn.scene_toml(kind, text, source, []))
         for k, v in arrays.items():
             if not isinstance(v, (list, tuple)):
                 raise TypeError(f"camdyn: {k}={v!r}: must be a list of [[{k}]] entries (dicts or "
@@ -563,7 +563,11 @@ def run(scene: Any = None, observer: Optional[Callable[[Dict[str, float]], Any]]
 
 
 def resolved_scene(scene: Any = None, **overrides: Any) -> str:
-    """The scene as TOML with every default filled in (``camdyn scene --resolved``)."""
+    """The scene as TOML with every default filled in (``camdyn scene --resolved``).
+
+    Checked as ``camdyn scene`` and the start of :func:`run` check it (the same
+    :class:`SceneError` for the same scene): a scene it returns, :func:`run` starts.
+    """
     return _camdyn.resolved_scene(*_scene_spec(scene, overrides))
 
 

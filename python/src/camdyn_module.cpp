@@ -760,7 +760,17 @@ PYBIND11_MODULE(_camdyn, m) {
   });
 
   m.def("history_columns", &history_columns, "History column names, in order.");
+  // The checks `camdyn scene` makes, which are those of a run's start (make_simulator).
   m.def("resolved_scene",
+        [](const std::string& kind, const std::string& text, const std::string& source,
+           const std::vector<std::string>& overrides) {
+          const Scene sc = build_scene(kind, text, source, overrides);
+          make_simulator(sc);
+          return to_toml(sc);
+        },
+        py::arg("kind"), py::arg("text"), py::arg("source"), py::arg("overrides"));
+  // The scene's keys only (a base whose arrays an override replaces: it may not run alone).
+  m.def("scene_toml",
         [](const std::string& kind, const std::string& text, const std::string& source,
            const std::vector<std::string>& overrides) {
           return to_toml(build_scene(kind, text, source, overrides));

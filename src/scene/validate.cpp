@@ -265,10 +265,18 @@ class Validator {
   void net_ge(const std::string& key, double v, double lo, const std::string& who) const {
     net_finite(key, v, who);
     if (!(v >= lo)) net_fail(key, fmt_num(v), "must be >= " + fmt_num(lo) + " (" + who + ")");
+    if (lo == 0.0 && v > 0.0 && v < 1.0 / kMaxMagnitude)
+      net_fail(key, fmt_num(v),
+               "is not a physical magnitude: must be 0 or >= " + fmt_num(1.0 / kMaxMagnitude) + " (" + who + ")");
   }
   void net_gt(const std::string& key, double v, double lo, const std::string& who) const {
     net_finite(key, v, who);
     if (!(v > lo)) net_fail(key, fmt_num(v), "must be > " + fmt_num(lo) + " (" + who + ")");
+    // As the scalar keys: a positive magnitude below 1e-50 (a mass of 5e-324) is no physical
+    // one; its reciprocal overflows (the mass matrix is then not positive definite).
+    if (lo == 0.0 && v < 1.0 / kMaxMagnitude)
+      net_fail(key, fmt_num(v),
+               "is not a physical magnitude: must be >= " + fmt_num(1.0 / kMaxMagnitude) + " (" + who + ")");
   }
   static std::string quoted_names(const std::vector<std::string>& v) {
     std::vector<std::string> q;

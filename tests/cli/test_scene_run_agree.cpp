@@ -1,5 +1,5 @@
 // One validation, one voice (issue 35 item 5, issue 34 item 4): `camdyn scene` and
-// `camdyn run` accept and refuse the same scenes. 60 deterministic mutations of the example
+// `camdyn run` accept and refuse the same scenes. 40 deterministic mutations of the example
 // scenes (a number scaled by 0.1, −1, 10 or replaced by 0, 5e-324, 1e12; a line deleted),
 // each given to both commands as a file with the same --set lines; `run` is kept short by
 // overrides that both get. Was: 18 of 650 fuzzed scenes accepted by `scene` and refused by
@@ -79,7 +79,7 @@ TEST(SceneRunAgree, MutatedExamplesAcceptedOrRefusedByBoth) {
   std::mt19937 rng(35);
   std::uniform_int_distribution<std::size_t> pick(0, seeds.size() - 1);
   int refused = 0, accepted = 0;
-  for (int i = 0; i < 60; ++i) {
+  for (int i = 0; i < 40; ++i) {
     const std::string seed = seeds[pick(rng)];
     std::vector<std::string> lines =
         lines_of(slurp(fs::path(CAMDYN_SOURCE_DIR) / "examples" / (seed + ".toml")));
@@ -108,8 +108,8 @@ TEST(SceneRunAgree, MutatedExamplesAcceptedOrRefusedByBoth) {
     for (const char* raw : {"[ARKODE", "[IDA ERROR", "[CVODE", "[ERKStep", "[ARKStep"})
       EXPECT_EQ(run_err.find(raw), std::string::npos) << run_err;
   }
-  std::printf("60 mutations: %d refused by both, %d accepted by both\n", refused, accepted);
+  std::printf("40 mutations: %d refused by both, %d accepted by both\n", refused, accepted);
   EXPECT_GT(refused, 5);
-  EXPECT_GT(accepted, 20);
+  EXPECT_GT(accepted, 12);
   fs::remove_all(dir);
 }

@@ -86,3 +86,14 @@ def test_ctrl_c_stops_ida_at_tight_tolerance_promptly():
     late = time.monotonic() - sent[0]
     t.join()
     assert late < 2.0, late
+
+
+def test_resolved_scene_refuses_what_run_refuses():
+    # One validation: a scene that only the run's start checks refuse (here a tolerance
+    # larger than 1 % of the cam's lift) is refused by resolved_scene too, with the same key.
+    with pytest.raises(camdyn.SceneError) as a:
+        camdyn.resolved_scene(OHC, **{"contact.tol_u": 1})
+    with pytest.raises(camdyn.SceneError) as b:
+        camdyn.run(OHC, **{"contact.tol_u": 1})
+    assert a.value.key == b.value.key == "contact.tol_u"
+    assert str(a.value) == str(b.value)

@@ -6,6 +6,11 @@
 // contact.tol_u = 1 on the OHC example.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "camdyn/scene.hpp"
@@ -101,4 +106,22 @@ TEST(RunContract, ExamplesAtTheirOwnTolerancesHoldIt) {
     ASSERT_TRUE(sum.finished) << file << ": " << sum.message;
     EXPECT_TRUE(sum.contract.held) << file << ": " << sum.contract.violations[0];
   }
+}
+
+TEST(RunContract, CliExitsThreeAndSaysWhichKeyToTighten) {
+  // The same loose run over its first 0.1 s (residual 392 J against a bound of 37.6 J):
+  // exit 3, summary.json "contract": {"held": false}, stderr names solver.rtol.
+  const std::string dir = ::testing::TempDir() + "camdyn_contract_cli";
+  const std::string cmd = std::string("'") + CAMDYN_CLI_PATH + "' run '" + example("case_B2.toml") +
+                          "' --set solver.integrator=arkode-erk --set solver.rtol=1e-2 --set solver.atol=1e-2"
+                          " --set run.t_end=0.1 --quiet --out '" + dir + "' 2>'" + dir + ".err'";
+  const int raw = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(raw));
+  EXPECT_EQ(WEXITSTATUS(raw), 3);
+  std::ifstream sj(dir + "/summary.json"), er(dir + ".err");
+  const std::string summary((std::istreambuf_iterator<char>(sj)), {}), err((std::istreambuf_iterator<char>(er)), {});
+  EXPECT_NE(summary.find("\"held\": false"), std::string::npos);
+  EXPECT_NE(summary.find("\"status\": \"finished\""), std::string::npos);
+  EXPECT_NE(err.find("camdyn: contract not held: energy residual"), std::string::npos) << err;
+  EXPECT_NE(err.find("solver.rtol"), std::string::npos) << err;
 }

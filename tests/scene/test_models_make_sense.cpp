@@ -179,6 +179,13 @@ TEST(OneValidation, SetRepairsAFileThatIsInvalidAlone) {
   }
 }
 
+TEST(OneValidation, TinyNetworkMassNamedNotTheScene) {
+  // Was: `scene` accepted it and `run` said "key 'scene': cannot build the model".
+  const SceneError e = load_error("ohv_pushrod_train.toml", {"elements.pushrod.mass=5e-324"});
+  EXPECT_EQ(e.key(), "elements.pushrod.mass");
+  EXPECT_NE(e.rule().find("not a physical magnitude"), std::string::npos) << e.what();
+}
+
 TEST(OneValidation, MessagesNameTheKeyGiven) {
   // Was: blamed on cam.speed_rev_s.
   const SceneError e = load_error("case_A.toml", {"run.revolutions=1e49"});
