@@ -493,6 +493,12 @@ class UserMechanism final : public MechanicalSystem {
                     bool homogeneous) const override {
     r_.resize(n_);
     f_->force(t, q, v, r_.data());
+    // A non-finite force is named here (the engine would only see its step size collapse).
+    for (int i = 0; i < n_; ++i)
+      if (!std::isfinite(r_[i]))
+        throw std::runtime_error("the follower's force(t, q, v) returned a non-finite value at t = " +
+                                 std::to_string(t) + ": entry " + std::to_string(i) + " is " +
+                                 (std::isnan(r_[i]) ? "nan" : r_[i] > 0 ? "inf" : "-inf"));
     if (homogeneous) {  // linear only: drop r's constant part r(t, 0, 0)
       Eigen::VectorXd z = Eigen::VectorXd::Zero(n_), r0(n_);
       f_->force(t, z.data(), z.data(), r0.data());

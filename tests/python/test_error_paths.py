@@ -97,3 +97,23 @@ def test_resolved_scene_refuses_what_run_refuses():
         camdyn.run(OHC, **{"contact.tol_u": 1})
     assert a.value.key == b.value.key == "contact.tol_u"
     assert str(a.value) == str(b.value)
+
+
+def test_non_finite_follower_force_is_named():
+    # Was: "step size underflow at t = 0.002" without naming the force.
+    class NanAfter:
+        size = 1
+        contacts = [camdyn.FollowerContact(name="cam", row=[1.0])]
+        mass = 0.1
+
+        def force(self, t, q, v):
+            return [float("nan") if t > 0.002 else -(150.0 + 2e4 * q[0])]
+
+    s = {"title": "nan force", "cam": {"profile": "circle", "radius": 0.02, "eccentricity": 0.004,
+                                        "speed_rev_s": 5.0},
+         "run": {"t_end": 0.01, "output_dt": 1e-3}}
+    r = camdyn.run(s, follower=NanAfter())
+    assert not r.summary["finished"]
+    msg = r.summary["message"]
+    assert "non-finite" in msg and "force" in msg, msg
+    assert "[ARKODE" not in msg
