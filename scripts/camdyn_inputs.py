@@ -68,7 +68,7 @@ _SUMMARY_TYPES = {
     "scene": (str,), "status": (str,), "finished": (bool,), "termination": (str,), "message": (str,),
     "t_end": _NUMBER, "steps": _NUMBER, "rejected_steps": _NUMBER, "separations": _NUMBER,
     "impacts": _NUMBER, "max_contact_force": _NUMBER, "options": (dict,), "contacts": (list,),
-    "verdict": (list,), "warnings": (list,), "events": (list,), "contract": (dict,),
+    "warnings": (list,), "events": _NUMBER, "contract": (dict,),
 }
 
 

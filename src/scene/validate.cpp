@@ -460,10 +460,13 @@ class Validator {
             break;
           }
           if (state[cur] == 2) break;
-          if (state[cur] == 1) {
-            const ElementSpec& e = n.elements[it->second];
-            net_fail(elem("elements", it->second) + ".nodes", quoted_names(e.nodes),
-                     "levers form a cycle through node '" + e.nodes[1] + "' (" + element_label(e, it->second) + ")");
+          if (state[cur] == 1) {  // the path from cur on is a cycle: name its first lever
+            std::size_t first = it->second;
+            for (auto p = std::find(path.begin(), path.end(), cur); p != path.end(); ++p)
+              first = std::min(first, lever_of_output.at(*p));
+            const ElementSpec& e = n.elements[first];
+            net_fail(elem("elements", first) + ".nodes", quoted_names(e.nodes),
+                     "levers form a cycle through node '" + e.nodes[1] + "' (" + element_label(e, first) + ")");
           }
           state[cur] = 1;
           path.push_back(cur);

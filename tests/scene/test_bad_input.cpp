@@ -234,7 +234,7 @@ TEST_F(BadInput, MalformedScenesAndCommandLinesExitTwo) {
                 "[[elements]]\ntype = \"spring\"\nnodes = [\"a\", \"ground\"]\nstiffness = 100\n"
                 "[[elements]]\nname = \"rocker\"\ntype = \"lever\"\nnodes = [\"a\", \"b\"]\nratio = 0\n"
                 "[[contacts]]\nname = \"cam\"\ntype = \"cam\"\nnodes = [\"a\"]\n",
-                {"w1.toml:16", "elements[1].ratio", "!= 0", "lever 'rocker'"}),
+                {"w1.toml:16", "elements[1].ratio", "> 0", "lever 'rocker'"}),
       file_case("network: dangling node", "w2.toml",
                 "[follower]\nkind = \"network\"\n[[nodes]]\nname = \"a\"\nmass = 1\n[[nodes]]\nname = \"spare\"\n"
                 "mass = 1\n[[elements]]\ntype = \"spring\"\nnodes = [\"a\", \"ground\"]\nstiffness = 100\n"
