@@ -24,6 +24,8 @@ import math
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
 try:
     import numpy as np
     import matplotlib
@@ -43,25 +45,32 @@ def read_csv(path):
     """Numeric CSV with a header row -> (column names, dict name -> 1-D float array)."""
     if not os.path.isfile(path):
         raise InputError("%s: no such file" % path)
-    with open(path, "r", encoding="utf-8") as f:
-        header = f.readline().strip()
-        if not header:
-            raise InputError("%s: empty file (no header)" % path)
-        names = header.split(",")
-        rows = []
-        for lineno, line in enumerate(f, start=2):
-            line = line.strip()
-            if not line:
-                continue
-            parts = line.split(",")
-            if len(parts) != len(names):
-                raise InputError(
-                    "%s:%d: %d fields, expected %d" % (path, lineno, len(parts), len(names))
-                )
-            try:
-                rows.append([float(p) for p in parts])
-            except ValueError:
-                raise InputError("%s:%d: not a number in %r" % (path, lineno, line))
+    import camdyn_inputs
+    try:
+        # whole lines only (a last line cut short by a killed run is dropped), UTF-8 text
+        lines = camdyn_inputs.read_text_lines(path)
+    except camdyn_inputs.InputError as e:
+        raise InputError(str(e))
+    header = lines[0].strip() if lines else ""
+    if not header:
+        raise InputError("%s: empty file (no header)" % path)
+    names = header.split(",")
+    rows = []
+    for lineno, line in enumerate(lines[1:], start=2):
+        line = line.strip()
+        if not line:
+            continue
+        parts = line.split(",")
+        if len(parts) != len(names):
+            raise InputError(
+                "%s:%d: %d fields, expected %d" % (path, lineno, len(parts), len(names))
+            )
+        try:
+            rows.append([float(p) for p in parts])
+        except ValueError:
+            raise InputError("%s:%d: not a number in %r" % (path, lineno, line[:80]))
+    if not rows:
+        raise InputError("%s: a header and no rows" % path)
     data = np.array(rows, dtype=float).reshape(-1, len(names))
     return names, {n: data[:, i] for i, n in enumerate(names)}
 

@@ -338,6 +338,17 @@ def main(argv):
         sys.stderr.write(__doc__)
         return 2
     d = args[0]
+    # The inputs first (pure Python): a damaged directory is one line and exit 2.
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import camdyn_inputs
+    try:
+        if os.path.isfile(os.path.join(d, "sweep.csv")):
+            camdyn_inputs.check_sweep_dir(d)
+        elif os.path.isfile(os.path.join(d, "summary.json")):
+            camdyn_inputs.check_run_dir(d)
+    except camdyn_inputs.InputError as e:
+        sys.stderr.write("camdyn_report: %s\n" % e)
+        return 2
     try:
         import matplotlib  # noqa: F401
         import numpy  # noqa: F401

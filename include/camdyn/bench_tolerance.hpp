@@ -64,6 +64,9 @@ struct ToleranceRow {
   /// max |F − F_ref| / max F_ref; otherwise the 1 ms impulse error / largest 1 ms impulse).
   double err_force = std::numeric_limits<double>::quiet_NaN();
   std::string status, message;
+  /// The run's contract (Summary::contract): 1 held, 0 not held, −1 not checked (the run
+  /// did not finish). Column "contract_held" (empty when not checked).
+  int contract_held = -1;
 };
 
 /// Whether one error series falls as rtol falls. Built by check_series().

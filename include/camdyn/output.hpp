@@ -128,11 +128,20 @@ class HistoryWriter : public Observer {
 ///    rows) but never throws: an error there is swallowed and leaves the temporary files.
 ///  - Nothing else is written to DIR; DIR/history.csv and DIR/events.csv are untouched
 ///    until finish() or the destructor.
+///  - Placement::InPlace (the CLI's `camdyn run`): the rows go straight to DIR/history.csv
+///    and DIR/events.csv (truncated at construction) instead of temporary files, so a
+///    process killed with SIGKILL leaves the rows written so far under the final names;
+///    finish() then only writes the rest and fsyncs. Buffered text is also written out
+///    when it is older than flush_seconds (1 s), so a slow run loses at most that much.
+///    A SIGKILL can cut the last line short: every complete line is a row.
 class StreamingHistoryWriter : public Observer {
  public:
+  /// Where the rows go while the run goes (see above).
+  enum class Placement { TemporaryThenRename, InPlace };
   /// @throws std::runtime_error if a temporary file cannot be created.
   explicit StreamingHistoryWriter(std::string dir, std::vector<std::string> extra_columns = {},
-                                  std::size_t chunk_bytes = std::size_t(1) << 16);
+                                  std::size_t chunk_bytes = std::size_t(1) << 16,
+                                  Placement placement = Placement::TemporaryThenRename);
   StreamingHistoryWriter(const StreamingHistoryWriter&) = delete;
   StreamingHistoryWriter& operator=(const StreamingHistoryWriter&) = delete;
   ~StreamingHistoryWriter() override;
@@ -158,8 +167,11 @@ class StreamingHistoryWriter : public Observer {
   };
   void write_out(File& file);
   void close_and_rename(File& file, bool sync);
+  void write_out_if_stale();
 
   File hist_, ev_;
+  double last_write_ = 0;  ///< steady-clock seconds of the last write_out
+  long since_clock_ = 0;   ///< rows and events since the clock was last read
   bool with_contact_ = false;
   bool done_ = false;
   std::size_t chunk_;
@@ -171,10 +183,20 @@ class StreamingHistoryWriter : public Observer {
 /// The scene as a JSON object mirroring to_toml(): title, then the tables cam, follower,
 /// spring, contact, solver, run with every key; enumerations as their strings.
 std::string scene_json(const Scene& scene, int indent = 0);
-/// summary.json: the run's statistics and "options" (the resolved scene).
-std::string summary_json(const Summary& summary, const Scene& resolved);
+/// summary.json "status" of a run that ended: "finished" (Termination::Finished),
+/// "interrupted" (stopped by an observer or the caller: Ctrl-C, SIGTERM, SIGHUP) or
+/// "failed" (any other termination).
+const char* summary_status(const Summary& summary);
+/// summary.json: "status" (`status`, or summary_status(summary) when null), the run's
+/// statistics and "options" (the resolved scene).
+std::string summary_json(const Summary& summary, const Scene& resolved,
+                         const char* status = nullptr);
 /// Write DIR/summary.json atomically. @throws std::runtime_error on an error.
 void write_summary(const std::string& dir, const Summary& summary, const Scene& resolved);
+/// Write DIR/summary.json atomically with "status": "running", "finished": false (the
+/// CLI's run writes it before the first step, so a killed run says it did not finish).
+/// @throws std::runtime_error on an error.
+void write_running_summary(const std::string& dir, const Scene& resolved);
 
 // ---- cam.csv --------------------------------------------------------------------------
 

@@ -310,6 +310,16 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name);
 /// Read and parse a file. @throws SceneError (also when the file cannot be read:
 /// "PATH: cannot read scene file: <strerror>").
 Scene load_scene_file(const std::string& path);
+/// The scene a run works on: the file's keys (types checked), then every override
+/// ("dotted.key=value", as apply_overrides) set in the file's table, then the rules checked
+/// once on the result — so an override may repair a file that breaks a rule alone. A rule
+/// broken by an overridden key names file "--set" and the key as written in the override;
+/// other errors name the file and line. The CLI (`scene`, `run`, `jump`, `sweep`) and
+/// Python load scenes this way. @throws SceneError.
+Scene load_scene_file(const std::string& path, const std::vector<std::string>& overrides);
+/// parse_scene with overrides, as load_scene_file(path, overrides). @throws SceneError.
+Scene parse_scene(std::string_view toml_text, const std::string& source_name,
+                  const std::vector<std::string>& overrides);
 /// Apply "dotted.key=value" (value in TOML syntax; bare words are taken as strings, so
 /// contact.model=penalty works). Network entries are addressed by name or index
 /// (resolve_network_key): contacts.seat.restitution=0.3, elements[1].preload=300. The scene is converted to a TOML table, the key set and

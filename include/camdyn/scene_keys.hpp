@@ -38,4 +38,12 @@ std::string scene_keys_markdown();
 /// scene_keys() as a JSON array of objects with the members of SceneKeyInfo.
 std::string scene_keys_json();
 
+struct Scene;
+/// Why `key` ("TABLE.KEY") has no effect on a run of `scene`, or "" when it may have one:
+/// [spring] and follower.* but follower.kind on a network; the elastic bar's follower keys
+/// on a rigid follower; another profile's cam keys (cam.radius and cam.eccentricity only
+/// for profile "circle", …); contact.penalty_* with another contact model. A sweep over such
+/// a key is refused (its rows would all be the same run).
+std::string unused_key_reason(const Scene& scene, const std::string& key);
+
 }  // namespace camdyn

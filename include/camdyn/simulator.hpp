@@ -139,6 +139,20 @@ struct VerdictItem {
   std::string text;                 ///< in words, e.g. "float on the nose: contact 'cam' at 159.2 deg, 70 rev/s"
 };
 
+/// What a finished run checks about itself before it calls its result good (issue 35;
+/// docs/tolerances.md "The run's contract"). Checked only for runs that reached t_end.
+struct RunContract {
+  bool checked = false;  ///< the checks ran (the run finished)
+  bool held = true;      ///< every check passed (true when not checked)
+  /// One line per failed check, each naming the measured number, the bound and the key to
+  /// tighten (summary.json "contract": {"held", "violations"}).
+  std::vector<std::string> violations;
+  /// Largest |cam work| and |dissipated energy| over the run: the energy ledger's scale.
+  double energy_scale = 0;
+  /// The energy residual the contract allows: min(max(100·rtol, 1e-5), 0.01)·energy_scale.
+  double energy_bound = 0;
+};
+
 struct Summary {
   std::string scene;
   bool finished = false;  ///< termination == Termination::Finished
@@ -223,6 +237,9 @@ struct Summary {
   std::vector<VerdictItem> verdict;
   /// The verdict's texts joined by "; " (summary.json "verdict_text").
   std::string verdict_text;
+  /// The run's own checks of its result (RunContract). A finished run whose contract does
+  /// not hold is a result not to be trusted: the CLI exits 3.
+  RunContract contract;
 
   std::string BriefReport() const;
   std::string FullReport() const;

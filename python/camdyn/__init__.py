@@ -169,6 +169,26 @@ def _flatten(prefix: str, value: Any, out: List[str]) -> None:
         out.append(f"{prefix}={_toml_value(value, prefix)}")
 
 
+def _scene_error(key: str, value: Any, rule: str, file: str = "<python>") -> "SceneError":
+    """A :class:`SceneError` raised on the Python side, shaped as the library's."""
+    e = SceneError(f"{file}: key '{key}' = {value!r}: {rule}")
+    e.file, e.line, e.key, e.value, e.rule = file, 0, key, repr(value), rule
+    return e
+
+
+def _checked_text(key: str, text: str) -> str:
+    """``text`` if it can cross to the C++ side (UTF-8, no NUL), else a :class:`SceneError`."""
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError as err:
+        raise _scene_error(key, text, f"is not valid text (a lone surrogate at position {err.start}): "
+                           "paths, TOML text and values must be encodable as UTF-8") from None
+    if "\0" in text:
+        raise _scene_error(key, text, f"contains a NUL character at position {text.index(chr(0))}: "
+                           "no file path or TOML text holds one")
+    return text
+
+
 def _assignments(overrides: Mapping[str, Any]) -> List[str]:
     """Keyword overrides → "dotted.key=value" assignments (values in TOML syntax).
 
@@ -176,8 +196,10 @@ def _assignments(overrides: Mapping[str, Any]) -> List[str]:
     """
     out: List[str] = []
     for key, value in overrides.items():
+        if not isinstance(key, str):
+            raise TypeError(f"camdyn: override keys are strings, not {type(key).__name__}")
         _flatten(key, value, out)
-    return out
+    return [_checked_text(a.split("=", 1)[0], a) for a in out]
 
 
 #: The network's arrays of tables; as keyword overrides they replace the whole array.
@@ -209,8 +231,12 @@ def _scene_spec(scene: Any, overrides: Mapping[str, Any]) -> Tuple[str, str, str
                 raise TypeError("camdyn: nodes/elements/contacts overrides need a dict scene "
                                 "(or Python >= 3.11 for a file or TOML text)") from e
             kind, text, source = _scene_args(scene)
-            base = tomllib.loads(_camdyn.resolved_scene(kind, text, source, []))
+            base = tomllib.loads(_camdyn.scene_toml(kind, text, source, []))
         for k, v in arrays.items():
+            if not isinstance(v, (list, tuple)):
+                raise TypeError(f"camdyn: {k}={v!r}: must be a list of [[{k}]] entries (dicts or "
+                                f"dataclasses), or a dict by name ({k}={{\"NAME\": {{\"KEY\": value}}}}), "
+                                f"not {type(v).__name__}")
             base[k] = [_entry_dict(e) for e in v]
         scene = base
     return (*_scene_args(scene), _assignments(rest))
@@ -223,11 +249,22 @@ def _scene_args(scene: Any) -> Tuple[str, str, str]:
     if isinstance(scene, Mapping):
         return "toml", to_toml(scene), "<dict>"
     if isinstance(scene, os.PathLike):
-        return "file", os.fspath(scene), ""
+        path = os.fspath(scene)
+        if isinstance(path, bytes):
+            path = os.fsdecode(path)
+        return "file", _checked_text("scene", path), ""
     if isinstance(scene, bytes):
-        scene = scene.decode()
+        try:
+            scene = scene.decode()
+        except UnicodeDecodeError as err:
+            raise _scene_error("scene", scene[:40], f"is not UTF-8 (byte {err.start}): a scene is a "
+                               "TOML file path or TOML text") from None
     if isinstance(scene, str):
-        if scene == "" or "=" in scene or "\n" in scene:
+        _checked_text("scene", scene)
+        if scene.strip() == "":
+            raise _scene_error("scene", scene, "is empty: give a TOML file path, TOML text, a dict, "
+                               "or None for the built-in scene")
+        if "=" in scene or "\n" in scene:
             return "toml", scene, "<string>"
         return "file", scene, ""
     raise TypeError(
@@ -526,7 +563,11 @@ def run(scene: Any = None, observer: Optional[Callable[[Dict[str, float]], Any]]
 
 
 def resolved_scene(scene: Any = None, **overrides: Any) -> str:
-    """The scene as TOML with every default filled in (``camdyn scene --resolved``)."""
+    """The scene as TOML with every default filled in (``camdyn scene --resolved``).
+
+    Checked as ``camdyn scene`` and the start of :func:`run` check it (the same
+    :class:`SceneError` for the same scene): a scene it returns, :func:`run` starts.
+    """
     return _camdyn.resolved_scene(*_scene_spec(scene, overrides))
 
 

@@ -38,6 +38,9 @@
 #include <tuple>
 #include <vector>
 
+#include <csignal>
+#include <signal.h>
+
 #include "camdyn/cam.hpp"
 #include "camdyn/designer.hpp"
 #include "camdyn/follower_system.hpp"
@@ -66,16 +69,17 @@ namespace {
 Scene build_scene(const std::string& kind, const std::string& text, const std::string& source,
                   const std::vector<std::string>& overrides) {
   Scene sc;
+  // The file (or text) with the overrides set in it, validated once (as the CLI).
   if (kind == "file") {
-    sc = load_scene_file(text);
+    sc = load_scene_file(text, overrides);
   } else if (kind == "toml") {
-    sc = parse_scene(text, source);
+    sc = parse_scene(text, source, overrides);
   } else if (kind == "default") {
     sc = default_scene();
+    apply_overrides(sc, overrides);
   } else {
     throw std::invalid_argument("camdyn._camdyn: unknown scene kind '" + kind + "'");
   }
-  apply_overrides(sc, overrides);
   // Cam geometry is checked by the Cam itself; name the scene or --set, as the CLI does.
   try {
     const Cam cam(sc.cam);
@@ -87,10 +91,51 @@ Scene build_scene(const std::string& kind, const std::string& text, const std::s
     throw SceneError(from_set ? std::string("--set") : sc.source, 0, e.key(), e.value(),
                      e.rule());
   }
-  resolve_defaults(sc);
-  validate(sc);
+  resolve_defaults(sc);  // validated by the loader above
   return sc;
 }
+
+/// While it lives, in Python's main thread with Python's default SIGINT handler in place:
+/// SIGINT sets `stop` at once (the run stops after the engine's current step, whatever the
+/// engine, without waiting for an observer or progress callback) and is remembered;
+/// Python's handler is restored afterwards (the caller raises KeyboardInterrupt).
+class StopOnSigint {
+ public:
+  explicit StopOnSigint(std::atomic<bool>* stop) {
+    py::module_ signal = py::module_::import("signal"), threading = py::module_::import("threading");
+    if (!threading.attr("current_thread")().is(threading.attr("main_thread")())) return;
+    if (!signal.attr("getsignal")(signal.attr("SIGINT")).is(signal.attr("default_int_handler"))) return;
+    target().store(stop);
+    seen_flag().store(false);
+    struct sigaction sa {};
+    sa.sa_handler = &StopOnSigint::on_signal;
+    sigemptyset(&sa.sa_mask);
+    installed_ = sigaction(SIGINT, &sa, &old_) == 0;
+  }
+  ~StopOnSigint() {
+    if (installed_) sigaction(SIGINT, &old_, nullptr);
+    target().store(nullptr);
+  }
+  StopOnSigint(const StopOnSigint&) = delete;
+  StopOnSigint& operator=(const StopOnSigint&) = delete;
+  bool seen() const { return installed_ && seen_flag().load(); }
+
+ private:
+  static std::atomic<std::atomic<bool>*>& target() {
+    static std::atomic<std::atomic<bool>*> t{nullptr};
+    return t;
+  }
+  static std::atomic<bool>& seen_flag() {
+    static std::atomic<bool> s{false};
+    return s;
+  }
+  static void on_signal(int) {
+    if (std::atomic<bool>* t = target().load()) t->store(true);
+    seen_flag().store(true);
+  }
+  struct sigaction old_ {};
+  bool installed_ = false;
+};
 
 /// The Simulator of a scene; model-building failures become SceneError as in the CLI.
 std::unique_ptr<Simulator> make_simulator(const Scene& sc) {
@@ -230,18 +275,27 @@ py::tuple run_scene(const std::string& kind, const std::string& text, const std:
   const std::vector<std::string>& extra = sim->extra_columns();
   PyObserver obs(std::move(observer), &stop, extra);
   Summary summary;
+  bool interrupted = false;
   {
-    py::gil_scoped_release nogil;
-    try {
-      summary = sim->run(&obs, &stop, "stopped by caller");
-    } catch (const std::exception& e) {  // as the CLI: keep what was computed
-      summary = Summary{};
-      summary.finished = false;
-      summary.message = std::string("internal error: ") + e.what();
-      summary.t_end = obs.rows().empty() ? 0.0 : obs.rows().back().t;
+    StopOnSigint ctrl_c(&stop);  // Ctrl-C stops any engine after its current step
+    {
+      py::gil_scoped_release nogil;
+      try {
+        summary = sim->run(&obs, &stop, "stopped by caller");
+      } catch (const std::exception& e) {  // as the CLI: keep what was computed
+        summary = Summary{};
+        summary.finished = false;
+        summary.message = std::string("internal error: ") + e.what();
+        summary.t_end = obs.rows().empty() ? 0.0 : obs.rows().back().t;
+      }
     }
+    interrupted = ctrl_c.seen();
   }
   if (pyf) pyf->set_stop(nullptr);
+  if (interrupted) {
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
+  }
   if (summary.scene.empty()) summary.scene = sc.title;
   obs.rethrow_pending();
   if (pyf && pyf->failed()) {
@@ -441,7 +495,17 @@ PYBIND11_MODULE(_camdyn, m) {
   });
 
   m.def("history_columns", &history_columns, "History column names, in order.");
+  // The checks `camdyn scene` makes, which are those of a run's start (make_simulator).
   m.def("resolved_scene",
+        [](const std::string& kind, const std::string& text, const std::string& source,
+           const std::vector<std::string>& overrides) {
+          const Scene sc = build_scene(kind, text, source, overrides);
+          make_simulator(sc);
+          return to_toml(sc);
+        },
+        py::arg("kind"), py::arg("text"), py::arg("source"), py::arg("overrides"));
+  // The scene's keys only (a base whose arrays an override replaces: it may not run alone).
+  m.def("scene_toml",
         [](const std::string& kind, const std::string& text, const std::string& source,
            const std::vector<std::string>& overrides) {
           return to_toml(build_scene(kind, text, source, overrides));

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <cerrno>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -99,18 +101,26 @@ int cmd_cam(const CamOpts& o) {
 }
 
 int cmd_scene(const SceneOpts& o) {
+  const bool scene_given = !o.c.scene_file.empty() || !o.c.case_name.empty() || !o.c.sets.empty();
   if (o.keys) {
-    std::fputs((o.json ? scene_keys_json() : scene_keys_markdown()).c_str(), stdout);
+    // A scene argument next to --keys is still read: a bad one is an error, not ignored.
+    if (scene_given) checked_simulator(build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene()));
+    if (!write_stdout(o.json ? scene_keys_json() : scene_keys_markdown())) {
+      std::fprintf(stderr, "camdyn: scene: cannot write the key reference to stdout: %s\n", std::strerror(errno));
+      return kExitFailed;
+    }
     return kExitOk;
   }
   if (o.json) throw SceneError("scene", 0, "--json", "", "needs --keys (the scene itself is printed as TOML)");
+  // The same checks as `camdyn run` (checked_simulator): what scene accepts, run starts.
   Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
   Scene resolved = sc;
   resolve_defaults(resolved);
-  validate(resolved);
-  const std::string text = to_toml(o.resolved ? resolved : sc);
-  std::fputs(text.c_str(), stdout);
-  if (!text.empty() && text.back() != '\n') std::fputc('\n', stdout);
+  checked_simulator(resolved);
+  if (!write_stdout(to_toml(o.resolved ? resolved : sc))) {
+    std::fprintf(stderr, "camdyn: scene: cannot write the scene to stdout: %s\n", std::strerror(errno));
+    return kExitFailed;
+  }
   return kExitOk;
 }
 
@@ -135,7 +145,9 @@ int cmd_plot(const PlotOpts& o) {
       args.push_back(fmt_g(o.zoom[1], 17));
     }
     std::string why;
-    if (run_plot_script(args, &why) != 0) {
+    const int prc = run_plot_script(args, &why);
+    if (prc == 2) return kExitBadInput;  // the script printed what is wrong with DIR
+    if (prc != 0) {
       std::fprintf(stderr, "camdyn: cannot draw the figures: %s\n", why.c_str());
       rc = kExitFailed;
     }

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <csignal>
+#include <signal.h>
 #include <unistd.h>
 
 #include "camdyn/output.hpp"
@@ -27,9 +29,18 @@ namespace {
 
 // ---- progress line ------------------------------------------------------------------------
 
-class CliObserver : public HistoryWriter {
+class CliObserver : public StreamingHistoryWriter {
  public:
-  explicit CliObserver(bool show_progress) : enabled_(show_progress) {}
+  /// Streams DIR/history.csv and DIR/events.csv in place (a killed run keeps its rows).
+  CliObserver(const std::string& dir, std::vector<std::string> extra, bool show_progress)
+      : StreamingHistoryWriter(dir, std::move(extra), std::size_t(1) << 16, Placement::InPlace),
+        enabled_(show_progress) {}
+
+  void on_row(const HistoryRow& r) override {
+    StreamingHistoryWriter::on_row(r);
+    last_t_ = r.t;
+  }
+  double last_t() const { return last_t_; }
 
   void on_progress(double t, double t_end, long steps) override {
     if (!enabled_) return;
@@ -60,7 +71,7 @@ class CliObserver : public HistoryWriter {
   }
 
   /// Erase the progress line, if one was drawn.
-  void finish() {
+  void erase_progress() {
     if (width_ > 0) {
       std::fprintf(stderr, "\r%*s\r", width_, "");
       std::fflush(stderr);
@@ -73,6 +84,47 @@ class CliObserver : public HistoryWriter {
   bool enabled_;
   Clock::time_point start_ = Clock::now();
   int width_ = 0;
+  double last_t_ = 0;
+};
+
+/// The files a run (and its --plot) writes in DIR, and the temporary names of earlier runs
+/// that were killed while writing them: removed before a run starts, so DIR never holds a
+/// file of an earlier run next to the new run's files.
+void remove_earlier_outputs(const std::string& dir) {
+  static const char* const kNames[] = {
+      "history.csv", "events.csv", "summary.json", "report.html", "displacement.png",
+      "contact_force.png", "contact_force_zoom.png", "network_motion.png", "network_forces.png"};
+  std::error_code ec;
+  for (const char* name : kNames) {
+    const fs::path p = join_path(dir, name);
+    if (fs::is_regular_file(fs::symlink_status(p, ec)) && !fs::remove(p, ec) && ec)
+      throw std::runtime_error("cannot remove '" + p.string() + "' of an earlier run: " + ec.message());
+  }
+  for (const auto& e : fs::directory_iterator(dir.empty() ? "." : dir, ec)) {
+    const std::string f = e.path().filename().string();
+    for (const char* stem : {"history.csv.tmp.", "events.csv.tmp.", "summary.json.tmp."})
+      if (f.rfind(stem, 0) == 0) fs::remove(e.path(), ec);
+  }
+}
+
+/// Blocks SIGINT, SIGTERM and SIGHUP while it lives: the final write completes, and a
+/// signal that came meanwhile acts (the default action: the handler was reset) afterwards.
+class SignalsBlocked {
+ public:
+  SignalsBlocked() {
+    sigset_t s;
+    sigemptyset(&s);
+    sigaddset(&s, SIGINT);
+    sigaddset(&s, SIGTERM);
+    sigaddset(&s, SIGHUP);
+    ::sigprocmask(SIG_BLOCK, &s, &old_);
+  }
+  ~SignalsBlocked() { ::sigprocmask(SIG_SETMASK, &old_, nullptr); }
+  SignalsBlocked(const SignalsBlocked&) = delete;
+  SignalsBlocked& operator=(const SignalsBlocked&) = delete;
+
+ private:
+  sigset_t old_;
 };
 
 constexpr const char* kStopPlaceholder = "interrupted (signal)";
@@ -83,26 +135,24 @@ int cmd_run(const RunOpts& o) {
   // Input stage: every error here is bad input (exit 2, raised to main()).
   Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
   resolve_defaults(sc);
-  validate(sc);
   ensure_output_dir(o.out);
-  std::optional<Simulator> sim;
-  try {
-    sim.emplace(sc);
-  } catch (const SceneError&) {
-    throw;
-  } catch (const std::bad_alloc&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw SceneError(sc.source, 0, "scene", sc.title, std::string("cannot build the model: ") +
-                                                          e.what());
-  }
+  std::unique_ptr<Simulator> sim = checked_simulator(sc);  // the checks `camdyn scene` makes
   // Implausible as a valve train (issue 28): said, not refused (also in summary.json).
   for (const std::string& w : sim->warnings()) std::fprintf(stderr, "camdyn: warning: %s\n", w.c_str());
 
-  // Run stage.
-  const bool progress = !o.quiet && ::isatty(STDERR_FILENO);
-  CliObserver obs(progress);
-  obs.set_extra_columns(sim->extra_columns());
+  // Output stage, first part: DIR holds only this run's files from here on, and a
+  // summary.json saying "running" until the run ends (a killed run leaves it so).
+  std::unique_ptr<CliObserver> obs;
+  try {
+    remove_earlier_outputs(o.out);
+    write_running_summary(o.out, sc);
+    obs = std::make_unique<CliObserver>(o.out, sim->extra_columns(), !o.quiet && ::isatty(STDERR_FILENO));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "camdyn: cannot write the output in '%s': %s\n", o.out.c_str(), e.what());
+    return kExitFailed;
+  }
+
+  // Run stage: rows and events go to disk as they come (bounded memory).
   Summary summary;
   bool interrupted = false;
   {
@@ -110,25 +160,23 @@ int cmd_run(const RunOpts& o) {
     try {
       // The signal is known only once it came: the run's message ends with this
       // placeholder, replaced below by stop_reason().
-      summary = sim->run(&obs, &g_stop, kStopPlaceholder);
+      summary = sim->run(obs.get(), &g_stop, kStopPlaceholder);
     } catch (const std::exception& e) {
       summary = Summary{};
       summary.scene = sc.title;
       summary.finished = false;
       summary.message = std::string("internal error: ") + e.what();
-      summary.t_end = obs.rows().empty() ? 0.0 : obs.rows().back().t;
-      summary.events = obs.events();
+      summary.t_end = obs->last_t();
     } catch (...) {
       summary = Summary{};
       summary.scene = sc.title;
       summary.finished = false;
       summary.message = "internal error (unknown exception)";
-      summary.t_end = obs.rows().empty() ? 0.0 : obs.rows().back().t;
-      summary.events = obs.events();
+      summary.t_end = obs->last_t();
     }
     interrupted = g_stop.load();
   }
-  obs.finish();
+  obs->erase_progress();
   if (summary.scene.empty()) summary.scene = sc.title;
   if (!summary.finished && summary.message.empty())
     summary.message = interrupted ? stop_reason() : "did not finish";
@@ -139,15 +187,34 @@ int cmd_run(const RunOpts& o) {
       m.replace(m.size() - ph.size(), ph.size(), stop_reason());
   }
 
-  // Output stage: always write what was computed.
-  int rc = summary.finished ? kExitOk : kExitFailed;
-  try {
-    obs.write(o.out);
-    write_summary(o.out, summary, sc);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "camdyn: cannot write the output in '%s': %s\n", o.out.c_str(),
-                 e.what());
-    rc = kExitFailed;
+  // Output stage, last part: the rest of the rows, then summary.json replaced atomically.
+  // SIGINT/SIGTERM/SIGHUP wait until both are done.
+  int rc = !summary.finished ? kExitFailed : summary.contract.held ? kExitOk : kExitContract;
+  {
+    SignalsBlocked hold;
+    std::string error;
+    try {
+      obs->finish();
+    } catch (const std::exception& e) {
+      error = e.what();
+      if (summary.finished) {
+        summary.finished = false;
+        summary.termination = Termination::Error;
+        summary.message = "the output could not be written: " + error;
+      }
+    }
+    try {
+      write_summary(o.out, summary, sc);
+    } catch (const std::exception& e) {
+      if (error.empty()) error = e.what();
+    }
+    if (!error.empty()) {
+      std::fprintf(stderr,
+                   "camdyn: cannot write the output in '%s': %s (summary.json says \"%s\" if "
+                   "it could not be replaced: the files are those of this run, incomplete)\n",
+                   o.out.c_str(), error.c_str(), "running");
+      rc = kExitFailed;
+    }
   }
 
   if (!o.quiet) {
@@ -165,6 +232,10 @@ int cmd_run(const RunOpts& o) {
                 join_path(o.out, "events.csv").c_str(),
                 join_path(o.out, "summary.json").c_str());
     std::fflush(stdout);
+  }
+  if (summary.finished && !summary.contract.held) {
+    for (const std::string& v : summary.contract.violations)
+      std::fprintf(stderr, "camdyn: contract not held: %s\n", v.c_str());
   }
   if (!summary.finished) {
     // The simulator's message may already start with "at t = ...": do not repeat it.

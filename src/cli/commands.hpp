@@ -5,10 +5,12 @@
 #include <atomic>
 #include <csignal>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "camdyn/scene.hpp"
+#include "camdyn/simulator.hpp"
 
 #ifndef CAMDYN_PLOT_SCRIPT_BUILD
 #define CAMDYN_PLOT_SCRIPT_BUILD ""
@@ -22,20 +24,23 @@ namespace camdyn_cli {
 constexpr int kExitOk = 0;
 constexpr int kExitFailed = 1;
 constexpr int kExitBadInput = 2;
+/// The run reached t_end but its contract (Summary::contract) does not hold.
+constexpr int kExitContract = 3;
 
 // ---- Ctrl-C -------------------------------------------------------------------------------
 
 extern std::atomic<bool> g_stop;
-extern std::atomic<int> g_signal;  // the signal that set g_stop (SIGINT or SIGTERM)
+extern std::atomic<int> g_signal;  // the signal that set g_stop (SIGINT, SIGTERM or SIGHUP)
 extern "C" void on_sigint(int sig);
 
-/// The signal that set g_stop: "SIGINT", "SIGTERM", or "" (none seen).
+/// The signal that set g_stop: "SIGINT", "SIGTERM", "SIGHUP", or "" (none seen).
 std::string signal_name();
 /// What stopped the run, as the CLI reports it: "interrupted (SIGINT)" (Ctrl-C),
 /// "interrupted (SIGTERM)" (kill), "interrupted" (no signal seen).
 std::string stop_reason();
 
-/// Installs on_sigint for SIGINT and SIGTERM while it lives (resets g_stop).
+/// Installs on_sigint for SIGINT, SIGTERM and SIGHUP while it lives (resets g_stop). Each
+/// handler is reset after its first signal: a second one acts as usual (ends the program).
 class SigintGuard {
  public:
   SigintGuard() {
@@ -47,10 +52,12 @@ class SigintGuard {
     sa.sa_flags = SA_RESETHAND;  // a second Ctrl-C kills the program the usual way
     installed_ = sigaction(SIGINT, &sa, &old_) == 0;
     sigaction(SIGTERM, &sa, &old_term_);  // SIGTERM too: keep what was computed
+    sigaction(SIGHUP, &sa, &old_hup_);    // and SIGHUP (the terminal closed)
   }
   ~SigintGuard() {
     if (installed_) sigaction(SIGINT, &old_, nullptr);
     sigaction(SIGTERM, &old_term_, nullptr);
+    sigaction(SIGHUP, &old_hup_, nullptr);
   }
   SigintGuard(const SigintGuard&) = delete;
   SigintGuard& operator=(const SigintGuard&) = delete;
@@ -58,6 +65,7 @@ class SigintGuard {
  private:
   struct sigaction old_ {};
   struct sigaction old_term_ {};
+  struct sigaction old_hup_ {};
   bool installed_ = false;
 };
 
@@ -68,6 +76,16 @@ std::string fmt_g(double x, int digits = 6);
 /// The scene a subcommand works on: file or paper case or a fallback, then overrides.
 camdyn::Scene build_scene(const std::string& file, const std::string& case_name,
                           const std::vector<std::string>& sets, camdyn::Scene fallback);
+
+/// The Simulator of a validated scene: every check a run makes before its first step
+/// (the start state, the tolerance floors, the method on the follower). `scene` and `run`
+/// both call it, so they accept the same scenes. Model-building failures become SceneError.
+/// @throws SceneError.
+std::unique_ptr<camdyn::Simulator> checked_simulator(const camdyn::Scene& scene);
+
+/// Print `text` (and a newline if it has none) on stdout and flush; false on a write
+/// error (e.g. stdout is /dev/full).
+bool write_stdout(const std::string& text);
 
 std::string plot_script_path();
 /// A plotting script that ships next to scripts/camdyn_plot.py: $ENV_VAR if set, else the

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <memory>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,7 @@
 
 #include "camdyn/cam.hpp"
 #include "camdyn/scene.hpp"
+#include "camdyn/simulator.hpp"
 
 namespace camdyn_cli {
 
@@ -23,7 +26,7 @@ namespace fs = std::filesystem;
 // ---- Ctrl-C -------------------------------------------------------------------------------
 
 std::atomic<bool> g_stop{false};
-std::atomic<int> g_signal{0};  // the signal that set g_stop (SIGINT or SIGTERM)
+std::atomic<int> g_signal{0};  // the signal that set g_stop (SIGINT, SIGTERM or SIGHUP)
 static_assert(std::atomic<bool>::is_always_lock_free, "signal handler needs a lock-free flag");
 static_assert(std::atomic<int>::is_always_lock_free, "signal handler needs a lock-free int");
 
@@ -32,11 +35,12 @@ extern "C" void on_sigint(int sig) {
   g_stop.store(true);
 }
 
-/// The signal that set g_stop: "SIGINT", "SIGTERM", or "" (none seen).
+/// The signal that set g_stop: "SIGINT", "SIGTERM", "SIGHUP", or "" (none seen).
 std::string signal_name() {
   switch (g_signal.load()) {
     case SIGINT: return "SIGINT";
     case SIGTERM: return "SIGTERM";
+    case SIGHUP: return "SIGHUP";
     default: return "";
   }
 }
@@ -64,7 +68,8 @@ Scene build_scene(const std::string& file, const std::string& case_name,
                      "give either a scene file or --case, not both");
   }
   if (!file.empty()) {
-    sc = load_scene_file(file);
+    // The file with the overrides set in it, validated once: --set may repair the file.
+    sc = load_scene_file(file, sets);
   } else if (!case_name.empty()) {
     sc = paper_case(case_name);  // SceneError names --case, the value and what is allowed
   } else {
@@ -81,7 +86,7 @@ Scene build_scene(const std::string& file, const std::string& case_name,
                        "missing key before '=': expected KEY=VALUE, e.g. cam.speed_rev_s=3");
     }
   }
-  apply_overrides(sc, sets);  // all at once, validated once: their order does not matter
+  if (file.empty()) apply_overrides(sc, sets);  // all at once, validated once: their order does not matter
   // Cam geometry (convexity, self-intersection) is checked by the Cam itself; name the
   // file or --set the offending key came from, not the Cam's own "<cam>".
   try {
@@ -97,6 +102,24 @@ Scene build_scene(const std::string& file, const std::string& case_name,
                      e.key(), e.value(), e.rule());
   }
   return sc;
+}
+
+std::unique_ptr<Simulator> checked_simulator(const Scene& sc) {
+  try {
+    return std::make_unique<Simulator>(sc);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw SceneError(sc.source, 0, "scene", sc.title, std::string("cannot build the model: ") + e.what());
+  }
+}
+
+bool write_stdout(const std::string& text) {
+  std::fputs(text.c_str(), stdout);
+  if (!text.empty() && text.back() != '\n') std::fputc('\n', stdout);
+  return std::fflush(stdout) == 0 && !std::ferror(stdout);
 }
 
 std::string plot_script_path() {
@@ -202,10 +225,7 @@ int write_report(const std::string& dir, bool reuse, std::string* why) {
 Scene required_scene(const char* cmd, const CommonOpts& c) {
   if (c.scene_file.empty() && c.case_name.empty())
     throw SceneError(cmd, 0, "SCENE", "", "give a scene file (or --case A|B1|B2)");
-  Scene sc = build_scene(c.scene_file, c.case_name, c.sets, default_scene());
-  resolve_defaults(sc);
-  validate(sc);
-  return sc;
+  return build_scene(c.scene_file, c.case_name, c.sets, default_scene());  // resolved and validated
 }
 
 }  // namespace camdyn_cli

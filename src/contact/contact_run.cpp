@@ -382,6 +382,7 @@ void ContactRun::after_step(double h, double dW, double P_prev, double P_end, do
   const double P = std::isnan(P_end) ? dissipation_power(t_, y_) : P_end;
   work_ += dW;
   dissipated_ += std::isnan(dD) ? 0.5 * h * (P_prev + P) : dD;
+  sum_.contract.energy_scale = std::max({sum_.contract.energy_scale, std::abs(work_), std::abs(dissipated_)});
   for (int j = 0; j < m_; ++j) {
     const double g = gap(j, y_, cm);
     sum_.min_gap = std::min(sum_.min_gap, g);

@@ -75,11 +75,11 @@ namespace {
 /// IDA steps per IDASolve call (IdaHeldSet::advance returns short of tout after them).
 constexpr long kStepsPerCall = 20000;
 
-/// IDA's messages as its default handler prints them, except the end of a chunk of
-/// kStepsPerCall steps (not an error here).
-void ida_errors(int code, const char* module, const char* function, char* msg, void*) {
+/// IDA's messages, kept (never printed) for the failing call's SundialsError, except the
+/// end of a chunk of kStepsPerCall steps (not an error here).
+void ida_errors(int code, const char* module, const char* function, char* msg, void* data) {
   if (code == IDA_TOO_MUCH_WORK) return;
-  std::fprintf(stderr, "\n[%s ERROR]  %s\n  %s\n\n", module, function, msg);
+  detail::capture_sundials_message(code, module, function, msg, data);
 }
 
 struct IdaDel {
@@ -133,6 +133,7 @@ struct IdaHeldSet::Impl {
   // Declaration order = construction order; destruction runs in reverse: IDA memory
   // first, then the linear solver, matrix and vectors it references, the context last.
   ContextHolder ctx_holder;
+  std::string sundials_message;  ///< the last message of IDA's error handler (ida_errors)
   SUNContext ctx = ctx_holder.ctx;
   NVec yy, yp, id, atol;
   Mat A;
@@ -376,7 +377,7 @@ void IdaHeldSet::init(double t0, const Eigen::VectorXd& y0, const Eigen::VectorX
   // run loop checks the caller's stop flag, its CPU budget and run.max_steps between chunks
   // (the tolerance sweep found case A at rtol 1e-12 stepping for minutes inside one call).
   check_flag(IDASetMaxNumSteps(mem, kStepsPerCall), "IDASetMaxNumSteps");
-  check_flag(IDASetErrHandlerFn(mem, &ida_errors, nullptr), "IDASetErrHandlerFn");
+  check_flag(IDASetErrHandlerFn(mem, &ida_errors, &d.sundials_message), "IDASetErrHandlerFn");
   const int max_order = !mc.single_follower() ? 4 : (n == 1 ? 5 : 2);
   check_flag(IDASetMaxOrd(mem, max_order), "IDASetMaxOrd");
   check_flag(IDASetStopTime(mem, tstop), "IDASetStopTime");
@@ -413,7 +414,9 @@ double IdaHeldSet::advance(double tout, bool one_step) {
   check_flag(IDASetStopTime(d.mem.get(), tout), "IDASetStopTime");
   int raw = IDASolve(d.mem.get(), tout, &tret, d.yy.get(), d.yp.get(), one_step ? IDA_ONE_STEP : IDA_NORMAL);
   if (raw == IDA_TOO_MUCH_WORK) raw = IDA_SUCCESS;  // kStepsPerCall steps taken: tret < tout
-  const int flag = check_flag(raw, "IDASolve");
+  const std::string call = raw < 0 && !d.sundials_message.empty() ? "IDASolve [" + d.sundials_message + "]" : "IDASolve";
+  d.sundials_message.clear();
+  const int flag = check_flag(raw, call.c_str());
   tensile_ = closing_ = -1;
   if (flag == IDA_ROOT_RETURN) {
     check_flag(IDAGetRootInfo(d.mem.get(), d.roots_found.data()), "IDAGetRootInfo");

@@ -101,9 +101,15 @@ class EngineBase : public OdeEngine {
     if (flag < 0 && !callback_error_.empty()) {
       std::string msg = std::string(call) + " [callback threw: " + callback_error_ + "]";
       callback_error_.clear();
+      sundials_message_.clear();
       throw SundialsError(msg, flag);
     }
     callback_error_.clear();
+    if (flag < 0 && !sundials_message_.empty()) {
+      const std::string msg = std::string(call) + " [" + sundials_message_ + "]";
+      sundials_message_.clear();
+      return check_flag(flag, msg.c_str());
+    }
     return check_flag(flag, call);
   }
   void caught(const char* what) {
@@ -210,6 +216,7 @@ class EngineBase : public OdeEngine {
   std::unique_ptr<detail::SparseNewtonSolver> newton_;
   std::unique_ptr<detail::CustomLinearSolver> cls_;
   std::string callback_error_;
+  std::string sundials_message_;  ///< the last message of SUNDIALS' error handler
   Counter steps_, setups_;
 };
 
@@ -221,6 +228,7 @@ class ErkOde final : public EngineBase {
     void* mem = mem_.get();
     check(ERKStepSetTableNum(mem, ARKODE_DORMAND_PRINCE_7_4_5), "ERKStepSetTableNum");
     check(ERKStepSetUserData(mem, this), "ERKStepSetUserData");
+    check(ERKStepSetErrHandlerFn(mem, &detail::capture_sundials_message, &sundials_message_), "ERKStepSetErrHandlerFn");
     check(ERKStepSetMaxNumSteps(mem, -1), "ERKStepSetMaxNumSteps");
     if (trial_) {
       check(ERKStepSStolerances(mem, kHugeTol, kHugeTol), "ERKStepSStolerances");
@@ -313,6 +321,7 @@ class DirkOde final : public EngineBase {
     void* mem = mem_.get();
     check(ARKStepSetTableNum(mem, ARKODE_SDIRK_5_3_4, ARKODE_ERK_NONE), "ARKStepSetTableNum");
     check(ARKStepSetUserData(mem, this), "ARKStepSetUserData");
+    check(ARKStepSetErrHandlerFn(mem, &detail::capture_sundials_message, &sundials_message_), "ARKStepSetErrHandlerFn");
     check(ARKStepSetMaxNumSteps(mem, -1), "ARKStepSetMaxNumSteps");
     if (sys_.newton) {
       check(ARKStepSetLinearSolver(mem, cls_->ls(), cls_->placeholder()), "ARKStepSetLinearSolver");
@@ -444,7 +453,7 @@ class CvodeOde final : public EngineBase {
     check(CVodeSetUserData(mem, this), "CVodeSetUserData");
     check(CVodeSStolerances(mem, spec.rtol, spec.atol), "CVodeSStolerances");
     check(CVodeSetMaxNumSteps(mem, trial ? kTrialMaxSteps : -1), "CVodeSetMaxNumSteps");
-    if (trial) check(CVodeSetErrHandlerFn(mem, &detail::quiet_cvode_errors, nullptr), "CVodeSetErrHandlerFn");
+    check(CVodeSetErrHandlerFn(mem, &detail::capture_sundials_message, &sundials_message_), "CVodeSetErrHandlerFn");
     if (spec.max_step > 0) check(CVodeSetMaxStep(mem, spec.max_step), "CVodeSetMaxStep");
     if (sys_.newton) {
       check(CVodeSetLinearSolver(mem, cls_->ls(), cls_->placeholder()), "CVodeSetLinearSolver");

@@ -3,6 +3,8 @@
 // result becomes a SundialsError naming the call.
 #pragma once
 
+#include <string>
+
 #include <arkode/arkode_arkstep.h>
 #include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
@@ -34,6 +36,18 @@ inline double trial_min_step(double t, double h) {
 /// an expected outcome (Lee's step rejects it and halves; Summary::iteration_failures
 /// counts it), not a message for the user's terminal.
 inline void quiet_cvode_errors(int, const char*, const char*, char*, void*) {}
+
+/// SUNDIALS' error handler for every integrator (ERKStep/ARKStep/CVode/IDA SetErrHandlerFn,
+/// eh_data = a std::string): keeps the last message, never prints it. The failing call's
+/// SundialsError carries it into the run's message (no raw SUNDIALS text on stderr).
+inline void capture_sundials_message(int, const char* module, const char* function, char* msg, void* data) noexcept {
+  if (!data) return;
+  try {
+    *static_cast<std::string*>(data) =
+        std::string(module ? module : "SUNDIALS") + " " + (function ? function : "") + ": " + (msg ? msg : "");
+  } catch (...) {
+  }
+}
 
 struct ContextHolder {
   SUNContext ctx = nullptr;

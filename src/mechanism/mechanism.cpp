@@ -416,6 +416,14 @@ class UserMechanism final : public MechanicalSystem {
     };
     n_ = f_->size();
     if (n_ < 1) fail("size()", std::to_string(n_), "must be >= 1");
+    // A user follower is dense (its Jacobian is n × n, each factorisation n³): size 6000
+    // took 88 s and 867 MB for 1e-4 s. Larger trains are networks (sparse, KLU).
+    constexpr int kMaxUserSize = 1000;
+    if (n_ > kMaxUserSize)
+      fail("size()", std::to_string(n_),
+           "must be <= " + std::to_string(kMaxUserSize) +
+               ": a user follower's Jacobian is dense (n² memory, n³ per factorisation); write a larger train as a "
+               "network (follower.kind = \"network\", sparse)");
     const std::vector<FollowerContact> cs = f_->contacts();
     if (cs.empty()) fail("contacts()", "[]", "needs at least one contact");
     for (size_t i = 0; i < cs.size(); ++i) {
@@ -485,6 +493,12 @@ class UserMechanism final : public MechanicalSystem {
                     bool homogeneous) const override {
     r_.resize(n_);
     f_->force(t, q, v, r_.data());
+    // A non-finite force is named here (the engine would only see its step size collapse).
+    for (int i = 0; i < n_; ++i)
+      if (!std::isfinite(r_[i]))
+        throw std::runtime_error("the follower's force(t, q, v) returned a non-finite value at t = " +
+                                 std::to_string(t) + ": entry " + std::to_string(i) + " is " +
+                                 (std::isnan(r_[i]) ? "nan" : r_[i] > 0 ? "inf" : "-inf"));
     if (homogeneous) {  // linear only: drop r's constant part r(t, 0, 0)
       Eigen::VectorXd z = Eigen::VectorXd::Zero(n_), r0(n_);
       f_->force(t, z.data(), z.data(), r0.data());

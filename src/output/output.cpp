@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -255,14 +256,23 @@ void HistoryWriter::write(const std::string& dir) const {
 
 // ---- streaming writer -----------------------------------------------------------------
 
+namespace {
+double steady_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+constexpr double kFlushSeconds = 1.0;  // buffered text older than this is written out
+constexpr long kClockEvery = 64;       // rows/events between two reads of the clock
+}  // namespace
+
 StreamingHistoryWriter::StreamingHistoryWriter(std::string dir, std::vector<std::string> extra,
-                                               std::size_t chunk_bytes)
+                                               std::size_t chunk_bytes, Placement placement)
     : with_contact_(detail::DesignerColumns::has_network_columns(extra)), chunk_(chunk_bytes) {
   const std::string pid = std::to_string(static_cast<long>(::getpid()));
   hist_.path = join_path(dir, "history.csv");
   ev_.path = join_path(dir, "events.csv");
+  last_write_ = steady_seconds();
   for (File* file : {&hist_, &ev_}) {
-    file->tmp = file->path + ".tmp." + pid;
+    file->tmp = placement == Placement::InPlace ? file->path : file->path + ".tmp." + pid;
     file->f = std::fopen(file->tmp.c_str(), "wb");
     if (!file->f) {
       const std::string reason = std::strerror(errno);
@@ -302,6 +312,15 @@ void StreamingHistoryWriter::write_out(File& file) {
   if (std::fflush(file.f) != 0) {
     throw std::runtime_error("cannot write '" + file.tmp + "': " + std::strerror(errno));
   }
+  last_write_ = steady_seconds();
+}
+
+void StreamingHistoryWriter::write_out_if_stale() {
+  if (++since_clock_ < kClockEvery) return;
+  since_clock_ = 0;
+  if (steady_seconds() - last_write_ < kFlushSeconds) return;
+  write_out(hist_);
+  write_out(ev_);
 }
 
 void StreamingHistoryWriter::close_and_rename(File& file, bool sync) {
@@ -315,7 +334,7 @@ void StreamingHistoryWriter::close_and_rename(File& file, bool sync) {
   if (std::fclose(f) != 0) {
     throw std::runtime_error("cannot write '" + file.tmp + "': " + std::strerror(errno));
   }
-  if (std::rename(file.tmp.c_str(), file.path.c_str()) != 0) {
+  if (file.tmp != file.path && std::rename(file.tmp.c_str(), file.path.c_str()) != 0) {
     throw std::runtime_error("cannot rename '" + file.tmp + "' to '" + file.path +
                              "': " + std::strerror(errno));
   }
@@ -326,6 +345,7 @@ void StreamingHistoryWriter::on_row(const HistoryRow& row) {
   append_row(hist_.buf, row);
   ++rows_;
   if (hist_.buf.size() > chunk_) write_out(hist_);
+  write_out_if_stale();
 }
 
 void StreamingHistoryWriter::on_event(const ContactEvent& event) {
@@ -333,6 +353,7 @@ void StreamingHistoryWriter::on_event(const ContactEvent& event) {
   append_event(ev_.buf, event, with_contact_);
   ++events_;
   if (ev_.buf.size() > chunk_) write_out(ev_);
+  write_out_if_stale();
 }
 
 void StreamingHistoryWriter::flush() {

@@ -295,10 +295,20 @@ std::string model_json(const ModelDescription& m, int indent) {
 
 }  // namespace
 
-std::string summary_json(const Summary& s, const Scene& resolved) {
+const char* summary_status(const Summary& s) {
+  switch (s.termination) {
+    case Termination::Finished: return "finished";
+    case Termination::StoppedByObserver:
+    case Termination::StoppedByCaller: return "interrupted";
+    default: return "failed";
+  }
+}
+
+std::string summary_json(const Summary& s, const Scene& resolved, const char* status) {
   std::string out;
   JsonObject o(out, 0);
   o.str("scene", s.scene.empty() ? resolved.title : s.scene);
+  o.str("status", status ? status : summary_status(s));
   o.boolean("finished", s.finished);
   o.str("termination", to_string(s.termination));
   o.str("message", s.message);
@@ -337,6 +347,17 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
     o.raw("first_tensile_time", "null");
   }
   o.num("energy_residual", s.energy_residual);
+  {
+    std::string t;
+    JsonObject c(t, o.child_indent());
+    c.boolean("checked", s.contract.checked);
+    c.boolean("held", s.contract.held);
+    c.strs("violations", s.contract.violations);
+    c.num("energy_scale", s.contract.energy_scale);
+    c.num("energy_bound", s.contract.energy_bound);
+    c.close();
+    o.raw("contract", t);
+  }
   o.str("tolerance_meaning", s.tolerance_meaning);
   o.str("tolerance_warning", s.tolerance_warning);
   {
@@ -433,6 +454,15 @@ std::string summary_json(const Summary& s, const Scene& resolved) {
 
 void write_summary(const std::string& dir, const Summary& summary, const Scene& resolved) {
   write_file_atomic(join_path(dir, "summary.json"), summary_json(summary, resolved));
+}
+
+void write_running_summary(const std::string& dir, const Scene& resolved) {
+  Summary s;
+  s.scene = resolved.title;
+  s.finished = false;
+  s.termination = Termination::Error;
+  s.message = "running (a run that ends without replacing this file did not finish)";
+  write_file_atomic(join_path(dir, "summary.json"), summary_json(s, resolved, "running"));
 }
 
 }  // namespace camdyn

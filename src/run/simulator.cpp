@@ -4,6 +4,7 @@
 //   user's FollowerSystem); each run() makes the contact method the scene asks for
 //   (make_contact_method, src/contact/contact_run.hpp) and runs it.
 #include "camdyn/simulator.hpp"
+#include "run/contract.hpp"
 #include "camdyn/scene_warnings.hpp"
 
 #include <algorithm>
@@ -207,6 +208,7 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   resolve_defaults(scene_);
   validate(scene_);
   check_tolerances(scene_);
+  detail::check_tolerance_scale(scene_);
   warnings_ = scene_warnings(scene_);
   retired_keys(scene_, warnings_);
   mech_ = std::make_shared<const Mechanism>(scene_);
@@ -229,6 +231,7 @@ Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower
                      "a user-defined follower runs on arkode-erk, arkode-dirk or cvode-bdf (ida needs a "
                      "linear mechanism: rigid, elastic_bar or network)");
   check_tolerances(scene_);
+  detail::check_tolerance_scale(scene_);
   warnings_ = scene_warnings(scene_, follower.get());
   retired_keys(scene_, warnings_);
   mech_ = make_user_system(scene_, std::move(follower));
@@ -247,6 +250,7 @@ Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
   method->set_stop_reason(stop_reason);
   Summary sum = method->run();
   detail::describe_tolerance(scene_, sum);
+  detail::check_contract(scene_, sum);
   sum.warnings = warnings_;
   sum.verdict = detail::make_verdict(scene_, mech_->single_follower() ? nullptr : mech_.get(), sum.events);
   sum.verdict_text = detail::verdict_one_line(sum.verdict);
@@ -278,6 +282,10 @@ std::string Summary::BriefReport() const {
     << fmt(max_contact_force) << ", cpu " << fmt(cpu_seconds) << " s";
   if (!verdict_text.empty()) o << " — " << verdict_text;
   if (!finished) o << " — " << message << " [" << to_string(termination) << "]";
+  if (contract.checked && !contract.held) {
+    o << "\ncamdyn: CONTRACT NOT HELD — the result is not to be trusted:";
+    for (const std::string& v : contract.violations) o << "\n  - " << v;
+  }
   return o.str();
 }
 

@@ -55,9 +55,11 @@ const std::vector<Field>& fields();
 bool is_table_name(std::string_view s);
 /// "allowed keys at top level: ..." for messages.
 std::string allowed_top();
-/// Parse a TOML table into a Scene and validate it (errors name lines when use_lines).
+/// Parse a TOML table into a Scene and (check_rules) validate it (errors name lines when
+/// use_lines). Without check_rules only the keys and their types are checked (a draft
+/// whose network names resolve --set keys before the overrides are in).
 /// @throws SceneError (file, line, key, value, rule).
-Scene from_table(const toml::table& root, const std::string& file, bool use_lines);
+Scene from_table(const toml::table& root, const std::string& file, bool use_lines, bool check_rules = true);
 /// A Scene as a TOML table (the inverse of from_table).
 toml::table to_table(const Scene& scene);
 /// Check a scene (src/scene/validate.cpp); `lines` gives the lines of keys read from a file.

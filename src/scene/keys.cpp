@@ -175,8 +175,8 @@ const KeyDoc kDocs[] = {
      "must be one of \"lumped\", \"consistent\""},
     {"elements.rayleigh_alpha", "1/time", "bar: Rayleigh α (C = αM + βK).", "real", "must be >= 0"},
     {"elements.rayleigh_beta", "time", "bar: Rayleigh β.", "real", "must be >= 0"},
-    {"elements.ratio", "—", "lever: q_output = ratio · q_input (negative: against the output's axis).", "real",
-     "finite and != 0"},
+    {"elements.ratio", "—", "lever: q_output = ratio · q_input (the output moves the same way as the input).", "real",
+     "finite and > 0"},
     // [[contacts]]
     {"contacts.name", "—", "Contact name: history columns `F_<name>`, `gap_<name>`, `in_<name>`; the `contact` column of events.csv.",
      "string", "non-empty, unique", "(required)"},

@@ -79,6 +79,7 @@ std::string insert_override(toml::table& root, const Scene& scene, const std::st
     if (!is_table_name(table))
       throw SceneError(kFile, 0, key, fmt_node(*value), "unknown key; " + allowed_top());
   }
+  if (!table.empty() && !root.get_as<toml::table>(table)) root.insert_or_assign(table, toml::table{});
   toml::table* dst = table.empty() ? &root : root.get_as<toml::table>(table);
   value->visit([&](const auto& v) { dst->insert_or_assign(leaf, v); });
   return key;
@@ -86,40 +87,68 @@ std::string insert_override(toml::table& root, const Scene& scene, const std::st
 
 }  // namespace
 
-void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) {
+namespace {
+
+// Set every override in `root` (a file's table, or a scene as a table) and read and validate
+// the result once. `draft` resolves network names and the automatic tol_u. A rule broken by
+// a key that an override set is reported under "--set" and the key as the user wrote it.
+Scene read_with_overrides(toml::table& root, const Scene& draft, const std::vector<std::string>& assignments,
+                          const std::string& file, bool use_lines) {
   static const std::string kFile = "--set";
-  if (assignments.empty()) return;
   // tol_u that is "automatic" (0, or the paper default of the current follower kind) is
   // re-derived after the overrides, so follower.kind=elastic_bar gets 1e-7, not rigid's 1e-8.
-  const double tol_u = scene.contact.tol_u;
-  const bool tol_u_auto = tol_u == 0.0 || tol_u == paper_tol_u(scene.follower.kind);
+  const double tol_u = draft.contact.tol_u;
+  const bool tol_u_auto = tol_u == 0.0 || tol_u == paper_tol_u(draft.follower.kind);
 
-  toml::table root = to_table(scene);
   bool sets_tol_u = false;
   std::map<std::string, std::string> spelled;  // "contacts[1].restitution" → "contacts.seat.restitution"
   std::vector<std::string> keys_set;
   for (const auto& a : assignments) {
-    const std::string key = insert_override(root, scene, a);
+    const std::string key = insert_override(root, draft, a);
     keys_set.push_back(key);
     sets_tol_u |= key == "contact.tol_u";
     const std::string given = trim(std::string_view(a).substr(0, a.find('=')));
-    if (given != key) spelled[key] = given;
+    spelled[key] = given;
   }
-  if (tol_u_auto && !sets_tol_u) root.get_as<toml::table>("contact")->insert_or_assign("tol_u", 0.0);
+  if (tol_u_auto && !sets_tol_u) {
+    if (!root.get_as<toml::table>("contact")) root.insert_or_assign("contact", toml::table{});
+    root.get_as<toml::table>("contact")->insert_or_assign("tol_u", 0.0);
+  }
   drop_replaced_by_designer_units(root, keys_set);  // cam.speed_rpm replaces cam.speed_rev_s, …
 
   // One parse and one validation of the result: the order of the overrides does not matter.
-  // A bad value of a network key is reported under the key as the user wrote it.
-  Scene out;
   try {
-    out = from_table(root, kFile, false);
+    return from_table(root, file, use_lines);
   } catch (const SceneError& e) {
     const auto it = spelled.find(e.key());
     if (it == spelled.end()) throw;
-    throw SceneError(e.file(), e.line(), it->second, e.value(), e.rule());
+    throw SceneError(kFile, 0, it->second, e.value(), e.rule());
   }
+}
+
+}  // namespace
+
+void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) {
+  if (assignments.empty()) return;
+  toml::table root = to_table(scene);
+  Scene out = read_with_overrides(root, scene, assignments, "--set", false);
   out.source = scene.source;
   scene = std::move(out);
+}
+
+Scene parse_scene(std::string_view toml_text, const std::string& source_name,
+                  const std::vector<std::string>& overrides) {
+  if (overrides.empty()) return parse_scene(toml_text, source_name);
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(source_name, static_cast<int>(e.source().begin.line), "", "", std::string(e.description()));
+  }
+  // The file's keys and types are read first (a wrong type is the file's error); its rules
+  // are checked once, after the overrides: an override may repair the file.
+  const Scene draft = from_table(root, source_name, true, false);
+  return read_with_overrides(root, draft, overrides, source_name, true);
 }
 
 void apply_override(Scene& scene, const std::string& assignment) {

@@ -372,7 +372,7 @@ void read_field(const Field& f, const toml::node& n, Scene& s, const std::string
 
 namespace scene_detail {
 
-Scene from_table(const toml::table& root, const std::string& file, bool use_lines) {
+Scene from_table(const toml::table& root, const std::string& file, bool use_lines, bool check_rules) {
   Scene s;
   s.source = file;
   LineMap lines;
@@ -405,7 +405,7 @@ Scene from_table(const toml::table& root, const std::string& file, bool use_line
   }
   apply_designer_units(units, s, file, lines);
   resolve_defaults(s);
-  validate_impl(s, file, lines);
+  if (check_rules) validate_impl(s, file, lines);
   return s;
 }
 
@@ -493,7 +493,8 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name) {
   return from_table(root, source_name, true);
 }
 
-Scene load_scene_file(const std::string& path) {
+namespace {
+std::string read_scene_text(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw SceneError(path, 0, "", "", "cannot read scene file: it is a directory");
@@ -505,7 +506,14 @@ Scene load_scene_file(const std::string& path) {
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw SceneError(path, 0, "", "", std::string("cannot read scene file: ") + std::strerror(errno));
-  return parse_scene(ss.str(), path);
+  return ss.str();
+}
+}  // namespace
+
+Scene load_scene_file(const std::string& path) { return parse_scene(read_scene_text(path), path); }
+
+Scene load_scene_file(const std::string& path, const std::vector<std::string>& overrides) {
+  return parse_scene(read_scene_text(path), path, overrides);
 }
 
 // ---------------------------------------------------------------- paper cases

@@ -96,6 +96,11 @@ void apply_designer_units(const DesignerUnits& u, Scene& s, const std::string& f
     if (s.cam.speed_rev_s == 0.0)
       fail(file, u.revolutions_line, "run.revolutions", u.revolutions_text,
            "needs a cam speed other than 0 (cam.speed_rev_s = 0)");
+    // The run's own limit (Simulator: one Poincaré sample per revolution), named here under
+    // the key the user gave rather than under the cam speed it is divided by.
+    if (!(*u.revolutions <= 1e7))
+      fail(file, u.revolutions_line, "run.revolutions", u.revolutions_text,
+           "must be <= 1e7 revolutions (one Poincaré sample is kept per revolution)");
     s.run.t_end = *u.revolutions / std::fabs(s.cam.speed_rev_s);
     lines["run.t_end"] = u.revolutions_line;
   }

@@ -28,6 +28,8 @@ using namespace scene_detail;  // scene_detail.hpp, scene_fields.hpp
 
 namespace {
 
+constexpr double kMaxTheta0Deg = 1e6;
+
 class Validator {
  public:
   Validator(const Scene& s, const std::string& file, const LineMap& lines) : s_(s), file_(file), lines_(lines) {}
@@ -177,6 +179,31 @@ class Validator {
         fail_at(e.key(), e.value(), e.rule());
       }
     }
+    // The cam angle θ₀ + ωt is one double: beyond 1e6 deg its spacing (ulp) exceeds 1e-10 rad
+    // and grows to whole revolutions at 1e16 deg, so the cam's position is lost.
+    if (!(std::abs(c.theta0_deg) <= kMaxTheta0Deg))
+      fail_at("cam.theta0_deg", fmt_num(c.theta0_deg),
+              "must be within +-" + fmt_num(kMaxTheta0Deg) +
+                  " deg: the cam angle theta0 + omega t is one double, and beyond that its resolution is coarser "
+                  "than 1e-10 rad (give the angle modulo 360)");
+    // Keys that do not apply to the chosen follower: refused, not ignored.
+    if (c.roller_radius != 0.0 && c.follower_face != FollowerFace::Roller)
+      fail_at("cam.roller_radius", fmt_num(c.roller_radius),
+              std::string("applies to cam.follower_face = \"roller\" only (the face is \"") + to_string(c.follower_face) +
+                  "\"); must be 0",
+              "cam.follower_face");
+    if (c.follower_motion == FollowerMotion::Translating) {
+      const std::pair<const char*, double> pivot_keys[] = {{"cam.pivot_x", c.pivot_x},
+                                                           {"cam.pivot_y", c.pivot_y},
+                                                           {"cam.arm_length", c.arm_length},
+                                                           {"cam.pad_offset", c.pad_offset},
+                                                           {"cam.valve_arm", c.valve_arm}};
+      for (const auto& [key, v] : pivot_keys)
+        if (v != 0.0)
+          fail_at(key, fmt_num(v),
+                  "applies to cam.follower_motion = \"oscillating\" only (the follower translates); must be 0",
+                  "cam.follower_motion");
+    }
     if (!(c.eccentricity < c.radius))
       fail_at("cam.eccentricity", fmt_num(c.eccentricity), "must be < cam.radius = " + fmt_num(c.radius));
     if (!c.speed_table_t.empty() || !c.speed_table_rev_s.empty()) {
@@ -238,10 +265,18 @@ class Validator {
   void net_ge(const std::string& key, double v, double lo, const std::string& who) const {
     net_finite(key, v, who);
     if (!(v >= lo)) net_fail(key, fmt_num(v), "must be >= " + fmt_num(lo) + " (" + who + ")");
+    if (lo == 0.0 && v > 0.0 && v < 1.0 / kMaxMagnitude)
+      net_fail(key, fmt_num(v),
+               "is not a physical magnitude: must be 0 or >= " + fmt_num(1.0 / kMaxMagnitude) + " (" + who + ")");
   }
   void net_gt(const std::string& key, double v, double lo, const std::string& who) const {
     net_finite(key, v, who);
     if (!(v > lo)) net_fail(key, fmt_num(v), "must be > " + fmt_num(lo) + " (" + who + ")");
+    // As the scalar keys: a positive magnitude below 1e-50 (a mass of 5e-324) is no physical
+    // one; its reciprocal overflows (the mass matrix is then not positive definite).
+    if (lo == 0.0 && v < 1.0 / kMaxMagnitude)
+      net_fail(key, fmt_num(v),
+               "is not a physical magnitude: must be >= " + fmt_num(1.0 / kMaxMagnitude) + " (" + who + ")");
   }
   static std::string quoted_names(const std::vector<std::string>& v) {
     std::vector<std::string> q;
@@ -307,10 +342,18 @@ class Validator {
     };
 
     // ---- elements
+    std::map<std::string, std::size_t> element_index;
     for (std::size_t i = 0; i < n.elements.size(); ++i) {
       const ElementSpec& e = n.elements[i];
       const std::string p = elem("elements", i);
       const std::string who = element_label(e, i);
+      if (!e.name.empty()) {
+        const auto [it, fresh] = element_index.emplace(e.name, i);
+        if (!fresh)
+          net_fail(p + ".name", quote(e.name),
+                   "must be unique (" + elem("elements", it->second) + " has the same name; --set elements." + e.name +
+                       ".KEY would not know which one)");
+      }
       if (e.nodes.size() != 2)
         net_fail(p + ".nodes", quoted_names(e.nodes),
                  "must name exactly 2 nodes, has " + std::to_string(e.nodes.size()) + " (" + who + ")");
@@ -344,8 +387,13 @@ class Validator {
           net_ge(p + ".rayleigh_beta", e.rayleigh_beta, 0.0, who);
           break;
         case ElementKind::Lever:
-          if (!(std::isfinite(e.ratio) && e.ratio != 0.0))
-            net_fail(p + ".ratio", fmt_num(e.ratio), "must be finite and != 0 (" + who + ")");
+          // A lever's output moves ratio times its input, the same way: a ratio <= 0 would
+          // turn the train's motion round (the valve pushed away from its lift), which no
+          // rocker or finger does.
+          if (!(std::isfinite(e.ratio) && e.ratio > 0.0))
+            net_fail(p + ".ratio", fmt_num(e.ratio),
+                     "must be finite and > 0 (the output moves ratio times the input, in the same direction) (" +
+                         who + ")");
           break;
       }
     }
@@ -392,17 +440,43 @@ class Validator {
                      elem("elements", it->second) + "); a node is the output of at most one lever (" +
                      element_label(e, i) + ")");
     }
-    for (std::size_t i = 0; i < n.elements.size(); ++i) {
-      const ElementSpec& e = n.elements[i];
-      if (e.kind != ElementKind::Lever) continue;
-      std::string cur = e.nodes[0];
-      for (std::size_t steps = 0; steps <= lever_of_output.size(); ++steps) {
-        auto it = lever_of_output.find(cur);
-        if (it == lever_of_output.end()) break;
-        if (it->second == i)
-          net_fail(elem("elements", i) + ".nodes", quoted_names(e.nodes),
-                   "levers form a cycle through node '" + e.nodes[1] + "' (" + element_label(e, i) + ")");
-        cur = n.elements[it->second].nodes[0];
+    // The unknown each node's motion is tied to: follow lever inputs (output → input) to a
+    // node that is no lever's output. Memoised, so a chain of n levers costs O(n), and a
+    // walk that comes back to a node on its own path is a cycle.
+    std::map<std::string, std::string> chain_root;  // node → the node it is tied to
+    {
+      std::map<std::string, int> state;  // 1 on the current walk, 2 done
+      std::vector<std::string> path;
+      for (const auto& [out, lever] : lever_of_output) {
+        (void)lever;
+        if (state[out] == 2) continue;
+        path.clear();
+        std::string cur = out;
+        for (;;) {
+          const auto it = lever_of_output.find(cur);
+          if (it == lever_of_output.end()) {
+            chain_root[cur] = cur;
+            state[cur] = 2;
+            break;
+          }
+          if (state[cur] == 2) break;
+          if (state[cur] == 1) {  // the path from cur on is a cycle: name its first lever
+            std::size_t first = it->second;
+            for (auto p = std::find(path.begin(), path.end(), cur); p != path.end(); ++p)
+              first = std::min(first, lever_of_output.at(*p));
+            const ElementSpec& e = n.elements[first];
+            net_fail(elem("elements", first) + ".nodes", quoted_names(e.nodes),
+                     "levers form a cycle through node '" + e.nodes[1] + "' (" + element_label(e, first) + ")");
+          }
+          state[cur] = 1;
+          path.push_back(cur);
+          cur = n.elements[it->second].nodes[0];
+        }
+        const std::string r = chain_root.at(cur);
+        for (const auto& p : path) {
+          chain_root[p] = r;
+          state[p] = 2;
+        }
       }
     }
 
@@ -443,13 +517,9 @@ class Validator {
 
     // ---- mass: after lever elimination (a lever's output is tied to its input), every
     // remaining unknown needs positive mass from node masses, bars or springs with mass.
-    auto unknown_of = [&](std::string name) {
-      for (std::size_t steps = 0; steps <= lever_of_output.size(); ++steps) {
-        auto it = lever_of_output.find(name);
-        if (it == lever_of_output.end()) break;
-        name = n.elements[it->second].nodes[0];
-      }
-      return node_index.at(name);
+    auto unknown_of = [&](const std::string& name) {
+      const auto it = chain_root.find(name);
+      return node_index.at(it == chain_root.end() ? name : it->second);
     };
     std::vector<bool> has_mass(nn, false);
     for (std::size_t i = 0; i < nn; ++i)

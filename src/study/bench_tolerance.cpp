@@ -204,6 +204,7 @@ class Sweep {
       Run r = run_once(s, o_.time_budget_seconds, true);
       row.cpu_seconds = r.sum.cpu_seconds;
       row.steps = r.sum.steps;
+      if (r.sum.contract.checked) row.contract_held = r.sum.contract.held ? 1 : 0;
       if (r.over_budget) {
         row.status = "over budget";
         row.message = "stopped at t = " + g3(r.sum.t_end) + " (budget " + g3(o_.time_budget_seconds) + " s CPU)";
@@ -306,7 +307,7 @@ SeriesCheck check_series(const std::vector<double>& rtols, const std::vector<dou
 const std::vector<std::string>& tolerance_sweep_columns() {
   static const std::vector<std::string> c{"scene",   "method", "engine", "rtol",  "tol_u",
                                           "atol",    "cpu_s",  "steps",  "err_u", "err_force",
-                                          "status", "message"};
+                                          "status", "message", "contract_held"};
   return c;
 }
 
@@ -318,7 +319,8 @@ std::string tolerance_sweep_csv(const std::vector<ToleranceRow>& rows) {
     s += csv_text(r.scene) + "," + r.method + "," + r.engine + "," + csv_num(r.rtol) + "," +
          csv_num(r.tol_u) + "," + csv_num(r.atol) + "," + csv_num(r.cpu_seconds) + "," +
          std::to_string(r.steps) + "," + csv_num(r.err_u) + "," + csv_num(r.err_force) + "," +
-         r.status + "," + csv_text(r.message) + "\n";
+         r.status + "," + csv_text(r.message) + "," + (r.contract_held < 0 ? "" : std::to_string(r.contract_held)) +
+         "\n";
   return s;
 }
 

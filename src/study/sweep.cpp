@@ -26,6 +26,7 @@
 #include "camdyn/designer.hpp"
 #include "camdyn/follower_system.hpp"
 #include "camdyn/output.hpp"
+#include "camdyn/scene_keys.hpp"
 #include "study/thread_pool.hpp"
 
 namespace camdyn {
@@ -126,6 +127,9 @@ void check_sweep_key(const Scene& scene, const std::string& key) {
   if (!numeric)
     throw SceneError("--key", 0, "key", key,
                      "is " + kind + ", not a number: only numeric keys can be swept (" + numeric_keys(scene) + ")");
+  // A key the scene does not read gives the same run at every point.
+  const std::string unused = unused_key_reason(scene, key);
+  if (!unused.empty()) throw SceneError("--key", 0, "key", key, unused + ": every point would be the same run");
 }
 
 SweepAxis make_sweep_axis(const Scene& scene, const std::string& key, double from, double to,
@@ -168,8 +172,13 @@ SweepAxis make_sweep_axis(const Scene& scene, const std::string& key, double fro
       ax.values.push_back(v);
     }
   }
+  // An integer key takes whole numbers only: a value like 1.5 is refused, not rounded.
   if (is_int_key(scene, key))
-    for (double& v : ax.values) v = std::round(v);
+    for (std::size_t i = 0; i < ax.values.size(); ++i)
+      if (ax.values[i] != std::round(ax.values[i]))
+        throw SceneError(have_step ? "--step" : "--points", 0, "key", key,
+                         "is an integer key, but the sweep's point " + std::to_string(i) + " is " + num(ax.values[i]) +
+                             ": give whole-number --from/--to and --step (or --points that land on whole numbers)");
   return ax;
 }
 
@@ -307,6 +316,19 @@ std::string run_sweep_point(const SweepPlan& plan, long index, bool timing, doub
 
 // ---- journal ---------------------------------------------------------------------------
 
+namespace {
+std::vector<std::string> split_fields(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t b = 0;
+  for (;;) {
+    const std::size_t c = s.find(',', b);
+    out.push_back(s.substr(b, c == std::string::npos ? std::string::npos : c - b));
+    if (c == std::string::npos) return out;
+    b = c + 1;
+  }
+}
+}  // namespace
+
 SweepJournal::SweepJournal(const SweepPlan& plan, const std::string& dir, bool resume)
     : plan_(plan), dir_(dir) {
   done_.assign(static_cast<std::size_t>(plan.total), 0);
@@ -340,18 +362,47 @@ SweepJournal::SweepJournal(const SweepPlan& plan, const std::string& dir, bool r
       ss << j.rdbuf();
       const std::string text = ss.str();
       // Complete lines only; a point counts when its E line was written.
+      // A damaged line (not "R|Q|E<TAB>INDEX<TAB>…" of this plan, or a row with the wrong
+      // number of fields) is reported, never used: the journal was edited or corrupted.
+      const auto fields = [](const std::string& x) { return std::count(x.begin(), x.end(), ',') + 1; };
+      const long row_fields = fields(plan.header.substr(0, plan.header.find('\n')));
+      const long pc_fields = long(plan.axes.size()) + 4;  // keys, revolution, t, u_c, v_c
+      long lineno = 0;
+      auto damaged = [&](const std::string& line, const std::string& why) {
+        throw SceneError("--resume", lineno, "sweep.journal", line.substr(0, std::min<std::size_t>(line.size(), 60)),
+                         jpath + " line " + std::to_string(lineno) + " is damaged (" + why +
+                             "): the journal was edited or corrupted; run without --resume to start over");
+      };
       std::map<long, std::string> pending;
       std::size_t pos = 0;
       while (pos < text.size()) {
         const std::size_t nl = text.find('\n', pos);
-        if (nl == std::string::npos) break;  // a torn last line
+        if (nl == std::string::npos) break;  // a torn last line (a killed sweep): dropped
         const std::string line = text.substr(pos, nl + 1 - pos);
         pos = nl + 1;
-        if (line.size() < 4 || line[1] != '\t') continue;
+        ++lineno;
+        if (line.size() < 4 || line[1] != '\t' || (line[0] != 'R' && line[0] != 'Q' && line[0] != 'E'))
+          damaged(line, "not an R, Q or E line");
         const std::size_t t2 = line.find_first_of("\t\n", 2);
         char* end = nullptr;
         const long idx = std::strtol(line.c_str() + 2, &end, 10);
-        if (end != line.c_str() + t2 || idx < 0 || idx >= plan.total) continue;
+        if (end != line.c_str() + t2 || idx < 0 || idx >= plan.total)
+          damaged(line, "no point index in 0 … " + std::to_string(plan.total - 1));
+        if (line[0] != 'E') {
+          const std::string payload = t2 + 1 < line.size() ? line.substr(t2 + 1, line.size() - t2 - 2) : "";
+          // R: the keys, the results, then the message (quoted, may hold commas); Q: numbers.
+          const long want = line[0] == 'R' ? row_fields : pc_fields;
+          const long have = fields(payload);
+          if (line[0] == 'R' ? have < want : have != want)
+            damaged(line, std::to_string(have) + " fields, expected " + std::to_string(want));
+          const std::vector<std::string> f = split_fields(payload);
+          const std::size_t numeric = line[0] == 'R' ? plan.axes.size() + 1 : f.size();  // keys and `finished`
+          for (std::size_t k = 0; k < numeric && k < f.size(); ++k) {
+            char* e2 = nullptr;
+            std::strtod(f[k].c_str(), &e2);
+            if (f[k].empty() || *e2 != '\0') damaged(line, "'" + f[k] + "' is not a number");
+          }
+        }
         if (line[0] == 'E') {
           auto it = pending.find(idx);
           if (it != pending.end() && !done(idx)) take(it->second + line, false), clean += it->second + line;

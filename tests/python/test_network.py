@@ -215,7 +215,7 @@ def test_lever_ratio_zero_raises_with_the_library_message(tmp_path):
     path.write_text(LEVER_0)
     with pytest.raises(camdyn.SceneError) as exc:
         camdyn.run(path)
-    assert "key 'elements[1].ratio' = 0: must be finite and != 0 (lever 'rocker')" in str(exc.value)
+    assert "key 'elements[1].ratio' = 0: must be finite and > 0 (the output moves ratio times the input, in the same direction) (lever 'rocker')" in str(exc.value)
     res = cli("run", str(path), "--quiet", "--out", str(tmp_path / "out"))
     assert res.returncode != 0
     assert str(exc.value) == res.stderr[len("camdyn: "):].rstrip("\n")
@@ -230,7 +230,7 @@ def test_lever_ratio_zero_raises_with_the_library_message(tmp_path):
             contacts=[camdyn.Contact("cam", "cam", ["a"])])
     assert str(exc2.value).startswith("<dict>:")
     assert str(exc2.value).endswith(
-        "key 'elements[1].ratio' = 0: must be finite and != 0 (lever 'rocker')")
+        "key 'elements[1].ratio' = 0: must be finite and > 0 (the output moves ratio times the input, in the same direction) (lever 'rocker')")
     assert isinstance(exc2.value, ValueError)
 
 

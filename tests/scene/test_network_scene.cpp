@@ -407,7 +407,8 @@ TEST(NetworkScene, ExactMessages) {
       // ---- levers
       {"lever ratio 0", kHead + kNode + "[[nodes]]\nname = \"b\"\n" + kSpring +
                             "[[elements]]\nname = \"rocker\"\ntype = \"lever\"\nnodes = [\"a\", \"b\"]\nratio = 0\n" + kCam,
-       "net.toml:16: key 'elements[1].ratio' = 0: must be finite and != 0 (lever 'rocker')"},
+       "net.toml:16: key 'elements[1].ratio' = 0: must be finite and > 0 (the output moves ratio times the input, "
+       "in the same direction) (lever 'rocker')"},
       {"two levers drive one node",
        kHead + kNode + "[[nodes]]\nname = \"b\"\n[[nodes]]\nname = \"c\"\nmass = 1\n" + kSpring +
            "[[elements]]\ntype = \"lever\"\nnodes = [\"a\", \"b\"]\n"
@@ -454,7 +455,7 @@ TEST(NetworkScene, ExactMessages) {
 TEST(NetworkScene, LeverTransfersMassAndGrounding) {
   // b has no mass and no spring of its own, but is tied by a lever to a: valid.
   const std::string text = kHead + kNode + "[[nodes]]\nname = \"b\"\n" + kSpring +
-                           "[[elements]]\ntype = \"lever\"\nnodes = [\"a\", \"b\"]\nratio = -2\n" +
+                           "[[elements]]\ntype = \"lever\"\nnodes = [\"a\", \"b\"]\nratio = 2\n" +
                            "[[contacts]]\nname = \"cam\"\ntype = \"cam\"\nnodes = [\"b\"]\n";
   EXPECT_EQ(error_of(text), "<no error>");
   // A bar to ground grounds and gives mass; a spring with mass gives mass to a massless node.

@@ -109,7 +109,11 @@ TEST(ToleranceSweep, ShortCaseASweepWritesTheCsvAndRefusesBelowTheFloor) {
   EXPECT_TRUE(r.checks[1].reaches_floor) << r.checks[1].verdict;
   const std::string csv = slurp(r.csv_path);
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "scene,method,engine,rtol,tol_u,atol,cpu_s,steps,err_u,err_force,status,message");
+            "scene,method,engine,rtol,tol_u,atol,cpu_s,steps,err_u,err_force,status,message,contract_held");
+  // Issue 35: every finished run says whether its contract held, and none marked finished
+  // broke it (the energy ledger closes, no closed contact penetrated beyond 10 tol_u).
+  for (const ToleranceRow& row : r.rows)
+    if (row.status == "finished") EXPECT_EQ(row.contract_held, 1) << row.method << " rtol " << row.rtol;
   EXPECT_NE(csv.find("A,lee,arkode-erk,1e-12,1e-13,"), std::string::npos) << csv;
   EXPECT_NE(csv.find(",refused,"), std::string::npos);
   EXPECT_TRUE(fs::exists(r.series_path));

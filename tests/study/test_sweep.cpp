@@ -553,8 +553,10 @@ TEST(SweepAxes, ValuesAndIntegerKeys) {
   EXPECT_EQ(b.values[2], 100);
   const SweepAxis c = make_sweep_axis(s, "cam.speed_rev_s", 0, 1, 0.3, 0, false);
   EXPECT_EQ(c.values.size(), 4u);  // 0, 0.3, 0.6, 0.9
-  const SweepAxis d = make_sweep_axis(s, "run.settle_revolutions", 0, 10, NAN, 4, false);
-  EXPECT_EQ(d.values, (std::vector<double>{0, 3, 7, 10}));
+  // An integer key takes whole numbers only (issue 35: 3.33 and 6.67 were rounded silently).
+  EXPECT_THROW(make_sweep_axis(s, "run.settle_revolutions", 0, 10, NAN, 4, false), SceneError);
+  const SweepAxis d = make_sweep_axis(s, "run.settle_revolutions", 0, 9, NAN, 4, false);
+  EXPECT_EQ(d.values, (std::vector<double>{0, 3, 6, 9}));
 }
 
 TEST(JumpSpeed, ElasticFollowerBySimulationKeepsItsBracket) {
