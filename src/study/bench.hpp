@@ -1,6 +1,6 @@
 // camdyn — work–precision benchmark ("what accuracy costs in time", `camdyn bench`).
 //
-// For each scene, run_bench() sweeps Lee's method (engines × error variants × tolerances),
+// For each scene, run_bench() sweeps Lee's method (engines × tolerances),
 // the penalty baseline (k_p × c_p × rtol), and the holonomic and event-driven baselines,
 // and compares every run with an event-driven reference on a common output grid. It writes
 // DIR/work_precision.csv (one row per run) and DIR/work_precision.md (tables and the
@@ -44,6 +44,9 @@ struct BenchOptions {
   double t_end = 0.0;
   /// Quick mode: t_end of elastic scenes when t_end is not given.
   double quick_elastic_t_end = 0.02;
+  /// Directory of cached reference runs (bench_compare.hpp: reference_run(), keyed by the
+  /// reference scene and the build); empty: every reference is run.
+  std::string reference_cache_dir;
   /// Progress lines (one per run); may be empty.
   std::function<void(const std::string&)> log;
 };
@@ -60,7 +63,11 @@ struct BenchRow {
   /// rigid: max |F − F_ref| / max F_ref; elastic: 1 ms window impulse error / max window
   /// impulse (chaotic scenes: over the first revolution only).
   double err_force = std::numeric_limits<double>::quiet_NaN();
-  /// total variation of F over that of the reference (spurious oscillation).
+  /// max |F − F_ref| / max |F_ref| pointwise on the grid (within the pointwise horizon).
+  double err_force_pointwise = std::numeric_limits<double>::quiet_NaN();
+  /// Impact speeds: max relative error at the reference's impacts (NaN: it has none).
+  double impact_speed_err = std::numeric_limits<double>::quiet_NaN();
+  /// total variation of F over that of the reference (below 1: smoothing; above: ringing).
   double osc_index = std::numeric_limits<double>::quiet_NaN();
   /// contact impulse per revolution: max relative error over complete revolutions (whole
   /// run when shorter than one revolution).
@@ -75,15 +82,32 @@ struct BenchRow {
   std::string note;
 };
 
+/// One headline: the cheapest run of `versus` ("penalty" or "event") over the cheapest Lee
+/// run, both with err_force ≤ target (equal accuracy), and its goal.
+struct BenchHeadline {
+  std::string scene, versus;
+  double target = 1e-3;
+  double ratio = std::numeric_limits<double>::quiet_NaN();  ///< CPU(versus) / CPU(Lee)
+  double goal = std::numeric_limits<double>::quiet_NaN();   ///< NaN: none
+  std::string verdict;     ///< "goal met", "goal not met", "no goal", or why there is no ratio
+  std::string lee, other;  ///< the two runs (method, engine, settings, CPU, errors)
+  std::string text;        ///< one sentence
+};
+
 struct BenchResult {
   std::vector<BenchRow> rows;
-  /// Per scene label: the headline text (cheapest penalty / cheapest Lee CPU at a
-  /// contact-force error ≤ 1e-3), and the ratio (NaN when it cannot be formed).
+  /// Per scene label: the headline text (both headlines), and the penalty/Lee ratio (NaN
+  /// when it cannot be formed).
   std::vector<std::string> headline_scene;
   std::vector<std::string> headline_text;
   std::vector<double> headline_ratio;
-  std::string csv_path, md_path;
+  /// Per scene label: against penalty, then against the event method.
+  std::vector<BenchHeadline> headlines;
+  std::string csv_path, md_path, headlines_path;
 };
+
+/// headlines.csv text (one row per BenchHeadline).
+std::string bench_headlines_csv(const std::vector<BenchHeadline>& headlines);
 
 /// The bench's named scenes: the paper's cases "A", "B1", "B2" (paper_case()) and "A7",
 /// case A at 7 rev/s — above the rigid follower's separation speed (≈ 6.4 rev/s), so it
