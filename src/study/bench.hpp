@@ -1,10 +1,11 @@
 // camdyn — work–precision benchmark ("what accuracy costs in time", `camdyn bench`).
 //
-// For each scene, run_bench() sweeps Lee's method (engines × tolerances),
-// the penalty baseline (k_p × c_p × rtol), and the holonomic and event-driven baselines,
+// For each scene, run_bench() sweeps Lee's method (engines × tolerances), the penalty
+// baseline at its best (linear and Hunt–Crossley laws × implicit engines × k_p × c_p ×
+// rtol), and the event-driven (engines × rtol) and holonomic baselines,
 // and compares every run with an event-driven reference on a common output grid. It writes
-// DIR/work_precision.csv (one row per run) and DIR/work_precision.md (tables and the
-// headline ratio). The figures are drawn by scripts/camdyn_bench_plot.py (the CLI calls it).
+// DIR/work_precision.csv (one row per run), DIR/headlines.csv and DIR/work_precision.md
+// (the headlines with their goals, and the tables). The figures are drawn by scripts/camdyn_bench_plot.py (the CLI calls it).
 #pragma once
 
 #include <cmath>
@@ -22,8 +23,10 @@ struct BenchOptions {
   /// "A", "A7", "B1", "B2", and in the full sweep also "stiff" and "B1_1000".
   std::vector<Scene> scenes;
   std::vector<std::string> labels;
-  /// Quick mode: Lee on arkode-erk only at two tolerances, penalty at three k_p and one
-  /// rtol (1e-8 rigid, 1e-6 elastic), elastic scenes cut to quick_elastic_t_end (unless t_end is given).
+  /// Quick mode: Lee at two tolerances (a rigid follower on arkode-erk, others on
+  /// arkode-dirk and cvode-bdf), penalty critically damped, both laws, at three k_p and one
+  /// rtol (1e-8 rigid, 1e-6 otherwise) on cvode-bdf, event at two rtol on the scene's
+  /// engine; elastic-bar scenes cut to quick_elastic_t_end (unless t_end is given).
   bool quick = false;
   /// Timing repeats (median of Summary::cpu_seconds), ≥ 1 (3 recommended). A run whose
   /// first timing exceeds repeat_cap_seconds is timed once (noted in the row).
