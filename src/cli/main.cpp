@@ -164,9 +164,9 @@ int real_main(int argc, char** argv) {
       ->type_name("DIR")
       ->capture_default_str();
   bench->add_flag("--quick", bo.quick,
-                  "Reduced sweep: Lee at two tolerances, penalty at three k_p on its best "
-                  "engine, elastic scenes cut to t_end = 0.02, a cheaper reference (under a "
-                  "minute per case)");
+                  "Reduced sweep: Lee at two tolerances, penalty (both laws) at three k_p on "
+                  "cvode-bdf, event at two tolerances, elastic bars cut to t_end = 0.02 (the "
+                  "references are cached: see --reference-cache)");
   bench->add_option("--repeats", bo.repeats, "Timing repeats (median CPU time)")
       ->type_name("N")
       ->capture_default_str();

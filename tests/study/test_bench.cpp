@@ -352,11 +352,11 @@ TEST(BenchCompare, ReferenceCacheReturnsTheSameRun) {
   s.run.output_dt = 1e-3;
   s.contact.model = camdyn::ContactModel::Event;
   bool cached = true;
-  const Run a = reference_run(s, dir.string(), &cached);
+  const camdyn::bench_detail::Run a = reference_run(s, dir.string(), &cached);
   EXPECT_FALSE(cached);
   ASSERT_TRUE(a.sum.finished);
   ASSERT_FALSE(a.events.empty());
-  const Run b = reference_run(s, dir.string(), &cached);
+  const camdyn::bench_detail::Run b = reference_run(s, dir.string(), &cached);
   EXPECT_TRUE(cached);
   ASSERT_EQ(a.rows.size(), b.rows.size());
   ASSERT_EQ(a.events.size(), b.events.size());
