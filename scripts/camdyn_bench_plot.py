@@ -4,10 +4,11 @@
 Usage: camdyn_bench_plot.py DIR [--quiet]
 
 Reads DIR/work_precision.csv and writes, for each scene and each error kind
-(err_u, err_force, impulse_err, event_err), DIR/wp_<scene>_<kind>.png: error against CPU
-time, log-log: one line per Lee engine/variant in tolerance order, Lee with a step-size
-cap (max_step) in cap order, one line per penalty setting (k_p, c_p) in rtol order (colour:
-k_p; line style: damping). Only finished runs with a
+(err_u, err_force, impulse_err, event_err, err_force_pointwise, impact_speed_err, osc_index),
+DIR/wp_<scene>_<kind>.png: error against CPU time, log-log: one line per Lee engine in
+tolerance order, Lee with a step-size cap (max_step) in cap order, one line per penalty
+setting (engine, law, k_p, c_p) in rtol order (colour: k_p; line style: damping; marker:
+law). Only finished runs with a
 positive error are drawn. Exit status: 0 ok, 2 bad input, 3 numpy/matplotlib missing.
 """
 import csv
@@ -64,6 +65,9 @@ def main(argv):
         "err_force": "contact-force error (rigid: pointwise / peak; elastic: 1 ms impulse)",
         "impulse_err": "impulse per revolution, relative error",
         "event_err": "separation/impact time error [s]",
+        "err_force_pointwise": "contact force, max |F - F_ref| / max F_ref (pointwise)",
+        "impact_speed_err": "impact speed, max relative error",
+        "osc_index": "|TV(F) / TV(F_ref) - 1| (below: smoothing or ringing)",
     }
     scenes = []
     for r in rows:
@@ -79,16 +83,18 @@ def main(argv):
                 if r["method"] == "reference-check":
                     continue
                 cpu, err = num(r["cpu_seconds"]), num(r.get(kind))
+                if kind == "osc_index":
+                    err = abs(err - 1.0)
                 if not (cpu > 0 and err > 0 and math.isfinite(err)):
                     continue
                 if r["method"] == "lee" and math.isfinite(num(r.get("max_step"))):
-                    key = f"lee {r['engine']} {r['variant']} tol_u {num(r['tol']):g}, max_step swept"
+                    key = f"lee {r['engine']} tol_u {num(r['tol']):g}, max_step swept"
                 elif r["method"] == "lee":
-                    key = f"lee {r['engine']} {r['variant']}"
+                    key = f"lee {r['engine']}"
                 elif r["method"] == "penalty":
-                    # One curve per penalty setting (k_p, c_p) over rtol: it flattens at
-                    # the accuracy floor its k_p sets.
-                    key = f"penalty {r['variant']} k_p {num(r['kp']):.3g}"
+                    # One curve per penalty setting (engine, law, k_p, c_p) over rtol: it
+                    # flattens at the accuracy floor its k_p sets.
+                    key = f"penalty {r['engine']} {r['variant']} k_p {num(r['kp']):.3g}"
                 else:
                     key = f"{r['method']} {r['engine']}"
                 series.setdefault(key, []).append((cpu, err, r))
@@ -107,12 +113,14 @@ def main(argv):
                     pts.sort(key=lambda p: -num(p[2]["tol"]))
                     r0 = pts[0][2]
                     x = (math.log10(num(r0["kp"])) - lo) / max(hi - lo, 1e-9)
-                    ls = pen_styles.get(r0["variant"], "--")
+                    damping = r0["variant"].split()[-1]
+                    ls = pen_styles.get(damping, "--")
+                    marker = "s" if r0["variant"].startswith("linear") else "v"
                     lab = None
                     if r0["variant"] not in shown:
                         shown.add(r0["variant"])
                         lab = f"penalty {r0['variant']} (each curve one k_p over rtol)"
-                    ax.loglog([p[0] for p in pts], [p[1] for p in pts], ls, marker="s", ms=3,
+                    ax.loglog([p[0] for p in pts], [p[1] for p in pts], ls, marker=marker, ms=3,
                               color=cmap(0.9 * x), lw=1.0, label=lab)
                     continue
                 # Lee: in tolerance order

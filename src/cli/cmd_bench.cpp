@@ -3,13 +3,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
-#include "camdyn/bench.hpp"
-#include "camdyn/bench_tolerance.hpp"
+#include "study/bench.hpp"
+#include "study/bench_tolerance.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
 
@@ -26,6 +27,34 @@ void log_line(const std::string& line) {
   std::fflush(stderr);
 }
 
+/// The example trains the bench knows by name (found in ./examples or the source tree).
+const std::map<std::string, std::string>& train_files() {
+  static const std::map<std::string, std::string> t{{"ohc", "ohc_bucket_tappet.toml"},
+                                                    {"ohv", "ohv_pushrod_train.toml"}};
+  return t;
+}
+
+/// A scene named on the command line: a file, a bench case (bench_case()) or an example
+/// train (ohc, ohv); its label.
+/// @throws SceneError for a name that is none of them or a scene that does not load.
+std::pair<Scene, std::string> named_scene(const std::string& name) {
+  std::error_code ec;
+  const auto& trains = train_files();
+  if (fs::exists(name, ec) || (!is_bench_case(name) && !trains.count(name))) {
+    Scene sc = load_scene_file(name);
+    Cam cam(sc.cam);  // a bad profile is bad input
+    return {std::move(sc), fs::path(name).stem().string()};
+  }
+  if (trains.count(name)) {
+    fs::path f = fs::path("examples") / trains.at(name);
+    if (!fs::exists(f, ec)) f = fs::path(CAMDYN_PLOT_SCRIPT_BUILD).parent_path().parent_path() / "examples" / trains.at(name);
+    if (!fs::exists(f, ec))
+      throw SceneError("bench", 0, "scene", name, "examples/" + trains.at(name) + " not found");
+    return {load_scene_file(f.string()), name};
+  }
+  return {bench_case(name), name};
+}
+
 /// `camdyn bench --tolerance-sweep`: scene names A, A7, B1, B2 (t_end 0.1 unless --t-end),
 /// stiff, ohc and ohv (examples/ohc_bucket_tappet.toml, examples/ohv_pushrod_train.toml:
 /// one revolution), or scene files; none: all of them.
@@ -33,28 +62,12 @@ int cmd_tolerance_sweep(const BenchOpts& o) {
   ToleranceSweepOptions to;
   std::vector<std::string> names = o.scenes;
   if (names.empty()) names = {"A", "A7", "B1", "B2", "stiff", "ohc", "ohv"};
-  const std::map<std::string, std::string> trains{{"ohc", "ohc_bucket_tappet.toml"},
-                                                  {"ohv", "ohv_pushrod_train.toml"}};
-  std::error_code ec;
   for (const auto& name : names) {
-    if (fs::exists(name, ec) || (!is_bench_case(name) && !trains.count(name))) {
-      Scene sc = load_scene_file(name);
-      Cam cam(sc.cam);  // a bad profile is bad input
-      to.scenes.push_back(std::move(sc));
-      to.labels.push_back(fs::path(name).stem().string());
-    } else if (trains.count(name)) {
-      fs::path f = fs::path("examples") / trains.at(name);
-      if (!fs::exists(f, ec)) f = fs::path(CAMDYN_PLOT_SCRIPT_BUILD).parent_path().parent_path() / "examples" / trains.at(name);
-      if (!fs::exists(f, ec))
-        throw SceneError("bench", 0, "scene", name, "examples/" + trains.at(name) + " not found");
-      to.scenes.push_back(load_scene_file(f.string()));
-      to.labels.push_back(name);
-    } else {
-      Scene sc = bench_case(name);
-      if (name != "stiff") sc.run.t_end = 0.1;
-      to.scenes.push_back(std::move(sc));
-      to.labels.push_back(name);
-    }
+    auto [sc, label] = named_scene(name);
+    std::error_code ec;
+    if (is_bench_case(name) && name != "stiff" && !fs::exists(name, ec)) sc.run.t_end = 0.1;
+    to.scenes.push_back(std::move(sc));
+    to.labels.push_back(label);
   }
   if (!o.rtols.empty()) to.rtols = o.rtols;
   to.heavy_rtols = o.heavy_rtols;
@@ -92,18 +105,11 @@ int cmd_bench(const BenchOpts& o) {
   // Input stage: every error here is bad input (exit 2, raised to main()).
   BenchOptions bo;
   for (const auto& name : o.scenes) {
-    std::error_code ec;
-    if (is_bench_case(name) && !fs::exists(name, ec)) {
-      bo.scenes.push_back(bench_case(name));
-      bo.labels.push_back(name);
-      continue;
-    }
-    Scene sc = load_scene_file(name);
+    auto [sc, label] = named_scene(name);
     resolve_defaults(sc);
     validate(sc);
-    Cam cam(sc.cam);  // a bad profile is bad input
     bo.scenes.push_back(std::move(sc));
-    bo.labels.push_back(fs::path(name).stem().string());
+    bo.labels.push_back(std::move(label));
   }
   if (o.repeats < 1)
     throw SceneError("--repeats", 0, "repeats", std::to_string(o.repeats), "must be >= 1");
@@ -120,6 +126,17 @@ int cmd_bench(const BenchOpts& o) {
   bo.t_end = o.t_end;
   bo.output_dt = o.output_dt;
   bo.out_dir = o.out;
+  if (!o.no_cache) {
+    bo.reference_cache_dir = o.reference_cache;
+    if (bo.reference_cache_dir.empty()) {
+      const char* xdg = std::getenv("XDG_CACHE_HOME");
+      const char* home = std::getenv("HOME");
+      if (xdg && *xdg)
+        bo.reference_cache_dir = (fs::path(xdg) / "camdyn" / "bench").string();
+      else if (home && *home)
+        bo.reference_cache_dir = (fs::path(home) / ".cache" / "camdyn" / "bench").string();
+    }
+  }
   ensure_output_dir(o.out);
   if (!o.quiet)
     bo.log = log_line;

@@ -152,6 +152,9 @@ struct BenchOpts {
   std::vector<double> rtols, heavy_rtols;
   double reference_rtol = 1e-12;
   std::vector<std::string> methods, engines;
+  /// Directory of cached bench references ("" with --no-cache: none).
+  std::string reference_cache;
+  bool no_cache = false;
 };
 
 struct JumpOpts {

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "camdyn/bench.hpp"
+#include "study/bench.hpp"
 #include "camdyn/designer.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/scene_keys.hpp"
@@ -149,19 +149,24 @@ int real_main(int argc, char** argv) {
   BenchOpts bo;
   auto* bench = app.add_subcommand(
       "bench",
-      "Work–precision benchmark: Lee (engines × error variants × tolerances), penalty "
-      "(k_p × c_p × rtol), holonomic and event runs against an event-driven reference; "
-      "writes DIR/work_precision.csv, DIR/work_precision.md and wp_*.png figures");
+      "Work–precision benchmark: Lee (engines × tolerances), penalty (linear and "
+      "Hunt–Crossley laws × k_p × c_p × rtol on arkode-dirk and cvode-bdf), holonomic and "
+      "event runs against an event-driven reference; writes DIR/work_precision.csv, "
+      "DIR/work_precision.md (headlines with their goals) and wp_*.png figures");
   bench->add_option("scenes", bo.scenes,
                     "Scene files (TOML) or case names A, A7 (case A at 7 rev/s: separates), "
-                    "B1, B2; default: A A7 B1 B2")
+                    "B1, B2, stiff (E = 5e8 bar on 200 elements), B1_1000 (B1 on 1000 "
+                    "elements), ohc, ohv (examples/ohc_bucket_tappet.toml, "
+                    "examples/ohv_pushrod_train.toml); default: A A7 B1 B2 stiff B1_1000 "
+                    "(--quick: A A7 B1 B2)")
       ->type_name("SCENE");
   bench->add_option("-o,--out", bo.out, "Output directory (created if missing)")
       ->type_name("DIR")
       ->capture_default_str();
   bench->add_flag("--quick", bo.quick,
-                  "Reduced sweep: Lee on arkode-erk at two tolerances, penalty at three k_p, "
-                  "elastic scenes cut to t_end = 0.02 (under a minute)");
+                  "Reduced sweep: Lee at two tolerances, penalty (both laws) at three k_p on "
+                  "cvode-bdf, event at two tolerances, elastic bars cut to t_end = 0.02 (the "
+                  "references are cached: see --reference-cache)");
   bench->add_option("--repeats", bo.repeats, "Timing repeats (median CPU time)")
       ->type_name("N")
       ->capture_default_str();
@@ -176,6 +181,11 @@ int real_main(int argc, char** argv) {
                     "Common output grid every run lands on and is compared on (0: 1e-2 for "
                     "a rigid follower, 1e-3 if it separates, 1e-4 for an elastic one)")
       ->type_name("DT");
+  bench->add_option("--reference-cache", bo.reference_cache,
+                    "Directory of cached reference runs, keyed by the reference scene and this "
+                    "build (default: $XDG_CACHE_HOME/camdyn/bench or ~/.cache/camdyn/bench)")
+      ->type_name("DIR");
+  bench->add_flag("--no-cache", bo.no_cache, "Run every reference (read and write no cache)");
   bench->add_flag("-q,--quiet", bo.quiet, "Print nothing but errors");
   bench->add_flag("--no-plot", bo.no_plot, "Write the CSV and Markdown only, no figures");
   bench->add_flag("--tolerance-sweep", bo.tolerance_sweep,

@@ -1,5 +1,5 @@
 // camdyn — work–precision benchmark (bench.hpp).
-#include "camdyn/bench.hpp"
+#include "study/bench.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -20,6 +20,8 @@ namespace camdyn {
 namespace {
 
 using namespace bench_detail;
+
+constexpr double kHeadlineTarget = 1e-3;
 
 
 class Bench {
@@ -68,6 +70,8 @@ class Bench {
         row.osc_index = c.osc;
         row.impulse_err = c.impulse_err;
         row.event_err = c.event_err;
+        row.err_force_pointwise = c.err_force_pointwise;
+        row.impact_speed_err = c.impact_speed_err;
         if (!si.ref_events.empty() && c.events != long(si.ref_events.size()))
           row.note += (row.note.empty() ? "" : "; ") + std::to_string(c.events) +
                       " separations+impacts (reference " +
@@ -103,17 +107,17 @@ class Bench {
     rows_.push_back(std::move(row));
   }
 
-  /// Lee runs on one engine and variant over tolerances tol_u (rtol = 10·tol_u), with
-  /// the step-size cap max_step (NaN: none). After a run over the budget the tighter
+  /// Lee runs (the located step) on one engine over tolerances tol_u (rtol = 10·tol_u),
+  /// with the step-size cap max_step (NaN: none). After a run over the budget the tighter
   /// settings are recorded as skipped.
-  void lee_series(const SceneInfo& si, const Scene& base, Integrator eng, ErrorVariant var,
+  void lee_series(const SceneInfo& si, const Scene& base, Integrator eng,
                   const std::vector<double>& tols, double max_step) {
     for (double tol : tols) {
       BenchRow row;
       row.scene = si.label;
       row.method = "lee";
       row.engine = to_string(eng);
-      row.variant = to_string(var);
+      row.variant = "-";
       row.tol = tol;
       row.max_step = max_step;
       const std::string key = si.label + " " + row.engine + " " + row.variant + " " + g3(max_step);
@@ -123,7 +127,6 @@ class Bench {
       }
       Scene s = base;
       s.contact.model = ContactModel::Lee;
-      s.contact.error_variant = var;
       s.contact.tol_u = tol;
       s.contact.tol_v = 0;
       s.contact.tol_a = 0;
@@ -166,7 +169,8 @@ class Bench {
     Scene chk = ref;
     chk.solver.rtol *= 10;
     chk.solver.atol *= 10;
-    Run rr = run_once(ref, 0.0, true);
+    bool cached = false;
+    Run rr = reference_run(ref, o_.reference_cache_dir, &cached);
     si.dt = o_.output_dt > 0 ? o_.output_dt
                              : (!si.rigid ? 1e-4 : rr.sum.separations > 0 ? 1e-3 : 1e-2);
     base.run.output_dt = si.dt;
@@ -198,20 +202,22 @@ class Bench {
     chkrow.tol = chk.solver.rtol;
     chkrow.note = "event run one decade looser than the reference (rtol " +
                   g3(ref.solver.rtol) + " atol " + g3(ref.solver.atol) + "; ref cpu " +
-                  g3(rr.sum.cpu_seconds) + " s)";
+                  g3(rr.sum.cpu_seconds) + " s" + (cached ? ", from the cache" : "") + ")";
     measure(si, chk, chkrow, false);
 
     // ---- Lee ----
-    std::vector<double> tols = o_.quick ? std::vector<double>{1e-5, 1e-8}
+    // Quick: a rigid follower on arkode-erk, an elastic one or a train on the implicit
+    // engines (a stiff bar's Lee on arkode-erk takes tens of seconds).
+    std::vector<double> tols = o_.quick ? (si.rigid ? std::vector<double>{1e-5, 1e-8}
+                                                    : std::vector<double>{1e-4, 1e-6})
                                         : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7,
                                                               1e-8, 1e-9, 1e-10};
     std::vector<Integrator> engines =
-        o_.quick ? std::vector<Integrator>{Integrator::ArkodeErk}
+        o_.quick ? (si.rigid ? std::vector<Integrator>{Integrator::ArkodeErk}
+                             : std::vector<Integrator>{Integrator::ArkodeDirk, Integrator::CvodeBdf})
                  : std::vector<Integrator>{Integrator::ArkodeErk, Integrator::ArkodeDirk,
                                            Integrator::CvodeBdf};
-    for (Integrator eng : engines)
-      for (ErrorVariant var : {ErrorVariant::Eq12, ErrorVariant::Eq17})
-        lee_series(si, base, eng, var, tols, kNaN);
+    for (Integrator eng : engines) lee_series(si, base, eng, tols, kNaN);
 
     // ---- Lee with a step-size cap (rigid scenes that separate) ----
     // Where the follower separates and lands, the classic step's error came from the step
@@ -221,16 +227,21 @@ class Bench {
     if (si.rigid && !si.ref_events.empty()) {
       const std::vector<double> caps = o_.quick ? std::vector<double>{1e-3, 1e-4}
                                                 : std::vector<double>{1e-3, 3e-4, 1e-4, 3e-5, 1e-5};
-      for (ErrorVariant var : {ErrorVariant::Eq12, ErrorVariant::Eq17}) {
-        if (o_.quick && var == ErrorVariant::Eq12) continue;
-        for (double cap : caps) lee_series(si, base, Integrator::ArkodeErk, var, {1e-8}, cap);
-      }
+      for (double cap : caps) lee_series(si, base, Integrator::ArkodeErk, {1e-8}, cap);
     }
 
     // ---- penalty ----
-    // The headline takes the best penalty setting, so the search over it must not be
-    // coarse where runs are cheap: rigid scenes get k_p in half decades and four rtol.
-    std::vector<double> kps = o_.quick ? std::vector<double>{1e4, 1e7, 1e10}
+    // At its best: both laws (linear, Hunt–Crossley) on the implicit engines with the
+    // analytic Jacobian of the contact force (methods/penalty.cpp), c_p none, 10 % and 100 %
+    // of critical for a mass m on the spring k_p (critical damping makes a plastic-like
+    // impact, which the references' e = 0 is). A Hunt–Crossley row is the linear row's
+    // twin at the same operating point: its tangent stiffness n k s^(n−1) and damping
+    // k sⁿ α equal k_p and c_p at the reference's mean contact force F̄ (s = n F̄ / k_p,
+    // k = F̄ / sⁿ, α = c_p / F̄). Each run has its own budget and none is skipped: the cost
+    // is not monotone in k_p (on B2 a soft k_p = 1e3 bounces for longer than a stiff one).
+    // Rigid scenes get k_p in half decades (their runs are cheap: the headline takes the
+    // best setting, so the search must not be coarse).
+    std::vector<double> kps = o_.quick ? std::vector<double>{1e6, 1e8, 1e10}
                                        : std::vector<double>{1e3, 1e4, 1e5, 1e6,
                                                              1e7, 1e8, 1e9, 1e10};
     std::vector<double> rtols = o_.quick ? std::vector<double>{si.rigid ? 1e-8 : 1e-6}
@@ -240,33 +251,46 @@ class Bench {
       for (int i = 6; i <= 20; ++i) kps.push_back(std::stod(g3(std::pow(10.0, 0.5 * i))));  // 3.16e3 …
       rtols = {1e-6, 1e-7, 1e-8, 1e-9};
     }
-    for (double rtol : rtols) {
-      // c_p: none, 10 % and 100 % of critical for a mass m on the spring k_p (critical
-      // damping makes a plastic-like impact, which the references' e = 0 is).
-      // Each penalty run has its own budget and none is skipped: the cost is not monotone
-      // in k_p (on B2 a soft k_p = 1e3 bounces for longer than a stiff one takes).
-      for (int damped = 0; damped <= 2; ++damped) {
-        for (double kp : kps) {
-          BenchRow row;
-          row.scene = label;
-          row.method = "penalty";
-          row.engine = to_string(Integrator::CvodeBdf);
-          row.variant = damped == 0 ? "undamped" : damped == 1 ? "damped" : "critical";
-          row.tol = rtol;
-          row.kp = kp;
-          row.cp = (damped == 0 ? 0.0 : damped == 1 ? 0.1 : 1.0) * 2.0 *
-                   std::sqrt(kp * base.follower.mass);
-          Scene s = base;
-          s.contact.model = ContactModel::Penalty;
-          s.contact.penalty_law = PenaltyLaw::Linear;
-          s.contact.penalty_stiffness = kp;
-          s.contact.penalty_damping = row.cp;
-          s.solver.integrator = Integrator::CvodeBdf;
-          s.solver.rtol = rtol;
-          measure(si, s, row);
-        }
+    const std::vector<Integrator> pen_engines =
+        o_.quick ? std::vector<Integrator>{Integrator::CvodeBdf}
+                 : std::vector<Integrator>{Integrator::CvodeBdf, Integrator::ArkodeDirk};
+    const std::vector<int> dampings = o_.quick ? std::vector<int>{2} : std::vector<int>{0, 1, 2};
+    const double f_mean = si.ref_mean_force;
+    for (Integrator eng : pen_engines)
+      for (PenaltyLaw law : {PenaltyLaw::Linear, PenaltyLaw::HuntCrossley}) {
+        if (law == PenaltyLaw::HuntCrossley && !(f_mean > 0)) continue;
+        for (double rtol : rtols)
+          for (int damped : dampings)
+            for (double kp : kps) {
+              if (law == PenaltyLaw::HuntCrossley && damped == 0) continue;  // ≈ the linear law
+              BenchRow row;
+              row.scene = label;
+              row.method = "penalty";
+              row.engine = to_string(eng);
+              row.variant = std::string(law == PenaltyLaw::Linear ? "linear" : "hunt_crossley") + " " +
+                            (damped == 0 ? "undamped" : damped == 1 ? "damped" : "critical");
+              row.tol = rtol;
+              const double cp = (damped == 0 ? 0.0 : damped == 1 ? 0.1 : 1.0) * 2.0 *
+                                std::sqrt(kp * base.follower.mass);
+              Scene s = base;
+              s.contact.model = ContactModel::Penalty;
+              s.contact.penalty_law = law;
+              if (law == PenaltyLaw::Linear) {
+                row.kp = kp;
+                row.cp = cp;
+              } else {
+                const double n = s.contact.penalty_exponent;
+                const double s0 = n * f_mean / kp;
+                row.kp = std::stod(g3(f_mean / std::pow(s0, n)));
+                row.cp = std::stod(g3(cp / f_mean));
+              }
+              s.contact.penalty_stiffness = row.kp;
+              s.contact.penalty_damping = row.cp;
+              s.solver.integrator = eng;
+              s.solver.rtol = rtol;
+              measure(si, s, row);
+            }
       }
-    }
 
     // A baseline run (holonomic or event) of scene s: its row named by its model, engine
     // and rtol.
@@ -279,12 +303,18 @@ class Bench {
       row.tol = s.solver.rtol;
       measure(si, s, row);
     };
-    // ---- event-driven on every engine (elastic scenes, full sweep) ----
-    // The comparator of Lee on the same engine and tolerance (issue 14): stiff bars are
-    // where the engines differ.
-    if (!o_.quick && !si.rigid) {
-      for (Integrator eng : engines)
-        for (double rtol : {1e-6, 1e-8}) {
+    // ---- event-driven over tolerances ----
+    // The comparator of Lee at equal accuracy (on the same engine: stiff bars are where the
+    // engines differ). Quick: the scene's engine at two tolerances.
+    {
+      const std::vector<Integrator> ev_engines =
+          o_.quick ? std::vector<Integrator>{base.solver.integrator}
+                   : std::vector<Integrator>{Integrator::ArkodeErk, Integrator::ArkodeDirk,
+                                             Integrator::CvodeBdf};
+      const std::vector<double> ev_rtols = o_.quick ? std::vector<double>{1e-4, 1e-7}
+                                                    : std::vector<double>{1e-4, 1e-6, 1e-8};
+      for (Integrator eng : ev_engines)
+        for (double rtol : ev_rtols) {
           Scene s = base;
           s.contact.model = ContactModel::Event;
           s.solver.integrator = eng;
@@ -294,10 +324,10 @@ class Bench {
         }
     }
 
-    // ---- holonomic and event at the scene's default tolerance ----
-    for (ContactModel model : {ContactModel::Holonomic, ContactModel::Event}) {
+    // ---- holonomic at the scene's default tolerance ----
+    {
       Scene s = base;
-      s.contact.model = model;
+      s.contact.model = ContactModel::Holonomic;
       baseline(s);
     }
   }
@@ -335,11 +365,56 @@ const BenchRow* cheapest(const std::vector<BenchRow>& rows, const std::string& s
 
 std::string describe(const BenchRow& r) {
   std::string s = r.method + " " + r.engine;
-  if (r.method == "lee") s += " " + r.variant + " tol_u " + g3(r.tol);
+  if (r.method == "lee") s += " tol_u " + g3(r.tol);
   if (!std::isnan(r.max_step)) s += " max_step " + g3(r.max_step);
   if (r.method == "penalty")
-    s += " k_p " + g3(r.kp) + " c_p " + g3(r.cp) + " rtol " + g3(r.tol);
-  return s + " (" + g3(r.cpu_seconds) + " s, err_F " + g3(r.err_force) + ")";
+    s += " " + r.variant + " k_p " + g3(r.kp) + " c_p " + g3(r.cp) + " rtol " + g3(r.tol);
+  if (r.method == "event" || r.method == "holonomic") s += " rtol " + g3(r.tol);
+  return s + " (" + g3(r.cpu_seconds) + " s, err_F " + g3(r.err_force) + ", TV/TV_ref " +
+         g3(r.osc_index) + ")";
+}
+
+/// The goal of a headline (issue 36): Lee against the best penalty at equal accuracy, ≥ 50×
+/// on case A and ≥ 10× on the stiff bar; no goal elsewhere (NaN).
+double headline_goal(const std::string& scene, const std::string& versus) {
+  if (versus != "penalty") return kNaN;
+  if (scene == "A") return 50.0;
+  if (scene == "stiff") return 10.0;
+  return kNaN;
+}
+
+BenchHeadline headline(const std::vector<BenchRow>& rows, const std::string& scene,
+                       const std::string& versus) {
+  BenchHeadline h;
+  h.scene = scene;
+  h.versus = versus;
+  h.target = kHeadlineTarget;
+  h.goal = headline_goal(scene, versus);
+  const BenchRow* lee = cheapest(rows, scene, "lee", h.target);
+  const BenchRow* other = cheapest(rows, scene, versus, h.target);
+  if (lee) h.lee = describe(*lee);
+  if (other) h.other = describe(*other);
+  const std::string at = "at contact-force error ≤ " + g3(h.target);
+  if (!lee) {
+    h.verdict = "no Lee run reaches it";
+    h.text = versus + "/Lee CPU " + at + ": no Lee run reaches it";
+    return h;
+  }
+  if (!other) {
+    h.verdict = "no " + versus + " run reaches it";
+    h.text = versus + "/Lee CPU " + at + ": no " + versus + " run reaches it (cheapest Lee: " +
+             h.lee + ")";
+    return h;
+  }
+  h.ratio = other->cpu_seconds / lee->cpu_seconds;
+  if (std::isnan(h.goal))
+    h.verdict = "no goal";
+  else
+    h.verdict = h.ratio >= h.goal ? "goal met" : "goal not met";
+  h.text = versus + "/Lee CPU " + at + " = " + g3(h.ratio) +
+           (std::isnan(h.goal) ? std::string() : " (goal ≥ " + g3(h.goal) + ": " + h.verdict + ")") +
+           "; cheapest Lee: " + h.lee + "; cheapest " + versus + ": " + h.other;
+  return h;
 }
 
 }  // namespace
@@ -384,7 +459,7 @@ const std::vector<std::string>& bench_columns() {
   static const std::vector<std::string> c{
       "scene",     "method", "engine", "variant",  "tol",       "kp",          "cp",
       "cpu_seconds", "steps", "rhs_evals", "err_u", "err_force", "osc_index", "impulse_err",
-      "event_err", "max_step", "finished",  "note"};
+      "event_err", "max_step", "finished",  "note", "err_force_pointwise", "impact_speed_err"};
   return c;
 }
 
@@ -398,8 +473,18 @@ std::string bench_csv(const std::vector<BenchRow>& rows) {
          csv_num(r.cpu_seconds) + "," + std::to_string(r.steps) + "," +
          std::to_string(r.rhs_evals) + "," + csv_num(r.err_u) + "," + csv_num(r.err_force) +
          "," + csv_num(r.osc_index) + "," + csv_num(r.impulse_err) + "," +
-         csv_num(r.event_err) + "," + csv_num(r.max_step) + "," + (r.finished ? "1" : "0") + "," + csv_text(r.note) + "\n";
+         csv_num(r.event_err) + "," + csv_num(r.max_step) + "," + (r.finished ? "1" : "0") + "," + csv_text(r.note) + "," +
+         csv_num(r.err_force_pointwise) + "," + csv_num(r.impact_speed_err) + "\n";
   }
+  return s;
+}
+
+std::string bench_headlines_csv(const std::vector<BenchHeadline>& headlines) {
+  std::string s = "scene,versus,target,ratio,goal,verdict,lee,other\n";
+  for (const auto& h : headlines)
+    s += csv_text(h.scene) + "," + h.versus + "," + csv_num(h.target) + "," + csv_num(h.ratio) +
+         "," + csv_num(h.goal) + "," + csv_text(h.verdict) + "," + csv_text(h.lee) + "," +
+         csv_text(h.other) + "\n";
   return s;
 }
 
@@ -427,46 +512,27 @@ BenchResult run_bench(const BenchOptions& options) {
 
   BenchResult res;
   res.rows = b.rows_;
-  constexpr double kTarget = 1e-3;
   for (const auto& label : o.labels) {
-    const BenchRow* lee = cheapest(res.rows, label, "lee", kTarget);
-    const BenchRow* pen = cheapest(res.rows, label, "penalty", kTarget);
     std::string text;
-    double ratio = kNaN;
-    if (!lee) {
-      text = "no Lee run reaches a contact-force error of 1e-3";
-    } else if (!pen) {
-      text = "penalty cannot reach 1e-3 (no penalty run reaches a contact-force error of "
-             "1e-3); cheapest Lee run reaching it: " + describe(*lee);
-    } else {
-      ratio = pen->cpu_seconds / lee->cpu_seconds;
-      text = "at contact-force error ≤ 1e-3: penalty/Lee CPU = " + g3(ratio) +
-             "; cheapest Lee: " + describe(*lee) + "; cheapest penalty: " + describe(*pen);
+    for (const char* versus : {"penalty", "event"}) {
+      BenchHeadline h = headline(res.rows, label, versus);
+      text += (text.empty() ? "" : " ") + h.text + ".";
+      if (std::string(versus) == "penalty") res.headline_ratio.push_back(h.ratio);
+      res.headlines.push_back(std::move(h));
     }
-    if (o.quick && std::isfinite(ratio))
-      text += " [quick sweep: a coarse penalty search (3 k_p, one rtol); the full sweep's best "
-              "penalty setting can be cheaper]";
-    // Per engine: the cheapest Lee and event-driven runs at the same target.
-    std::string per;
-    for (Integrator eng : {Integrator::ArkodeErk, Integrator::ArkodeDirk, Integrator::CvodeBdf}) {
-      const std::string en = to_string(eng);
-      const BenchRow* l = cheapest(res.rows, label, "lee", kTarget, en);
-      const BenchRow* e = cheapest(res.rows, label, "event", kTarget, en);
-      if (!l && !e) continue;
-      per += (per.empty() ? "" : "; ") + en + ": lee " + (l ? g3(l->cpu_seconds) + " s" : std::string("—")) +
-             ", event " + (e ? g3(e->cpu_seconds) + " s" : std::string("—"));
-      if (l && e) per += " (lee/event " + g3(l->cpu_seconds / e->cpu_seconds) + ")";
-    }
-    if (!per.empty()) text += ". Cheapest at contact-force error ≤ 1e-3 per engine: " + per;
+    if (o.quick)
+      text += " [quick sweep: a coarse search (3 k_p, one rtol, one damping, cvode-bdf; Lee "
+              "at two tolerances); the full sweep's best settings can change the ratios]";
     res.headline_scene.push_back(label);
     res.headline_text.push_back(text);
-    res.headline_ratio.push_back(ratio);
   }
 
   // ---- files ----
   res.csv_path = join_path(o.out_dir, "work_precision.csv");
   res.md_path = join_path(o.out_dir, "work_precision.md");
+  res.headlines_path = join_path(o.out_dir, "headlines.csv");
   write_file_atomic(res.csv_path, bench_csv(res.rows));
+  write_file_atomic(res.headlines_path, bench_headlines_csv(res.headlines));
 
   std::ostringstream md;
   md << "# camdyn work–precision benchmark\n\n"
@@ -481,13 +547,22 @@ BenchResult run_bench(const BenchOptions& options) {
         "1 ms windows / largest window impulse; osc = total variation of F / that of the "
         "reference (on the grid); impulse_err = contact impulse per revolution, max "
         "relative error; event_err = separation and impact times, max |t − t_ref| to the "
-        "nearest event of the same kind. Chaotic scenes (elastic follower that separates) "
+        "nearest event of the same kind; err_F_pw = max |F − F_ref| / max F_ref pointwise "
+        "on the grid (every follower; an impact's jump shifted in time counts in full); "
+        "v_imp = impact speeds, max relative error at the reference's impacts; rhs = "
+        "right-hand-side evaluations. "
+        "Chaotic scenes (elastic follower that separates) "
         "are compared pointwise only over the first revolution. Penalty runs start in their "
         "own equilibrium (pressed into the cam by s₀ so that k_p s₀ carries the initial "
         "contact force).\n\n";
-  for (size_t i = 0; i < res.headline_scene.size(); ++i)
-    md << "**Headline, scene " << res.headline_scene[i] << ":** " << res.headline_text[i]
-       << "\n\n";
+  md << "## Headlines\n\nThe cheapest run of each method whose err_F ≤ 1e-3 (equal accuracy), "
+        "CPU over Lee's; goals: ≥ 50× against penalty on case A, ≥ 10× on the stiff bar.\n\n"
+     << "| scene | versus | CPU ratio | goal | verdict | cheapest Lee | cheapest other |\n"
+     << "|---|---|---|---|---|---|---|\n";
+  for (const auto& h : res.headlines)
+    md << "| " << h.scene << " | " << h.versus << " | " << g3(h.ratio) << " | " << g3(h.goal)
+       << " | " << h.verdict << " | " << h.lee << " | " << h.other << " |\n";
+  md << "\n";
   for (const auto& ri : b.ref_info_) {
     md << "## Scene " << ri.label << "\n\n"
        << "Output grid " << g3(ri.dt) << ". Reference: event, " << ri.engine << ", rtol "
@@ -496,15 +571,16 @@ BenchResult run_bench(const BenchOptions& options) {
        << (ri.chaotic ? "; chaotic: pointwise errors up to t = " + g3(ri.pointwise_until)
                       : std::string())
        << ". Its convergence: the `reference-check` row (one decade looser).\n\n";
-    md << "| method | engine | variant | tol | max_step | k_p | c_p | cpu s | steps | err_u | "
-          "err_F | osc | impulse_err | event_err | note |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    md << "| method | engine | variant | tol | max_step | k_p | c_p | cpu s | steps | rhs | err_u | "
+          "err_F | err_F_pw | osc | impulse_err | event_err | v_imp | note |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& r : res.rows) {
       if (r.scene != ri.label) continue;
       md << "| " << r.method << " | " << r.engine << " | " << r.variant << " | " << g3(r.tol)
          << " | " << g3(r.max_step) << " | " << g3(r.kp) << " | " << g3(r.cp) << " | " << g3(r.cpu_seconds) << " | "
-         << r.steps << " | " << g3(r.err_u) << " | " << g3(r.err_force) << " | "
-         << g3(r.osc_index) << " | " << g3(r.impulse_err) << " | " << g3(r.event_err) << " | "
+         << r.steps << " | " << r.rhs_evals << " | " << g3(r.err_u) << " | " << g3(r.err_force) << " | "
+         << g3(r.err_force_pointwise) << " | " << g3(r.osc_index) << " | " << g3(r.impulse_err)
+         << " | " << g3(r.event_err) << " | " << g3(r.impact_speed_err) << " | "
          << (r.finished ? "" : "**not finished** ") << r.note << " |\n";
     }
     md << "\n";

@@ -172,6 +172,12 @@ struct Comparison {
   double err_u = kNaN, err_force = kNaN, osc = kNaN, impulse_err = kNaN;
   double contact_frac = kNaN;
   double event_err = kNaN;
+  /// max |F − F_ref| / max |F_ref| pointwise on the grid up to the pointwise horizon,
+  /// whatever the follower (an impact's jump shifted in time counts in full).
+  double err_force_pointwise = kNaN;
+  /// Impact speeds: max over the reference's impacts (within the pointwise horizon) of |v − v_ref| / |v_ref| at the run's nearest impact; NaN: the reference has
+  /// none; 1 when the run has no impact.
+  double impact_speed_err = kNaN;
   long events = 0;  // separations and impacts within the pointwise horizon
 };
 
@@ -188,6 +194,7 @@ struct SceneInfo {
   size_t k_rev = 0;      // grid intervals per revolution (0: unknown)
   Grid ref;
   double ref_contact_frac = kNaN;
+  double ref_mean_force = kNaN;  // mean of the reference's contact force where it is > 0
   std::vector<ContactEvent> ref_events;  // separations and impacts up to k_point
   // Rigid follower: m ü = f0 − k u − c u̇ + F (for the momentum-balance impulse).
   double m = 0, k = 0, c = 0, f0 = 0;
@@ -253,6 +260,14 @@ inline Comparison compare(const SceneInfo& si, const Grid& g, const std::vector<
     }
     c.err_force = imax > 0 ? ei / imax : ei;
   }
+  {
+    double fmax = 0, ef = 0;
+    for (size_t k = 0; k <= kp; ++k) {
+      fmax = std::max(fmax, std::fabs(r.f[k]));
+      ef = std::max(ef, std::fabs(g.f[k] - r.f[k]));
+    }
+    c.err_force_pointwise = fmax > 0 ? ef / fmax : ef;
+  }
   const double tvr = total_variation(r.f, si.n);
   c.osc = tvr > 0 ? total_variation(g.f, si.n) / tvr : kNaN;
   // Impulse per revolution (or over the whole run when shorter than one revolution).
@@ -285,6 +300,20 @@ inline Comparison compare(const SceneInfo& si, const Grid& g, const std::vector<
       e = std::max(e, best);
     }
     c.event_err = e;
+    double es = kNaN;
+    for (const auto& re : si.ref_events) {
+      if (re.type != EventKind::Impact || re.impact_velocity == 0.0) continue;
+      double best = kNaN, dt_best = 0;
+      for (const auto& me : mine)
+        if (me.type == EventKind::Impact && (std::isnan(best) || std::fabs(me.t - re.t) < dt_best)) {
+          dt_best = std::fabs(me.t - re.t);
+          best = std::fabs(std::fabs(me.impact_velocity) - std::fabs(re.impact_velocity)) /
+                 std::fabs(re.impact_velocity);
+        }
+      if (std::isnan(best)) best = 1.0;
+      es = std::isnan(es) ? best : std::max(es, best);
+    }
+    c.impact_speed_err = es;
   }
   return c;
 }
@@ -295,6 +324,14 @@ inline double median(std::vector<double> v) {
   const size_t m = v.size() / 2;
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
+/// The reference run of `ref` (no budget, rows kept), from the cache directory `dir` when it
+/// holds one for the same scene and build, else run and (when `dir` is not empty) stored
+/// there. The key: the scene's TOML (to_toml) with the library version and the size and
+/// modification time of the running executable (any rebuild invalidates it). A cached run
+/// keeps what the comparison reads: rows (t, u_c, v_c, F, in_contact), events, finished,
+/// separations, cpu_seconds and message. `cached` (if given) says which it was.
+Run reference_run(const Scene& ref, const std::string& dir, bool* cached = nullptr);
+
 /// Fill `si` (grid, reference series, events, the rigid follower's constants) from the
 /// scene `base` (defaults resolved, run.t_end set) and its reference run `rr`, on the
 /// common grid `dt`. Returns false when the reference does not cover the grid.

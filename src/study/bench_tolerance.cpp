@@ -1,5 +1,5 @@
 // camdyn — tolerance sweep (bench_tolerance.hpp, issue 25).
-#include "camdyn/bench_tolerance.hpp"
+#include "study/bench_tolerance.hpp"
 
 #include <algorithm>
 #include <cmath>

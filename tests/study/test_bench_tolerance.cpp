@@ -12,8 +12,8 @@
 #include <sstream>
 #include <string>
 
-#include "camdyn/bench.hpp"
-#include "camdyn/bench_tolerance.hpp"
+#include "study/bench.hpp"
+#include "study/bench_tolerance.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/simulator.hpp"
 

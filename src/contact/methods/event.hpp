@@ -46,6 +46,12 @@ class EventMethod : public ContactRun {
   EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                const std::atomic<bool>* stop, int max_order = 0);
 
+  /// cvode-bdf's order limits for `sys`: `network_order` on a network; on a single
+  /// elastic follower BDF ≤ 2 (≤ 5 with stability-limit detection at rtol ≤ 1e-8): its
+  /// undamped fast modes sit on the imaginary axis, where BDF orders 3–5 are not
+  /// A-stable. Every method on cvode-bdf uses it (event, Lee in CVODE, penalty).
+  static void bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys);
+
  protected:
   void run_method() override;
   /// The time the next step may not pass apart from the cam's breakpoints (the event
@@ -62,10 +68,6 @@ class EventMethod : public ContactRun {
   double held_work(double ta, double tb);
   /// corr = P(y) − y: y put on the active set's g = 0, ġ = 0, M-orthogonally.
   void project(double t, const double* y, double* corr);
-
-  /// cvode-bdf's order limits for `sys`: `network_order` on a network; on a single
-  /// elastic follower BDF ≤ 2 (≤ 5 at rtol ≤ 1e-8).
-  static void bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys);
 
   OdeEngine* eng_;
   std::vector<int> set_;  // the active set the right-hand side uses

@@ -9,6 +9,7 @@
 
 #include "contact/contact_run.hpp"
 #include "contact/laws/penalty_law.hpp"
+#include "contact/methods/event.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -61,6 +62,9 @@ class PenaltyMethod final : public ContactRun {
         J.bottomLeftCorner(n_, n_) = dadq;
         J.bottomRightCorner(n_, n_) = dadv;
       };
+    // cvode-bdf's order as for the event method: an elastic bar's undamped fast modes sit
+    // on the imaginary axis, where BDF orders 3–5 are not A-stable (methods/event.cpp).
+    EventMethod::bdf_order(sc, *mech_, 0, sys);
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
     eng_ = engines_.back().get();
   }
