@@ -50,7 +50,6 @@ bool load_run(const std::string& path, Run& r) {
     int type = 0;
     if (!(f >> e.t >> type >> e.impact_velocity >> e.impulse)) return false;
     e.type = static_cast<EventKind>(type);
-    e.kind = to_string(e.type);
   }
   std::getline(f >> std::ws, r.sum.message);
   r.sum.termination = r.sum.finished ? Termination::Finished : Termination::Error;
