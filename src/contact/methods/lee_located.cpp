@@ -392,20 +392,13 @@ class LeeLocated final : public ContactRun {
       CamMotion m;  // a start on a breakpoint: the first step sees the segment after it
       if (one_sided_motion(cam_, drive_, break_angles_, t_, 1, &m)) brk_t_ = t_;
     }
-    std::string trial_error;  // the engine's error of the last failed trial since the last accepted step
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       if (cam_joint_impact()) slope_.setZero();  // closed contacts on a C0 joint of the cam
       const double t_next = stop_before(land ? next_output_time() : sc_.run.t_end);
       const bool relocating = h_try > 0.0;
       double hs = relocating ? h_try : fit_step(h, t_next);
       h_try = -1.0;
-      if (hs <= 1e-14 * std::max(1.0, std::abs(t_))) {
-        // Halved because the engine failed (a callback threw, e.g. a non-finite force): say why.
-        if (!trial_error.empty())
-          throw StepFailure(Termination::StepSizeUnderflow,
-                            StepSizeUnderflow(hs).what() + std::string("; the trials failed: ") + trial_error);
-        throw StepSizeUnderflow(hs);
-      }
+      if (hs <= 1e-14 * std::max(1.0, std::abs(t_))) throw StepSizeUnderflow(hs);
       const double t1 = (!relocating && hs == t_next - t_) ? t_next : t_ + hs;
       hs = t1 - t_;
       // The step's cam: the segment after a breakpoint it starts from, the one before a
@@ -423,10 +416,9 @@ class LeeLocated final : public ContactRun {
         ++sum_.rejected_steps;
         h = 0.5 * hs;
         continue;
-      } catch (const SundialsError& e) {
+      } catch (const SundialsError&) {
         // a trial the integrator cannot complete (a user's right-hand side that throws
         // under a trial force): the step is rejected and retried at half the size
-        trial_error = e.what();
         ++sum_.rejected_steps;
         ++sum_.iteration_failures;
         h = 0.5 * hs;
@@ -626,7 +618,6 @@ class LeeLocated final : public ContactRun {
       }
       dense_ = land ? nullptr : &sd_;
       after_step(hs, dE.work, P_prev, closing.empty() ? NAN : P_end, dE.dissipated);
-      trial_error.clear();
       dense_ = nullptr;
       if (!relocating) h = steps_.propose(hs, fac);
     }
