@@ -329,7 +329,7 @@ inline double median(std::vector<double> v) {
 /// there. The key: the scene's TOML (to_toml) with the library version and the size and
 /// modification time of the running executable (any rebuild invalidates it). A cached run
 /// keeps what the comparison reads: rows (t, u_c, v_c, F, in_contact), events, finished,
-/// separations, cpu_seconds and message. `cached` (if given) says which it was.
+/// separations, cpu_seconds, steps, rhs_evals and message. `cached` (if given) says which it was.
 Run reference_run(const Scene& ref, const std::string& dir, bool* cached = nullptr);
 
 /// Fill `si` (grid, reference series, events, the rigid follower's constants) from the
