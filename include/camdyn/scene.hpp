@@ -1,8 +1,8 @@
 // camdyn — scene description (what the user asks to simulate).
 //
 // A Scene is the resolved, validated content of a TOML scene file (docs/interface.md): every
-// field has a default and a comment with units and valid range. The model builder
-// (model.hpp) turns a Scene into the smallest model with exactly the effects it asks for.
+// field has a default and a comment with units and valid range. The mechanism builder
+// turns a Scene into the smallest mechanism with exactly the effects it asks for.
 #pragma once
 
 #include <cstddef>
