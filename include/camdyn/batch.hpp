@@ -52,7 +52,7 @@ std::vector<RunResult> simulate_batch(
     const std::function<void(std::size_t, const RunResult&)>& on_done = {},
     const std::atomic<bool>* stop = nullptr);
 
-/// A user follower (camdyn/follower_system.hpp) for many runs (issue 28): called once per
+/// A user follower (camdyn/follower_system.hpp) for many runs: called once per
 /// run, on the thread that makes the run, it returns the follower of that run. Return a new
 /// object per call unless the follower's const methods may be called from several threads
 /// at once (then one shared object is fine). A null result is an invalid run

@@ -1,4 +1,4 @@
-// camdyn — what cam designers do all day (issue 15): the contact force a rigid follower
+// camdyn — what cam designers do all day: the contact force a rigid follower
 // needs, the jump (separation) speed, and speed sweeps run in parallel.
 //
 //   Required contact force of a rigid follower riding the cam (docs/method.md §1–2):
@@ -87,8 +87,8 @@ std::string jump_speed_text(const JumpResult& r);
 /// @throws SceneError on bad input (speed table given, bad options, no bracket found).
 JumpResult jump_speed(const Scene& scene, const JumpOptions& options = JumpOptions{});
 
-/// The jump speed of `scene` with a user follower instead of the scene's (issue 28;
-/// camdyn/follower_system.hpp): bisection over cam.speed_rev_s on whether a run
+/// The jump speed of `scene` with a user follower instead of the scene's
+/// (camdyn/follower_system.hpp): bisection over cam.speed_rev_s on whether a run
 /// Simulator(scene, follower) to run.t_end separates its first cam contact (its first
 /// separation outside the lash take-up, as for a network), the bracket starting at 0.5×
 /// and 1.5× |cam.speed_rev_s| unless options give it; method "simulation". The runs are
@@ -137,7 +137,7 @@ struct SweepOptions {
   const std::atomic<bool>* stop = nullptr;
   /// Progress after every finished point: (done, total, failed, elapsed wall seconds).
   std::function<void(long, long, long, double)> progress;
-  /// A user follower for every point (issue 28; batch.hpp): called once per point on the
+  /// A user follower for every point (batch.hpp): called once per point on the
   /// worker's thread. Empty: the scene's follower. With a follower, keys of follower.*,
   /// [spring] and the network tables cannot be swept (the follower replaces them:
   /// SceneError "--key"), and sweep.meta.json's fingerprint includes the follower's name().

@@ -1,5 +1,5 @@
 // camdyn — Hertz line contact (two parallel cylinders, or a cylinder on a plane), for the
-// cam–follower contact stress (issue 24).
+// cam–follower contact stress.
 //
 //   Johnson, Contact Mechanics (1985), §4.3: a load P per unit length between cylinders of
 //   radii R₁, R₂ (R = ∞ a plane, R < 0 a concave surface) gives the half-width b and the

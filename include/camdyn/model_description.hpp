@@ -1,7 +1,5 @@
-// camdyn — what the model builder built (printed in Summary::FullReport, in summary.json).
-//
-// Kept apart from model.hpp so that simulator.hpp, which a user includes to run scenes,
-// does not pull Eigen (model.hpp's sparse matrices).
+// camdyn — what the mechanism builder built (printed in Summary::FullReport, in
+// summary.json): plain strings and numbers, no matrices.
 #pragma once
 
 #include <string>

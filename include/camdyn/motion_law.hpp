@@ -1,4 +1,4 @@
-// camdyn — cam motion laws (issue 24): the follower's lift as piecewise segments over the
+// camdyn — cam motion laws: the follower's lift as piecewise segments over the
 // cam angle, with exact derivatives up to the jerk.
 //
 //   A law is a list of segments that together span exactly 360°. Segment i starts at cam

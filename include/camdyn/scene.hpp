@@ -1,8 +1,8 @@
 // camdyn — scene description (what the user asks to simulate).
 //
 // A Scene is the resolved, validated content of a TOML scene file (docs/interface.md): every
-// field has a default and a comment with units and valid range. The model builder
-// (model.hpp) turns a Scene into the smallest model with exactly the effects it asks for.
+// field has a default and a comment with units and valid range. The mechanism builder
+// turns a Scene into the smallest mechanism with exactly the effects it asks for.
 #pragma once
 
 #include <cstddef>
@@ -85,8 +85,8 @@ struct CamSpec {
   /// Cam angle at t = 0 [deg], finite.
   double theta0_deg = 0.0;
 
-  // ---- motion laws, arc cams, follower geometry, designer results (issue 24;
-  // ---- docs/cam_laws.md). Defaults leave the three profiles above unchanged.
+  // ---- motion laws, arc cams, follower geometry, designer results
+  // ---- (docs/cam_laws.md). Defaults leave the three profiles above unchanged.
   /// law: the segments, "KIND DURATION_DEG [RISE] …; …" spanning 360° (MotionLaw::parse).
   std::string law;
   /// arc: nose radius r_n [length], 0 < r_n < base_radius.
@@ -174,22 +174,22 @@ struct SpringSpec {
 /// The contact law and its method.
 struct ContactSpec {
   ContactModel model = ContactModel::Lee;
+  /// Deprecated and ignored (one release): chose the retired classic step's equations.
+  /// Simulator warns when a scene sets "eq17".
   ErrorVariant error_variant = ErrorVariant::Eq12;
-  /// Lee's step (model "lee" only).
-  ///  located: one consistent trajectory per step (a two-parameter force shape solved for
-  ///           displacement and velocity compatibility together), separations and impacts
-  ///           located inside the step and landed on, error control that includes the
-  ///           contact force, dense output (the default).
-  ///  classic: the round-1 step (linear force ramp, levels one after the other, q from
-  ///           the displacement level and v from the velocity level, switches found to
-  ///           within a step); error_variant selects eqs. 12–13 or 17–18. Kept for
-  ///           comparison.
+  /// Lee's step: "located", one consistent trajectory per step (a two-parameter force
+  /// shape solved for displacement and velocity compatibility together), separations and
+  /// impacts located inside the step and landed on, error control that includes the
+  /// contact force, dense output. "classic" (the retired round-1 step) is refused by
+  /// Simulator with a SceneError naming the key.
   LeeStepKind lee_step = LeeStepKind::Located;
   /// Displacement-level tolerance [length], > 0. 0 in a scene file means "paper default":
   /// 1e-8 for a rigid follower, 1e-7 for an elastic one (resolved by resolve_defaults()).
   double tol_u = 0.0;
-  /// Velocity / acceleration tolerances; 0 means tol_u/Δt and tol_u/Δt² (per step).
+  /// Velocity tolerance; 0 means tol_u/Δt (per step).
   double tol_v = 0.0;
+  /// Deprecated and ignored (one release): the retired classic step's acceleration-level
+  /// tolerance. Simulator warns when a scene sets it.
   double tol_a = 0.0;
   /// Maximum iterations per level before the step is retried with Δt/2, 1 ≤ n ≤ 10⁴.
   int max_iterations = 60;
@@ -222,16 +222,8 @@ struct SolverSpec {
   double max_step = 0.0;
   /// First step [time], ≥ 0; 0 = automatic.
   double initial_step = 0.0;
-  /// Which step loop runs a rigid or elastic_bar follower (issue 23, docs/one_mechanism.md §6):
-  ///  mechanism: the follower built as a one-contact Mechanism (sparse M, C, K, contact row
-  ///             T = e₀ᵀ) and run by the network methods and engines — the one stack every
-  ///             method but Lee's classic step runs on;
-  ///  follower:  the single-follower stack (FollowerModel, src/legacy/engines.cpp), which runs
-  ///             Lee's classic step only, kept as the bench's comparison;
-  ///  auto:      the mechanism; the follower stack for contact.lee_step = "classic".
-  /// Networks and user followers always run on the mechanism stack.
-  /// @throws SceneError (from Simulator) for "follower" with any method but the classic
-  /// step, and for "mechanism" with the classic step.
+  /// Deprecated and ignored (one release): every follower runs as a mechanism. Simulator
+  /// warns when a scene sets "follower" or "mechanism".
   StackKind stack = StackKind::Auto;
 };
 
@@ -259,8 +251,8 @@ struct RunSpec {
   /// Relative tolerance of the period detector, 0 < tol ≤ 1: samples p revolutions apart
   /// are "equal" when |Δu_c| ≤ tol·lift and |Δv_c| ≤ tol·lift·|ω|.
   double period_tol = 1e-3;
-  /// true: history.csv gets the designer columns after the others (issue 24;
-  /// docs/cam_laws.md): pressure_angle_deg, radius_of_curvature, contact_stress, side_load,
+  /// true: history.csv gets the designer columns after the others
+  /// (docs/cam_laws.md): pressure_angle_deg, radius_of_curvature, contact_stress, side_load,
   /// cam_torque, cam_power, from the row's cam contact force. false: no such columns.
   bool designer_columns = false;
 };

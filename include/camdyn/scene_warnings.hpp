@@ -1,4 +1,4 @@
-// camdyn — warnings for a valid but implausible valve train (issue 28): not errors, the run
+// camdyn — warnings for a valid but implausible valve train: not errors, the run
 // goes on; the CLI prints each as "camdyn: warning: …" on stderr, Summary::warnings and
 // summary.json "warnings" keep them (docs/guide/valve_trains.md, "Plausibility warnings").
 #pragma once

@@ -101,7 +101,7 @@ enum class Termination {
 /// "solver_error", "invalid_scene", "error" (summary.json's "termination").
 const char* to_string(Termination v);
 
-/// Results of one contact of a network or user follower (issue 28; summary.json
+/// Results of one contact of a network or user follower (summary.json
 /// "contacts", FullReport, Python). Angles: cam degrees in [0, 360); NaN (null) when the
 /// thing did not happen. The lash take-up window: the output rows where the cam's lift X
 /// lies within 1 % of the lift of some cam contact's clearance (|X − c| ≤ 0.01·lift: the
@@ -118,14 +118,14 @@ struct ContactResult {
   double first_separation_theta_deg = NAN;
   double first_impact_theta_deg = NAN;
   long impacts = 0, separations = 0;
-  /// Cam contacts (issue 24): largest side load |F tan φ| on the follower's guide at the
+  /// Cam contacts: largest side load |F tan φ| on the follower's guide at the
   /// accepted step ends while closed (F the contact's axial force, φ the pressure angle;
   /// 0 for a flat face) and its cam angle; NaN for the other contacts and if never closed.
   double max_side_load = NAN;
   double max_side_load_theta_deg = NAN;
 };
 
-/// One phenomenon of the verdict (issue 28; docs/contacts.md "The verdict"), the first
+/// One phenomenon of the verdict (docs/contacts.md "The verdict"), the first
 /// occurrence of its kind on its contact. Kinds: "opening_liftoff" (lift-off on the
 /// opening flank), "nose_float" (float on the nose), "closing_bounce" (bounce on the
 /// closing flank), "seat_bounce" (a stop re-impacts after its closing impact),
@@ -165,7 +165,7 @@ struct Summary {
   long lin_setups = 0, lin_analyses = 0;
   /// Multistep engine (cvode-bdf): restarts, each losing CVODE's history and order
   /// (at the start, and where the state jumps or its equations change: impacts,
-  /// separations; Lee's trial steps on networks and the classic step: every trial).
+  /// separations; Lee's trial steps on networks: every trial).
   long engine_restarts = 0;
   long contact_iterations = 0;
   LevelStats level_u, level_v, level_a;  ///< Lee's three levels
@@ -186,11 +186,11 @@ struct Summary {
   /// than on the one-step engines (cvode-bdf on an elastic follower: BDF orders ≤ 2 damp
   /// the modes the step resolves). FullReport prints it as a warning line.
   std::string tolerance_warning;
-  /// Plausibility warnings of the scene as a valve train (issue 28; scene_warnings(): a
+  /// Plausibility warnings of the scene as a valve train (scene_warnings(): a
   /// lash larger than the lift, masses or stiffnesses far outside valve-train ranges, …):
   /// the run goes on. summary.json "warnings"; the CLI prints each on stderr.
   std::vector<std::string> warnings;
-  // ---- designer results (issue 15). Angles are cam angles in degrees in [0, 360);
+  // ---- designer results. Angles are cam angles in degrees in [0, 360);
   // ---- NaN (null in summary.json) when the thing did not happen.
   /// Smallest contact force while in contact (the margin; 0 if the follower separated:
   /// the force reaches zero at a separation). NaN if never in contact.
@@ -208,7 +208,7 @@ struct Summary {
   int period = 0;
   /// "period-1", "period-2", …, "not periodic", or "too few samples" (< 3 samples).
   std::string period_kind = "too few samples";
-  // ---- cam geometry results (issue 24; docs/cam_laws.md). NaN (null) where undefined.
+  // ---- cam geometry results (docs/cam_laws.md). NaN (null) where undefined.
   /// Largest |pressure angle| over the cam's revolution [deg] (0 for a flat face).
   double max_pressure_angle_deg = NAN;
   /// Smallest radius of curvature of the cam profile [length] (NaN: point follower).

@@ -4,7 +4,7 @@
 //   A follower held on the cam is struck there: the cam's velocity Ẋ_C jumps by
 //   Δs′·ω in no time, a velocity-level jump that only an impulse can follow. The methods
 //   land their steps on the joints (cam_stops.hpp) and resolve the jump there as an
-//   impact of the cam on the follower (RunContext::cam_joint_impact): the step that ends
+//   impact of the cam on the follower (ContactRun::cam_joint_impact): the step that ends
 //   on the joint sees the cam's motion before it (the left limit, in the drive's
 //   direction), the steps after it the motion after it (the right limit). The one-sided
 //   limits are evaluated η = 1e-7 rad inside the segment and corrected to first order

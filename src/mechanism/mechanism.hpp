@@ -155,7 +155,7 @@ class Mechanism final : public MechanicalSystem {
   bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
                              Eigen::MatrixXd& dadv) const override;
   /// A single follower: z_jᵀr₀ − (K z_j)ᵀ(q − q(0)) − (C z_j)ᵀv with z_j = M⁻¹T_jᵀ, O(n)
-  /// without a mass solve (as FollowerModel::contact_acceleration); networks: the default.
+  /// without a mass solve; networks: the default.
   void contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta) const override;
   double kinetic_energy(const double* v) const override;
   /// ½qᵀKq − f₀ᵀq (up to a constant).
@@ -164,7 +164,8 @@ class Mechanism final : public MechanicalSystem {
   bool dissipative() const override { return damped(); }
 
  private:
-  /// A rigid or elastic_bar follower: FollowerModel's M, C, K, f₀ and q(0), contact row e₀ᵀ.
+  /// A rigid or elastic_bar follower: its M, C, K, f₀ and q(0) (follower_matrices.hpp),
+  /// contact row e₀ᵀ (follower_builder.cpp).
   void build_follower(const Scene& scene);
   /// After M_, K_, C_, f0_, q0_: the LDLᵀ of M and the shifted force origin.
   void factor_and_origin();
