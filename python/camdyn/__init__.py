@@ -534,20 +534,29 @@ def jump_speed(scene: Any = None, options: Optional[Mapping[str, Any]] = None,
                follower: Any = None, **overrides: Any) -> Dict[str, Any]:
     """The jump (separation) speed at constant cam speed (``camdyn jump``).
 
-    Closed form for a rigid follower, bisection over simulations for an elastic one.
-    ``options`` may hold ``scan_points``, ``rel_tol``, ``lo_rev_s``, ``hi_rev_s``,
-    ``force_simulation`` (designer.hpp, JumpOptions).
+    Closed form for a rigid follower; otherwise the speed-range map (docs/guide/sweeps.md):
+    trial speeds on a grid, run in parallel, each for jump.settle_revolutions +
+    jump.judge_revolutions revolutions, every boundary where a phenomenon appears or
+    disappears bisected to ``rel_tol``. ``options`` may hold ``scan_points``, ``rel_tol``,
+    ``lo_rev_s``, ``hi_rev_s``, ``grid_points``, ``jobs``, ``force_simulation``
+    (designer.hpp, JumpOptions).
 
     ``follower``: a user-defined follower as for :func:`run` (a Python object or a C++
-    ``FollowerSystem``); it replaces the scene's (never ignored): bisection over
-    simulations on whether its first cam contact separates, the bracket from 0.5× and 1.5×
-    the scene's speed unless ``options`` give it; the runs are made one after the other.
+    ``FollowerSystem``); it replaces the scene's (never ignored): the map of its verdict,
+    the range from 0.5× and 1.5× the scene's speed unless ``options`` give it; a Python
+    follower's trials run one after the other (``jobs`` = 1).
     A mapping is the ``follower.*`` override, as for :func:`run`.
 
     Returns:
-        dict with ``jump_speed_rev_s`` (+inf if it never separates), ``method``
-        ("closed-form" | "simulation"), ``theta_deg``, ``lo_rev_s``, ``hi_rev_s``,
-        ``simulations``.
+        dict with ``jump_speed_rev_s`` (the lowest separation speed; +inf if it never
+        separates), ``method`` ("closed-form" | "simulation"), ``theta_deg``,
+        ``lo_rev_s``, ``hi_rev_s``, ``simulations``, ``phenomenon``, ``phenomenon_text``;
+        simulation also ``bands`` (dicts: ``kind``, ``contact``, ``theta_deg``,
+        ``from_out_rev_s``, ``from_in_rev_s``, ``to_in_rev_s``, ``to_out_rev_s``; NaN for
+        an end outside the range), ``trials`` (``speed_rev_s``, ``finished``, ``kinds``,
+        ``text``), ``monotone``, ``monotone_text``, ``grid_simulations``,
+        ``failed_simulations``, ``range_lo_rev_s``, ``range_hi_rev_s``,
+        ``grid_spacing_rev_s``, ``text``.
     """
     if isinstance(follower, Mapping):
         overrides = {**overrides, "follower": follower}
