@@ -276,6 +276,11 @@ struct Scene {
   /// [[contacts]]); empty for the other kinds (follower.* bar keys and [spring] are then
   /// unused, [contact] gives the method and the contacts' default restitution and penalty).
   NetworkSpec network;
+  /// 60 (camshaft rpm) or 120 (engine rpm of a four-stroke) when the scene gave its speed as
+  /// cam.speed_rpm with cam.rpm_of: the unit its jump map and sweeps also speak
+  /// (`sweep --key cam.speed_rpm`); 0 when it gave rev/s. Not a key: set when cam.speed_rpm
+  /// is read (a file or --set), kept by later overrides.
+  double rpm_per_rev_s = 0;
   /// Where the scene came from (file path or "<built-in>"), for error messages.
   std::string source = "<built-in>";
 };

@@ -53,6 +53,7 @@ __all__ = [
     "resolved_scene",
     "jump_speed",
     "cam_motion",
+    "order_spectrum",
     "initial_state_on_cam",
     "run_batch",
     "sweep",
@@ -563,6 +564,24 @@ def jump_speed(scene: Any = None, options: Optional[Mapping[str, Any]] = None,
         follower = None
     spec = None if follower is None else _follower_spec(follower)
     return _camdyn.jump_speed(*_scene_spec(scene, overrides), dict(options or {}), spec)
+
+
+def order_spectrum(theta: Any, y: Any, revolutions: int = 0, samples_per_revolution: int = 1024,
+                   max_order: float = 64.0) -> Dict[str, Any]:
+    """Order spectrum of samples ``y`` against the cam angle ``theta`` [rad] (a history's
+    ``theta`` column and any other), as ``camdyn spectrum`` (camdyn/spectrum.hpp): the
+    record resampled uniformly in cam angle over the last ``revolutions`` complete
+    revolutions (0: all), its DFT in cam orders.
+
+    Returns:
+        dict with ``order``, ``amplitude`` (the mean at order 0, else the single-sided
+        amplitude), ``phase_deg``, ``revolutions``.
+
+    Raises:
+        SceneError: a non-monotone ``theta``, sizes that differ, less than one revolution.
+    """
+    return _camdyn.order_spectrum([float(v) for v in theta], [float(v) for v in y], int(revolutions),
+                                  int(samples_per_revolution), float(max_order))
 
 
 def cam_motion(scene: Any, t: Any, lift: bool = False, **overrides: Any) -> Tuple[Any, Any, Any]:

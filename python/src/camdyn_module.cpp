@@ -41,6 +41,7 @@
 #include "camdyn/cam.hpp"
 #include "camdyn/designer.hpp"
 #include "camdyn/follower_system.hpp"
+#include "camdyn/spectrum.hpp"
 #include "camdyn/initial_state.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
@@ -764,6 +765,24 @@ PYBIND11_MODULE(_camdyn, m) {
   m.def("jump_speed", &jump, py::arg("kind"), py::arg("text"), py::arg("source"),
         py::arg("overrides"), py::arg("options"), py::arg("follower") = py::none());
   m.def("run_batch", &batch, py::arg("specs"), py::arg("threads"));
+  m.def(
+      "order_spectrum",
+      [](const std::vector<double>& theta, const std::vector<double>& y, int revolutions, int samples,
+         double max_order) {
+        SpectrumOptions o;
+        o.revolutions = revolutions;
+        o.samples_per_revolution = samples;
+        o.max_order = max_order;
+        const OrderSpectrum s = order_spectrum(theta, y, o);
+        py::dict d;
+        d["order"] = s.order;
+        d["amplitude"] = s.amplitude;
+        d["phase_deg"] = s.phase_deg;
+        d["revolutions"] = s.revolutions;
+        return d;
+      },
+      py::arg("theta"), py::arg("y"), py::arg("revolutions") = 0, py::arg("samples_per_revolution") = 1024,
+      py::arg("max_order") = 64.0);
   m.def("cam_motion", &cam_motion, py::arg("kind"), py::arg("text"), py::arg("source"),
         py::arg("overrides"), py::arg("t"), py::arg("lift") = false);
   m.def("initial_state_on_cam", &on_cam, py::arg("kind"), py::arg("text"), py::arg("source"),

@@ -68,6 +68,9 @@ int cmd_jump(const JumpOpts& o) {
                   ",\n  \"phenomenon\": " + json_string(r.phenomenon) +
                   ",\n  \"phenomenon_text\": " + json_string(r.phenomenon_text) +
                   ",\n  \"jump_speed_text\": " + json_string(jump_speed_text(r));
+  if (sc.rpm_per_rev_s > 0)  // the scene speaks rpm (cam.speed_rpm, cam.rpm_of)
+    j += ",\n  \"rpm_per_rev_s\": " + json_number(sc.rpm_per_rev_s) + ",\n  \"jump_speed_rpm\": " +
+         json_number(r.jump_speed_rev_s * sc.rpm_per_rev_s);
   if (sim) {
     j += ",\n  \"lo_rev_s\": " + json_number(r.lo_rev_s) + ",\n  \"hi_rev_s\": " +
          json_number(r.hi_rev_s) + ",\n  \"bracket_width_rev_s\": " +
@@ -96,6 +99,11 @@ int cmd_jump(const JumpOpts& o) {
     std::fprintf(stderr, "camdyn: cannot write '%s': %s\n", path.c_str(), e.what());
     rc = kExitFailed;
   }
+  const std::string rpm_text =
+      sc.rpm_per_rev_s > 0 && std::isfinite(r.jump_speed_rev_s)
+          ? " = " + fmt_g(r.jump_speed_rev_s * sc.rpm_per_rev_s, 6) +
+                (sc.rpm_per_rev_s == 120 ? " engine rpm" : " camshaft rpm")
+          : std::string();
   if (!o.quiet) {
     if (sim) {
       std::printf("%s: speed-range map over [%s, %s] rev/s: %d trials (%d on the grid, spacing %s rev/s), "
@@ -103,14 +111,14 @@ int cmd_jump(const JumpOpts& o) {
                   sc.title.c_str(), fmt_g(r.range_lo_rev_s, 7).c_str(), fmt_g(r.range_hi_rev_s, 7).c_str(),
                   r.simulations, r.grid_simulations, fmt_g(r.grid_spacing_rev_s, 4).c_str(),
                   sc.jump.settle_revolutions, sc.jump.judge_revolutions);
-      std::printf("%s", speed_map_text(r).c_str());
-      std::printf("jump speed: %s\nphenomenon: %s (%s)", jump_speed_text(r).c_str(), r.phenomenon.c_str(),
-                  r.phenomenon_text.c_str());
+      std::printf("%s", speed_map_text(r, sc.rpm_per_rev_s).c_str());
+      std::printf("jump speed: %s%s\nphenomenon: %s (%s)", jump_speed_text(r).c_str(), rpm_text.c_str(),
+                  r.phenomenon.c_str(), r.phenomenon_text.c_str());
     } else {
       std::printf("%s: %s, margin reaches zero at cam angle %s deg", sc.title.c_str(), r.method.c_str(),
                   fmt_g(r.theta_deg, 10).c_str());
-      std::printf("\njump speed: %s\nphenomenon: %s (%s)", jump_speed_text(r).c_str(), r.phenomenon.c_str(),
-                  r.phenomenon_text.c_str());
+      std::printf("\njump speed: %s%s\nphenomenon: %s (%s)", jump_speed_text(r).c_str(), rpm_text.c_str(),
+                  r.phenomenon.c_str(), r.phenomenon_text.c_str());
     }
     std::printf("\noutput: %s\n", path.c_str());
   }

@@ -119,6 +119,7 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
     throw SceneError(e.file(), e.line(), it->second, e.value(), e.rule());
   }
   out.source = scene.source;
+  if (out.rpm_per_rev_s == 0) out.rpm_per_rev_s = scene.rpm_per_rev_s;  // the scene's speed unit
   scene = std::move(out);
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "camdyn/designer.hpp"
+#include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/simulator.hpp"
 #include "mechanism/mechanism.hpp"
@@ -187,3 +188,46 @@ TEST_P(SpeedMapOhc, LiftOffFromAbout58p6WhateverTheRange) {
 INSTANTIATE_TEST_SUITE_P(Long, SpeedMapOhc,
                          ::testing::Values(std::make_pair(55.0, 60.0), std::make_pair(40.0, 80.0),
                                            std::make_pair(0.0, 0.0)));
+
+// A scene in engine rpm (cam.speed_rpm, cam.rpm_of = "engine") sweeps over cam.speed_rpm:
+// each point runs at rpm/120 rev/s, checked against runs made directly at that speed.
+TEST(SweepInRpm, EngineRpmKeyRunsAtRpmOver120) {
+  Scene s = parse_scene(R"(
+[cam]
+profile = "circle"
+eccentricity = 0.5
+radius = 2
+speed_rpm = 1200
+rpm_of = "engine"
+[follower]
+kind = "rigid"
+mass = 1
+[spring]
+stiffness = 500
+precompression = 7
+[contact]
+model = "event"
+[run]
+t_end = 0.5
+output_dt = 1e-3
+)",
+                        "rpm.toml");
+  EXPECT_EQ(s.rpm_per_rev_s, 120.0);
+  EXPECT_DOUBLE_EQ(s.cam.speed_rev_s, 10.0);
+  apply_override(s, "run.t_end=0.4");
+  EXPECT_EQ(s.rpm_per_rev_s, 120.0);  // kept by an override
+  SweepOptions o;
+  o.axes.push_back(make_sweep_axis(s, "cam.speed_rpm", 1200, 2400, NAN, 2, false));
+  const SweepPlan plan = plan_sweep(s, o);
+  for (long i = 0; i < 2; ++i) {
+    const std::string block = run_sweep_point(plan, i, false, 0, nullptr);
+    Scene d = s;
+    d.cam.speed_rev_s = plan.values(i)[0] / 120.0;
+    const Summary r = Simulator(d).run();
+    const std::string want = format_double(r.max_contact_force);
+    EXPECT_NE(block.find("," + want + ","), std::string::npos) << block << " wants " << want;
+  }
+  // a scene in rev/s refuses the key, naming what to do
+  Scene t = parse_scene("[cam]\nprofile = \"circle\"\nspeed_rev_s = 10\n", "revs.toml");
+  EXPECT_THROW(check_sweep_key(t, "cam.speed_rpm"), SceneError);
+}
