@@ -10,6 +10,7 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
@@ -38,42 +39,105 @@ struct JumpOptions {
   /// Closed form (rigid follower): cam angles of the scan before the local refinement
   /// (golden section to 1e-12 rad) [7200], ≥ 16.
   int scan_points = 7200;
-  /// Simulation (elastic follower): relative width of the final bracket [1e-4],
-  /// 1e-12 ≤ rel_tol ≤ 0.5. The result is the bracket's midpoint.
-  double rel_tol = 1e-4;
-  /// Simulation: initial bracket [rev/s]; 0 = automatic [0, 0]: the rigid-body closed
-  /// form (total mass) × 0.5 and × 1.5, widened (lower bound halved, upper doubled, up to
-  /// 12 times each) until the lower speed keeps contact and the upper one separates.
+  /// Simulation (the speed-range map): relative width [1e-3] to which every boundary of
+  /// the map (a speed where a phenomenon appears or disappears) is bisected,
+  /// 1e-12 ≤ rel_tol ≤ 0.5. The lowest separation speed is its bracket's midpoint.
+  double rel_tol = 1e-3;
+  /// Simulation: the speed range of the map [rev/s]; 0 = automatic [0, 0]: the rigid-body
+  /// closed form (total mass; a network or user follower: |cam.speed_rev_s|) × 0.5 and
+  /// × 1.5; an automatic upper end is doubled (up to 6 times, each new range scanned on the
+  /// same number of points) while nothing separates, an automatic lower end halved (up to
+  /// 6 times) while the lowest speed already separates.
   double lo_rev_s = 0.0, hi_rev_s = 0.0;
+  /// Simulation: trial speeds of the map's first scan, equally spaced over [lo, hi] [40],
+  /// 2 ≤ grid_points ≤ 100000. A band narrower than the spacing can fall between two
+  /// trial speeds unseen.
+  int grid_points = 40;
+  /// Simulation: worker threads for the trials (a round of the map runs its speeds in
+  /// parallel); ≤ 0: all cores [0].
+  int jobs = 0;
   /// Simulation: force "simulation" also for a rigid follower [false].
   bool force_simulation = false;
-  /// Simulation: called after each run with (speed, separated).
+  /// Simulation: called after each trial with (speed, separated); calls are serialised
+  /// (made from the worker threads under a lock).
   std::function<void(double, bool)> log;
   /// @throws SceneError naming the field, its value and the rule.
   void validate() const;
 };
 
+/// One interval of trial speeds where a phenomenon occurs (the speed-range map). Speeds
+/// carry the sign of cam.speed_rev_s; "lower"/"upper" are in |speed|.
+struct SpeedBand {
+  /// The verdict kind: "opening_liftoff", "nose_float", "closing_bounce", "seat_bounce".
+  std::string kind;
+  /// Lower end bracketed by [from_out, from_in]: from_out without the phenomenon, from_in
+  /// with it. from_out NaN: it occurs at the lowest trial speed (the band may reach lower).
+  double from_out = NAN, from_in = NAN;
+  /// Upper end bracketed by [to_in, to_out]: to_in with it, to_out without. to_out NaN: it
+  /// occurs up to the highest trial speed (the band may reach higher).
+  double to_in = NAN, to_out = NAN;
+  /// The contact and cam angle [deg] of its first occurrence at from_in.
+  std::string contact;
+  double theta_deg = NAN;
+};
+
+/// One trial speed of the map.
+struct SpeedTrial {
+  double speed_rev_s = 0;
+  bool finished = false;
+  /// The verdict kinds of the judged revolutions (empty: no separation), in the order
+  /// opening_liftoff, nose_float, closing_bounce, seat_bounce.
+  std::vector<std::string> kinds;
+  /// The judged revolutions' verdict in words, or the failure's message.
+  std::string text;
+};
+
 struct JumpResult {
   /// The jump speed [rev/s], with the sign of cam.speed_rev_s (+ if 0); +inf if the
-  /// follower never separates at constant speed (no cam angle with F_req reaching 0).
+  /// follower never separates (closed form: no cam angle with F_req reaching 0;
+  /// simulation: no trial speed departs). Simulation: the lowest separation speed of the
+  /// map, the lowest speed where the cam chain departs (opening_liftoff, nose_float or
+  /// closing_bounce; a seat bounce alone does not count).
   double jump_speed_rev_s = 0;
-  /// "closed-form" (rigid follower) or "simulation" (bisection on "separations > 0").
+  /// "closed-form" (rigid follower) or "simulation" (the speed-range map).
   std::string method;
   /// Cam angle [deg, in [0, 360)] where the margin min_θ F_req first reaches zero
-  /// (closed form), or of the first separation just above the jump speed (simulation).
+  /// (closed form), or of the first departure at hi_rev_s (simulation).
   double theta_deg = 0;
-  /// Simulation: final bracket [rev/s] (lo keeps contact, hi separates) and runs made.
+  /// Simulation: the bracket of the lowest separation speed [rev/s] (lo: no departure in
+  /// the judged revolutions, hi: one), and the trials run in all.
   double lo_rev_s = 0, hi_rev_s = 0;
   int simulations = 0;
   /// What the follower does at the jump speed, as a verdict kind (VerdictItem::kind;
   /// docs/contacts.md "The verdict"): closed form — the cam region of theta_deg
-  /// ("opening_liftoff", "nose_float", "closing_bounce"); simulation — the first phenomenon
-  /// of the run at the upper bracket speed other than a seat bounce (else its first item).
+  /// ("opening_liftoff", "nose_float", "closing_bounce"); simulation — the first departure
+  /// of the judged revolutions at hi_rev_s.
   std::string phenomenon;
-  /// Simulation: the verdict of the run at the upper bracket speed (Summary::verdict_text);
-  /// closed form: the phenomenon in words with its angle.
+  /// Simulation: the verdict of the judged revolutions at hi_rev_s; closed form: the
+  /// phenomenon in words with its angle.
   std::string phenomenon_text;
+  // ---- the speed-range map (simulation only)
+  /// Every band of every phenomenon, by kind (the order above), then by speed.
+  std::vector<SpeedBand> bands;
+  /// Every trial, by |speed|.
+  std::vector<SpeedTrial> trials;
+  /// The range scanned [rev/s] (signed as the speeds) and its grids' largest spacing.
+  double range_lo_rev_s = NAN, range_hi_rev_s = NAN, grid_spacing_rev_s = NAN;
+  /// Trials on the grid (the rest refine the boundaries).
+  int grid_simulations = 0;
+  /// false when the departure of the cam chain is not monotone in speed: a trial speed
+  /// keeps contact above one that departs (a bisection on "it separates" can then miss
+  /// the lowest separation speed); monotone_text says where.
+  bool monotone = true;
+  std::string monotone_text;
+  /// Trials that failed (left out of the bands; SpeedTrial::text has the message).
+  int failed_simulations = 0;
 };
+
+/// The map in words: the lowest separation speed, then every band ("nose_float: from
+/// 74.6 (bracket [74.59, 74.61]) to above 120 rev/s"), the monotonicity note. `rpm_per_rev_s`
+/// > 0 adds rpm (60: camshaft rpm, 120: engine rpm of a four-stroke).
+std::string speed_map_text(const JumpResult& r, double rpm_per_rev_s = 0);
 
 /// The jump speed in words with only the digits its bracket supports: simulation —
 /// "24.99 rev/s, bracket [24.987, 24.990] rev/s, width 0.0025 rev/s" (the midpoint rounded
@@ -83,16 +147,17 @@ struct JumpResult {
 std::string jump_speed_text(const JumpResult& r);
 
 /// The jump speed of `scene` at constant cam speed: closed form for a rigid follower,
-/// else bisection over cam.speed_rev_s on whether a run to run.t_end separates.
-/// @throws SceneError on bad input (speed table given, bad options, no bracket found).
+/// else the speed-range map: trial speeds on a grid over [lo, hi] run in parallel
+/// (jump.settle_revolutions then jump.judge_revolutions revolutions each at its own
+/// speed), then every boundary where a phenomenon of the judged revolutions' verdict
+/// appears or disappears bisected to rel_tol (the midpoints of a round run in parallel).
+/// @throws SceneError on bad input (speed table given, bad options).
 JumpResult jump_speed(const Scene& scene, const JumpOptions& options = JumpOptions{});
 
-/// The jump speed of `scene` with a user follower instead of the scene's
-/// (camdyn/follower_system.hpp): bisection over cam.speed_rev_s on whether a run
-/// Simulator(scene, follower) to run.t_end separates its first cam contact (its first
-/// separation outside the lash take-up, as for a network), the bracket starting at 0.5×
-/// and 1.5× |cam.speed_rev_s| unless options give it; method "simulation". The runs are
-/// made one after the other on the calling thread.
+/// The jump speed of `scene` with a user follower instead of the scene's (camdyn/follower_system.hpp): the speed-range map above with Simulator(scene,
+/// follower) trials, the range starting at 0.5× and 1.5× |cam.speed_rev_s| unless options
+/// give it; method "simulation". The follower must be safe to share between threads
+/// (its methods const and free of shared mutable state), else set options.jobs = 1.
 /// @throws SceneError as above, and (file "jump_speed", key "follower") for a null follower.
 JumpResult jump_speed(const Scene& scene, std::shared_ptr<const FollowerSystem> follower,
                       const JumpOptions& options = JumpOptions{});

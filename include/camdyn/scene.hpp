@@ -257,6 +257,17 @@ struct RunSpec {
   bool designer_columns = false;
 };
 
+/// How the speed-range map (`camdyn jump`, jump_speed(); docs/guide/sweeps.md) judges one
+/// trial speed v: it runs settle_revolutions + judge_revolutions camshaft revolutions at v
+/// (t_end = that count / |v|, whatever run.t_end says) and judges the events of the last
+/// judge_revolutions only.
+struct JumpSpec {
+  /// Revolutions run before the judged ones (the start's transient), 0 ≤ n ≤ 10000 [1].
+  long settle_revolutions = 1;
+  /// Revolutions whose events are judged, 1 ≤ n ≤ 10000 [2].
+  long judge_revolutions = 2;
+};
+
 struct Scene {
   std::string title = "camdyn scene";
   CamSpec cam;
@@ -265,10 +276,16 @@ struct Scene {
   ContactSpec contact;
   SolverSpec solver;
   RunSpec run;
+  JumpSpec jump;
   /// follower.kind = "network": the nodes, elements and contacts ([[nodes]], [[elements]],
   /// [[contacts]]); empty for the other kinds (follower.* bar keys and [spring] are then
   /// unused, [contact] gives the method and the contacts' default restitution and penalty).
   NetworkSpec network;
+  /// 60 (camshaft rpm) or 120 (engine rpm of a four-stroke) when the scene gave its speed as
+  /// cam.speed_rpm with cam.rpm_of: the unit its jump map and sweeps also speak
+  /// (`sweep --key cam.speed_rpm`); 0 when it gave rev/s. Not a key: set when cam.speed_rpm
+  /// is read (a file or --set), kept by later overrides.
+  double rpm_per_rev_s = 0;
   /// Where the scene came from (file path or "<built-in>"), for error messages.
   std::string source = "<built-in>";
 };
@@ -398,6 +415,7 @@ bool operator==(const SpringSpec& a, const SpringSpec& b);
 bool operator==(const ContactSpec& a, const ContactSpec& b);
 bool operator==(const SolverSpec& a, const SolverSpec& b);
 bool operator==(const RunSpec& a, const RunSpec& b);
+bool operator==(const JumpSpec& a, const JumpSpec& b);
 bool operator==(const Scene& a, const Scene& b);
 bool operator!=(const Scene& a, const Scene& b);
 

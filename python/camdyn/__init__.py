@@ -53,6 +53,7 @@ __all__ = [
     "resolved_scene",
     "jump_speed",
     "cam_motion",
+    "order_spectrum",
     "initial_state_on_cam",
     "run_batch",
     "sweep",
@@ -575,26 +576,53 @@ def jump_speed(scene: Any = None, options: Optional[Mapping[str, Any]] = None,
                follower: Any = None, **overrides: Any) -> Dict[str, Any]:
     """The jump (separation) speed at constant cam speed (``camdyn jump``).
 
-    Closed form for a rigid follower, bisection over simulations for an elastic one.
-    ``options`` may hold ``scan_points``, ``rel_tol``, ``lo_rev_s``, ``hi_rev_s``,
-    ``force_simulation`` (designer.hpp, JumpOptions).
+    Closed form for a rigid follower; otherwise the speed-range map (docs/guide/sweeps.md):
+    trial speeds on a grid, run in parallel, each for jump.settle_revolutions +
+    jump.judge_revolutions revolutions, every boundary where a phenomenon appears or
+    disappears bisected to ``rel_tol``. ``options`` may hold ``scan_points``, ``rel_tol``,
+    ``lo_rev_s``, ``hi_rev_s``, ``grid_points``, ``jobs``, ``force_simulation``
+    (designer.hpp, JumpOptions).
 
     ``follower``: a user-defined follower as for :func:`run` (a Python object or a C++
-    ``FollowerSystem``); it replaces the scene's (never ignored): bisection over
-    simulations on whether its first cam contact separates, the bracket from 0.5× and 1.5×
-    the scene's speed unless ``options`` give it; the runs are made one after the other.
+    ``FollowerSystem``); it replaces the scene's (never ignored): the map of its verdict,
+    the range from 0.5× and 1.5× the scene's speed unless ``options`` give it; a Python
+    follower's trials run one after the other (``jobs`` = 1).
     A mapping is the ``follower.*`` override, as for :func:`run`.
 
     Returns:
-        dict with ``jump_speed_rev_s`` (+inf if it never separates), ``method``
-        ("closed-form" | "simulation"), ``theta_deg``, ``lo_rev_s``, ``hi_rev_s``,
-        ``simulations``.
+        dict with ``jump_speed_rev_s`` (the lowest separation speed; +inf if it never
+        separates), ``method`` ("closed-form" | "simulation"), ``theta_deg``,
+        ``lo_rev_s``, ``hi_rev_s``, ``simulations``, ``phenomenon``, ``phenomenon_text``;
+        simulation also ``bands`` (dicts: ``kind``, ``contact``, ``theta_deg``,
+        ``from_out_rev_s``, ``from_in_rev_s``, ``to_in_rev_s``, ``to_out_rev_s``; NaN for
+        an end outside the range), ``trials`` (``speed_rev_s``, ``finished``, ``kinds``,
+        ``text``), ``monotone``, ``monotone_text``, ``grid_simulations``,
+        ``failed_simulations``, ``range_lo_rev_s``, ``range_hi_rev_s``,
+        ``grid_spacing_rev_s``, ``text``.
     """
     if isinstance(follower, Mapping):
         overrides = {**overrides, "follower": follower}
         follower = None
     spec = None if follower is None else _follower_spec(follower)
     return _camdyn.jump_speed(*_scene_spec(scene, overrides), dict(options or {}), spec)
+
+
+def order_spectrum(theta: Any, y: Any, revolutions: int = 0, samples_per_revolution: int = 1024,
+                   max_order: float = 64.0) -> Dict[str, Any]:
+    """Order spectrum of samples ``y`` against the cam angle ``theta`` [rad] (a history's
+    ``theta`` column and any other), as ``camdyn spectrum`` (camdyn/spectrum.hpp): the
+    record resampled uniformly in cam angle over the last ``revolutions`` complete
+    revolutions (0: all), its DFT in cam orders.
+
+    Returns:
+        dict with ``order``, ``amplitude`` (the mean at order 0, else the single-sided
+        amplitude), ``phase_deg``, ``revolutions``.
+
+    Raises:
+        SceneError: a non-monotone ``theta``, sizes that differ, less than one revolution.
+    """
+    return _camdyn.order_spectrum([float(v) for v in theta], [float(v) for v in y], int(revolutions),
+                                  int(samples_per_revolution), float(max_order))
 
 
 def cam_motion(scene: Any, t: Any, lift: bool = False, **overrides: Any) -> Tuple[Any, Any, Any]:

@@ -44,6 +44,7 @@
 #include "camdyn/cam.hpp"
 #include "camdyn/designer.hpp"
 #include "camdyn/follower_system.hpp"
+#include "camdyn/spectrum.hpp"
 #include "camdyn/initial_state.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
@@ -371,11 +372,14 @@ py::dict jump(const std::string& kind, const std::string& text, const std::strin
     else if (k == "lo_rev_s") jo.lo_rev_s = item.second.cast<double>();
     else if (k == "hi_rev_s") jo.hi_rev_s = item.second.cast<double>();
     else if (k == "force_simulation") jo.force_simulation = item.second.cast<bool>();
+    else if (k == "grid_points") jo.grid_points = item.second.cast<int>();
+    else if (k == "jobs") jo.jobs = item.second.cast<int>();
     else
-      throw SceneError("jump_speed", 0, k, py::str(item.second), 
+      throw SceneError("jump_speed", 0, k, py::str(item.second),
                        "unknown option; allowed: scan_points, rel_tol, lo_rev_s, hi_rev_s, "
-                       "force_simulation");
+                       "force_simulation, grid_points, jobs");
   }
+  if (pyf) jo.jobs = 1;  // a Python follower's callbacks hold the interpreter: one thread
   jo.validate();
   JumpResult r;
   try {
@@ -394,6 +398,40 @@ py::dict jump(const std::string& kind, const std::string& text, const std::strin
   d["lo_rev_s"] = r.lo_rev_s;
   d["hi_rev_s"] = r.hi_rev_s;
   d["simulations"] = r.simulations;
+  d["phenomenon"] = r.phenomenon;
+  d["phenomenon_text"] = r.phenomenon_text;
+  if (r.method == "simulation") {
+    d["grid_simulations"] = r.grid_simulations;
+    d["failed_simulations"] = r.failed_simulations;
+    d["range_lo_rev_s"] = r.range_lo_rev_s;
+    d["range_hi_rev_s"] = r.range_hi_rev_s;
+    d["grid_spacing_rev_s"] = r.grid_spacing_rev_s;
+    d["monotone"] = r.monotone;
+    d["monotone_text"] = r.monotone_text;
+    py::list bands, trials;
+    for (const SpeedBand& b : r.bands) {
+      py::dict x;
+      x["kind"] = b.kind;
+      x["contact"] = b.contact;
+      x["theta_deg"] = b.theta_deg;
+      x["from_out_rev_s"] = b.from_out;
+      x["from_in_rev_s"] = b.from_in;
+      x["to_in_rev_s"] = b.to_in;
+      x["to_out_rev_s"] = b.to_out;
+      bands.append(x);
+    }
+    for (const SpeedTrial& t : r.trials) {
+      py::dict x;
+      x["speed_rev_s"] = t.speed_rev_s;
+      x["finished"] = t.finished;
+      x["kinds"] = t.kinds;
+      x["text"] = t.text;
+      trials.append(x);
+    }
+    d["bands"] = bands;
+    d["trials"] = trials;
+    d["text"] = speed_map_text(r);
+  }
   return d;
 }
 
@@ -526,6 +564,24 @@ PYBIND11_MODULE(_camdyn, m) {
   m.def("jump_speed", &jump, py::arg("kind"), py::arg("text"), py::arg("source"),
         py::arg("overrides"), py::arg("options"), py::arg("follower") = py::none());
   m.def("run_batch", &batch, py::arg("specs"), py::arg("threads"));
+  m.def(
+      "order_spectrum",
+      [](const std::vector<double>& theta, const std::vector<double>& y, int revolutions, int samples,
+         double max_order) {
+        SpectrumOptions o;
+        o.revolutions = revolutions;
+        o.samples_per_revolution = samples;
+        o.max_order = max_order;
+        const OrderSpectrum s = order_spectrum(theta, y, o);
+        py::dict d;
+        d["order"] = s.order;
+        d["amplitude"] = s.amplitude;
+        d["phase_deg"] = s.phase_deg;
+        d["revolutions"] = s.revolutions;
+        return d;
+      },
+      py::arg("theta"), py::arg("y"), py::arg("revolutions") = 0, py::arg("samples_per_revolution") = 1024,
+      py::arg("max_order") = 64.0);
   m.def("cam_motion", &cam_motion, py::arg("kind"), py::arg("text"), py::arg("source"),
         py::arg("overrides"), py::arg("t"), py::arg("lift") = false);
   m.def("initial_state_on_cam", &on_cam, py::arg("kind"), py::arg("text"), py::arg("source"),

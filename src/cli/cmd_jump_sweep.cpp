@@ -20,24 +20,46 @@ namespace camdyn_cli {
 using namespace camdyn;
 namespace fs = std::filesystem;
 
+namespace {
+
+std::string band_json(const SpeedBand& b) {
+  return "{\"kind\": " + json_string(b.kind) + ", \"contact\": " + json_string(b.contact) +
+         ", \"theta_deg\": " + json_number(b.theta_deg) + ", \"from_out_rev_s\": " + json_number(b.from_out) +
+         ", \"from_in_rev_s\": " + json_number(b.from_in) + ", \"to_in_rev_s\": " + json_number(b.to_in) +
+         ", \"to_out_rev_s\": " + json_number(b.to_out) + "}";
+}
+
+std::string trial_json(const SpeedTrial& t) {
+  std::string k;
+  for (const std::string& x : t.kinds) k += (k.empty() ? "" : ", ") + json_string(x);
+  return "{\"speed_rev_s\": " + json_number(t.speed_rev_s) + ", \"finished\": " + (t.finished ? "true" : "false") +
+         ", \"kinds\": [" + k + "], \"text\": " + json_string(t.text) + "}";
+}
+
+}  // namespace
+
 int cmd_jump(const JumpOpts& o) {
   Scene sc = required_scene("jump", o.c);
+  if (o.jobs < 0) throw SceneError("--jobs", 0, "jobs", std::to_string(o.jobs), "must be >= 0 (0: all cores)");
   JumpOptions jo;
   jo.rel_tol = o.rel_tol;
   jo.lo_rev_s = o.lo;
   jo.hi_rev_s = o.hi;
+  jo.grid_points = o.points;
+  jo.jobs = o.jobs;
   jo.force_simulation = o.simulate;
   if (!o.quiet)
     jo.log = [](double sp, bool sep) {
-      std::fprintf(stderr, "  %.10g rev/s: %s\n", sp, sep ? "separates" : "keeps contact");
+      std::fprintf(stderr, "  %.10g rev/s: %s\n", sp, sep ? "departs" : "keeps contact");
       std::fflush(stderr);
     };
   ensure_output_dir(o.out);
   JumpResult r;
   {
     SigintGuard guard;
-    r = jump_speed(sc, jo);  // SceneError → exit 2; a failing run is reported as such
+    r = jump_speed(sc, jo);  // SceneError → exit 2; a failing trial is reported as such
   }
+  const bool sim = r.method == "simulation";
   const std::string path = join_path(o.out, "jump.json");
   std::string j = "{\n  \"scene\": " + json_string(sc.title) +
                   ",\n  \"jump_speed_rev_s\": " + json_number(r.jump_speed_rev_s) +
@@ -46,12 +68,28 @@ int cmd_jump(const JumpOpts& o) {
                   ",\n  \"phenomenon\": " + json_string(r.phenomenon) +
                   ",\n  \"phenomenon_text\": " + json_string(r.phenomenon_text) +
                   ",\n  \"jump_speed_text\": " + json_string(jump_speed_text(r));
-  if (r.method == "simulation") {
+  if (sc.rpm_per_rev_s > 0)  // the scene speaks rpm (cam.speed_rpm, cam.rpm_of)
+    j += ",\n  \"rpm_per_rev_s\": " + json_number(sc.rpm_per_rev_s) + ",\n  \"jump_speed_rpm\": " +
+         json_number(r.jump_speed_rev_s * sc.rpm_per_rev_s);
+  if (sim) {
     j += ",\n  \"lo_rev_s\": " + json_number(r.lo_rev_s) + ",\n  \"hi_rev_s\": " +
          json_number(r.hi_rev_s) + ",\n  \"bracket_width_rev_s\": " +
          json_number(std::abs(r.hi_rev_s - r.lo_rev_s)) + ",\n  \"rel_tol\": " + json_number(o.rel_tol) +
-         ",\n  \"simulations\": " + std::to_string(r.simulations) + ",\n  \"t_end\": " +
-         json_number(sc.run.t_end);
+         ",\n  \"simulations\": " + std::to_string(r.simulations) +
+         ",\n  \"grid_simulations\": " + std::to_string(r.grid_simulations) +
+         ",\n  \"failed_simulations\": " + std::to_string(r.failed_simulations) +
+         ",\n  \"settle_revolutions\": " + std::to_string(sc.jump.settle_revolutions) +
+         ",\n  \"judge_revolutions\": " + std::to_string(sc.jump.judge_revolutions) +
+         ",\n  \"range_lo_rev_s\": " + json_number(r.range_lo_rev_s) +
+         ",\n  \"range_hi_rev_s\": " + json_number(r.range_hi_rev_s) +
+         ",\n  \"grid_spacing_rev_s\": " + json_number(r.grid_spacing_rev_s) +
+         ",\n  \"monotone\": " + (r.monotone ? "true" : "false") +
+         ",\n  \"monotone_text\": " + json_string(r.monotone_text) + ",\n  \"bands\": [";
+    for (std::size_t i = 0; i < r.bands.size(); ++i) j += (i ? ",\n    " : "\n    ") + band_json(r.bands[i]);
+    j += r.bands.empty() ? "]" : "\n  ]";
+    j += ",\n  \"trials\": [";
+    for (std::size_t i = 0; i < r.trials.size(); ++i) j += (i ? ",\n    " : "\n    ") + trial_json(r.trials[i]);
+    j += r.trials.empty() ? "]" : "\n  ]";
   }
   j += "\n}\n";
   int rc = kExitOk;
@@ -61,13 +99,27 @@ int cmd_jump(const JumpOpts& o) {
     std::fprintf(stderr, "camdyn: cannot write '%s': %s\n", path.c_str(), e.what());
     rc = kExitFailed;
   }
+  const std::string rpm_text =
+      sc.rpm_per_rev_s > 0 && std::isfinite(r.jump_speed_rev_s)
+          ? " = " + fmt_g(r.jump_speed_rev_s * sc.rpm_per_rev_s, 6) +
+                (sc.rpm_per_rev_s == 120 ? " engine rpm" : " camshaft rpm")
+          : std::string();
   if (!o.quiet) {
-    std::printf("%s: %s, margin reaches zero at cam angle %s deg", sc.title.c_str(),
-                r.method.c_str(), fmt_g(r.theta_deg, 10).c_str());
-    if (r.method == "simulation") std::printf(" (%d runs to t = %g)", r.simulations, sc.run.t_end);
-    std::printf("\njump speed: %s\nphenomenon: %s", jump_speed_text(r).c_str(), r.phenomenon.c_str());
-    if (r.method == "simulation") std::printf(" (the run at the upper bracket end: %s)", r.phenomenon_text.c_str());
-    else std::printf(" (%s)", r.phenomenon_text.c_str());
+    if (sim) {
+      std::printf("%s: speed-range map over [%s, %s] rev/s: %d trials (%d on the grid, spacing %s rev/s), "
+                  "%ld + %ld revolutions each\n",
+                  sc.title.c_str(), fmt_g(r.range_lo_rev_s, 7).c_str(), fmt_g(r.range_hi_rev_s, 7).c_str(),
+                  r.simulations, r.grid_simulations, fmt_g(r.grid_spacing_rev_s, 4).c_str(),
+                  sc.jump.settle_revolutions, sc.jump.judge_revolutions);
+      std::printf("%s", speed_map_text(r, sc.rpm_per_rev_s).c_str());
+      std::printf("jump speed: %s%s\nphenomenon: %s (%s)", jump_speed_text(r).c_str(), rpm_text.c_str(),
+                  r.phenomenon.c_str(), r.phenomenon_text.c_str());
+    } else {
+      std::printf("%s: %s, margin reaches zero at cam angle %s deg", sc.title.c_str(), r.method.c_str(),
+                  fmt_g(r.theta_deg, 10).c_str());
+      std::printf("\njump speed: %s%s\nphenomenon: %s (%s)", jump_speed_text(r).c_str(), rpm_text.c_str(),
+                  r.phenomenon.c_str(), r.phenomenon_text.c_str());
+    }
     std::printf("\noutput: %s\n", path.c_str());
   }
   std::printf("jump_speed_rev_s = %.17g\n", r.jump_speed_rev_s);

@@ -161,9 +161,19 @@ struct JumpOpts {
   CommonOpts c;
   std::string out = "camdyn-out";
   bool simulate = false;
-  double rel_tol = 1e-4;
+  double rel_tol = 1e-3;
   double lo = 0, hi = 0;
+  int points = 40;
+  int jobs = 0;
   bool quiet = false;
+};
+
+struct SpectrumOpts {
+  std::string dir;
+  std::string column = "contact_force";
+  int revolutions = 0;
+  int samples = 1024;
+  double max_order = 40;
 };
 
 struct SweepCliAxis {
@@ -202,6 +212,7 @@ int cmd_plot(const PlotOpts& o);
 int cmd_report(const std::string& dir);
 int cmd_bench(const BenchOpts& o);
 int cmd_jump(const JumpOpts& o);
+int cmd_spectrum(const SpectrumOpts& o);
 int cmd_sweep(const SweepOpts& o);
 
 }  // namespace camdyn_cli

@@ -47,7 +47,7 @@ void add_common(CLI::App* sub, CommonOpts& c, const char* scene_help) {
       ->allow_extra_args(false);
 }
 
-const std::vector<std::string> kCommands{"run", "cam", "scene", "plot", "report", "bench", "jump", "sweep"};
+const std::vector<std::string> kCommands{"run", "cam", "scene", "plot", "report", "bench", "jump", "sweep", "spectrum"};
 
 int real_main(int argc, char** argv) {
   CLI::App app{
@@ -146,6 +146,26 @@ int real_main(int argc, char** argv) {
       ->type_name("DIR")
       ->required();
 
+  SpectrumOpts spo;
+  auto* spectrum = app.add_subcommand(
+      "spectrum",
+      "Order analysis of a history column: DIR/history.csv resampled uniformly in cam angle "
+      "over whole revolutions, its amplitude per cam order (cycles per camshaft revolution) "
+      "→ DIR/spectrum_<column>.csv; prints the largest orders");
+  spectrum->add_option("dir", spo.dir, "Output directory of 'camdyn run'")->type_name("DIR")->required();
+  spectrum->add_option("--column", spo.column, "History column to analyse")
+      ->type_name("NAME")
+      ->capture_default_str();
+  spectrum->add_option("--revolutions", spo.revolutions, "The last N complete revolutions (0: all)")
+      ->type_name("N")
+      ->capture_default_str();
+  spectrum->add_option("--samples", spo.samples, "Samples per revolution of the resampling")
+      ->type_name("N")
+      ->capture_default_str();
+  spectrum->add_option("--max-order", spo.max_order, "Highest order written")
+      ->type_name("K")
+      ->capture_default_str();
+
   BenchOpts bo;
   auto* bench = app.add_subcommand(
       "bench",
@@ -216,19 +236,27 @@ int real_main(int argc, char** argv) {
   auto* jump = app.add_subcommand(
       "jump",
       "Jump (separation) speed at constant cam speed: closed form for a rigid follower "
-      "(min over the cam angle of the required contact force reaches 0), bisection over "
-      "cam.speed_rev_s on 'the run separates' otherwise; writes DIR/jump.json and prints "
-      "'jump_speed_rev_s = <value>' as the last line");
+      "(min over the cam angle of the required contact force reaches 0); otherwise the "
+      "speed-range map: trial speeds on a grid (in parallel, jump.settle_revolutions + "
+      "jump.judge_revolutions revolutions each), every boundary where a phenomenon appears or "
+      "disappears bisected to --rel-tol; prints every band, writes DIR/jump.json and prints "
+      "'jump_speed_rev_s = <lowest separation speed>' as the last line");
   add_common(jump, jo.c, "Scene file (TOML)");
   jump->add_option("-o,--out", jo.out, "Output directory (created if missing)")
       ->type_name("DIR")
       ->capture_default_str();
-  jump->add_flag("--simulate", jo.simulate, "Bisection by simulation also for a rigid follower");
-  jump->add_option("--rel-tol", jo.rel_tol, "Simulation: relative width of the final bracket")
+  jump->add_flag("--simulate", jo.simulate, "The speed-range map by simulation also for a rigid follower");
+  jump->add_option("--rel-tol", jo.rel_tol, "Simulation: relative width of every boundary's final bracket")
       ->type_name("R")
       ->capture_default_str();
-  jump->add_option("--lo", jo.lo, "Simulation: lower bracket speed [rev/s] (0: automatic)")->type_name("REV_S");
-  jump->add_option("--hi", jo.hi, "Simulation: upper bracket speed [rev/s] (0: automatic)")->type_name("REV_S");
+  jump->add_option("--lo", jo.lo, "Simulation: lowest speed of the map [rev/s] (0: automatic)")->type_name("REV_S");
+  jump->add_option("--hi", jo.hi, "Simulation: highest speed of the map [rev/s] (0: automatic)")->type_name("REV_S");
+  jump->add_option("--points", jo.points, "Simulation: trial speeds of the map's grid")
+      ->type_name("N")
+      ->capture_default_str();
+  jump->add_option("-j,--jobs", jo.jobs, "Simulation: worker threads (0: all cores)")
+      ->type_name("N")
+      ->capture_default_str();
   jump->add_flag("-q,--quiet", jo.quiet, "Print only the last line");
 
   SweepOpts swo;
@@ -290,7 +318,7 @@ int real_main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
     std::string what = e.what();
-    if (argc < 2) what = "no command given (allowed: run, cam, scene, plot, report, bench, jump, sweep)";
+    if (argc < 2) what = "no command given (allowed: run, cam, scene, plot, report, bench, jump, sweep, spectrum)";
     std::fprintf(stderr, "camdyn: %s\nRun 'camdyn --help' for the commands and options.\n",
                  what.c_str());
     return kExitBadInput;
@@ -307,6 +335,7 @@ int real_main(int argc, char** argv) {
   if (report->parsed()) return cmd_report(report_dir);
   if (bench->parsed()) return cmd_bench(bo);
   if (jump->parsed()) return cmd_jump(jo);
+  if (spectrum->parsed()) return cmd_spectrum(spo);
   if (sweep->parsed()) {
     // Under mpirun every rank parses the same command line: report bad input once (rank 0).
     if (camdyn_cli::launched_under_mpi() && camdyn_cli::mpi_rank_from_env() != 0) {
@@ -318,7 +347,7 @@ int real_main(int argc, char** argv) {
     }
     return cmd_sweep(swo);
   }
-  std::fprintf(stderr, "camdyn: no command given (allowed: run, cam, scene, plot, report, bench, jump, sweep)\n");
+  std::fprintf(stderr, "camdyn: no command given (allowed: run, cam, scene, plot, report, bench, jump, sweep, spectrum)\n");
   return kExitBadInput;
 }
 

@@ -128,6 +128,7 @@ bool is_designer_unit_key(std::string_view key);
 /// + cam.rpm_of (rev/s) and run.revolutions.
 struct DesignerUnits {
   std::optional<double> speed_rev_s, revolutions;
+  double rpm_per_rev_s = 0;  ///< 60 (camshaft) or 120 (engine) with cam.speed_rpm
   std::string revolutions_text;
   int speed_line = 0, revolutions_line = 0;
 };

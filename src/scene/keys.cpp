@@ -146,6 +146,10 @@ const KeyDoc kDocs[] = {
     {"run.period_tol", "—", "Relative tolerance of the period detector (|Δu_c| ≤ tol·lift, |Δv_c| ≤ tol·lift·|ω|)."},
     {"run.designer_columns", "—", "true: history.csv gets pressure_angle_deg, radius_of_curvature, contact_stress, "
                                   "side_load, cam_torque, cam_power per row (docs/cam_laws.md)."},
+    {"jump.settle_revolutions", "rev", "Speed-range map (`camdyn jump`): revolutions each trial speed runs before the "
+                                      "judged ones (the start's transient)."},
+    {"jump.judge_revolutions", "rev", "Speed-range map: revolutions whose events are judged at each trial speed "
+                                     "(t_end = (settle + judge) / |speed|, run.t_end is not used)."},
     // [[nodes]]
     {"nodes.name", "—", "Node name: history columns `u_<name>`, `v_<name>`.", "string",
      "non-empty, unique, not \"ground\", letters, digits, '_' and '-' only", "(required)"},

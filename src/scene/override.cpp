@@ -133,6 +133,7 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
   toml::table root = to_table(scene);
   Scene out = read_with_overrides(root, scene, assignments, "--set", false);
   out.source = scene.source;
+  if (out.rpm_per_rev_s == 0) out.rpm_per_rev_s = scene.rpm_per_rev_s;  // the scene's speed unit
   scene = std::move(out);
 }
 

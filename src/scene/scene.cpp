@@ -102,7 +102,7 @@ Field mk(const char* t, const char* k, FK kind) {
     return f;                                                                          \
   }()
 
-const char* const kTables[] = {"cam", "follower", "spring", "contact", "solver", "run"};
+const char* const kTables[] = {"cam", "follower", "spring", "contact", "solver", "run", "jump"};
 
 Field ruled(Field f, Rule r, double lo, double hi = 0, const char* note = "") {
   f.rule = r;
@@ -213,6 +213,9 @@ const std::vector<Field>& fields() {
     v.push_back(F_INT(run, settle_revolutions, 0, 1000000000));
     v.push_back(ruled(F_REAL(run, period_tol), Rule::GtLe, 0, 1));
     v.push_back(F_BOOL(run, designer_columns));
+
+    v.push_back(F_INT(jump, settle_revolutions, 0, 10000));
+    v.push_back(F_INT(jump, judge_revolutions, 1, 10000));
     return v;
   }();
   return kFields;
@@ -474,6 +477,7 @@ bool operator==(const ContactSpec& a, const ContactSpec& b) {
 }
 bool operator==(const SolverSpec& a, const SolverSpec& b) { return same_table(a, b, &Scene::solver, "solver"); }
 bool operator==(const RunSpec& a, const RunSpec& b) { return same_table(a, b, &Scene::run, "run"); }
+bool operator==(const JumpSpec& a, const JumpSpec& b) { return same_table(a, b, &Scene::jump, "jump"); }
 bool operator==(const Scene& a, const Scene& b) { return same_keys(a, b, nullptr) && a.network == b.network; }
 bool operator!=(const Scene& a, const Scene& b) { return !(a == b); }
 

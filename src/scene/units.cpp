@@ -63,6 +63,7 @@ DesignerUnits read_designer_units(const toml::table& root, const std::string& fi
       // turns once per two crankshaft revolutions. One division, so 3000 engine rpm is
       // exactly 25 rev/s.
       u.speed_rev_s = name->get() == "engine" ? v / 120.0 : v / 60.0;
+      u.rpm_per_rev_s = name->get() == "engine" ? 120.0 : 60.0;
       u.speed_line = line(*rpm);
     }
   }
@@ -87,6 +88,7 @@ DesignerUnits read_designer_units(const toml::table& root, const std::string& fi
 void apply_designer_units(const DesignerUnits& u, Scene& s, const std::string& file, LineMap& lines) {
   if (u.speed_rev_s) {
     s.cam.speed_rev_s = *u.speed_rev_s;
+    s.rpm_per_rev_s = u.rpm_per_rev_s;
     lines["cam.speed_rev_s"] = u.speed_line;
   }
   if (u.revolutions) {

@@ -1,4 +1,5 @@
-// camdyn — required contact force and jump speed (designer.hpp; batch runs: batch.cpp).
+// camdyn — required contact force and jump speed (designer.hpp; the simulation route's
+// speed-range map: speed_map.cpp; batch runs: batch.cpp).
 #include "camdyn/designer.hpp"
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include "camdyn/output.hpp"
 #include "results/designer_stats.hpp"
 #include "results/verdict.hpp"
+#include "study/speed_map.hpp"
 
 namespace camdyn {
 
@@ -125,27 +127,6 @@ JumpResult jump_closed_form(const Scene& s, const JumpOptions& o, double dir) {
   return res;
 }
 
-bool separates(const Scene& base, double speed, double* theta_deg,
-               const std::shared_ptr<const FollowerSystem>& follower, std::vector<VerdictItem>* verdict) {
-  Scene s = base;
-  s.cam.speed_rev_s = speed;
-  // run.output_dt is kept: Lee lands its steps on output times, so it shapes the run.
-  const Summary r = follower ? Simulator(s, follower).run() : Simulator(s).run();
-  if (!r.finished)
-    throw SceneError(base.source, 0, "cam.speed_rev_s", num(speed),
-                     "jump speed: the simulation failed there (" + r.message + ")");
-  if (theta_deg) *theta_deg = r.first_separation_theta_deg;
-  if (verdict) *verdict = r.verdict;
-  // A network separates every cycle somewhere (the valve leaves its seat, a lash opens):
-  // it jumps when its cam contact separates on the lift (the designer's first separation).
-  // So does a user follower (issue 28): its first cam contact's first separation.
-  if (follower || s.follower.kind == FollowerKind::Network) return !std::isnan(r.first_separation_theta_deg);
-  return r.separations > 0;
-}
-
-JumpResult jump_by_simulation(const Scene& scene, const JumpOptions& o, double dir, double est,
-                              const std::shared_ptr<const FollowerSystem>& follower);
-
 }  // namespace
 
 double required_contact_force(const Scene& scene, double theta, double omega, double omega_dot) {
@@ -169,6 +150,8 @@ void JumpOptions::validate() const {
     throw SceneError("JumpOptions", 0, "lo_rev_s", num(lo_rev_s), "must be >= 0 (0: automatic)");
   if (!(hi_rev_s >= 0) || !std::isfinite(hi_rev_s))
     throw SceneError("JumpOptions", 0, "hi_rev_s", num(hi_rev_s), "must be >= 0 (0: automatic)");
+  if (grid_points < 2 || grid_points > 100000)
+    throw SceneError("JumpOptions", 0, "grid_points", std::to_string(grid_points), "must be between 2 and 100000");
   if (lo_rev_s > 0 && hi_rev_s > 0 && !(lo_rev_s < hi_rev_s))
     throw SceneError("JumpOptions", 0, "lo_rev_s", num(lo_rev_s),
                      "must be < hi_rev_s = " + num(hi_rev_s));
@@ -205,15 +188,15 @@ JumpResult jump_speed(const Scene& scene_in, const JumpOptions& o) {
     return r;
   }
 
-  // Simulation: bisection on "the run separates", bracket from the rigid-body estimate.
+  // Simulation: the speed-range map, its automatic range around the rigid-body estimate.
   Scene rigid = scene;
   rigid.follower.kind = FollowerKind::Rigid;
   rigid.follower.damping = 0.0;
-  // (a network has no rigid-body estimate: the bracket starts around the scene's speed)
+  // (a network has no rigid-body estimate: the range starts around the scene's speed)
   const double est = scene.follower.kind == FollowerKind::Network
                          ? std::abs(scene.cam.speed_rev_s)
                          : std::abs(jump_closed_form(rigid, o, dir).jump_speed_rev_s);
-  return jump_by_simulation(scene, o, dir, est, nullptr);
+  return detail::speed_map(scene, o, dir, est, nullptr);
 }
 
 JumpResult jump_speed(const Scene& scene_in, std::shared_ptr<const FollowerSystem> follower,
@@ -223,63 +206,8 @@ JumpResult jump_speed(const Scene& scene_in, std::shared_ptr<const FollowerSyste
                      "no follower given (for the scene's own follower call jump_speed(scene, options))");
   const Scene scene = jump_scene(scene_in, o);
   const double dir = scene.cam.speed_rev_s < 0 ? -1.0 : 1.0;
-  // A user follower has no rigid-body estimate: the bracket starts around the scene's speed.
-  return jump_by_simulation(scene, o, dir, std::abs(scene.cam.speed_rev_s), follower);
+  // A user follower has no rigid-body estimate: the range starts around the scene's speed.
+  return detail::speed_map(scene, o, dir, std::abs(scene.cam.speed_rev_s), follower);
 }
-
-namespace {
-
-JumpResult jump_by_simulation(const Scene& scene, const JumpOptions& o, double dir, double est,
-                              const std::shared_ptr<const FollowerSystem>& follower) {
-  if (!std::isfinite(est) || est <= 0) est = 1.0;
-  double lo = o.lo_rev_s > 0 ? o.lo_rev_s : 0.5 * est;
-  double hi = o.hi_rev_s > 0 ? o.hi_rev_s : 1.5 * est;
-  JumpResult res;
-  res.method = "simulation";
-  std::vector<VerdictItem> v_hi, v_dummy, v_mid;
-  auto test = [&](double sp, double* th, std::vector<VerdictItem>* v) {
-    const bool sep = separates(scene, dir * sp, th, follower, v);
-    ++res.simulations;
-    if (o.log) o.log(dir * sp, sep);
-    return sep;
-  };
-  double th_hi = NAN, th_dummy = NAN;
-  for (int i = 0; test(lo, &th_dummy, &v_dummy); ++i) {
-    if (o.lo_rev_s > 0 || i >= 12)
-      throw SceneError(scene.source, 0, "cam.speed_rev_s", num(dir * lo),
-                       "jump speed: the follower already separates at the lower bracket speed");
-    hi = lo;
-    lo *= 0.5;
-  }
-  for (int i = 0; !test(hi, &th_hi, &v_hi); ++i) {
-    if (o.hi_rev_s > 0 || i >= 12)
-      throw SceneError(scene.source, 0, "cam.speed_rev_s", num(dir * hi),
-                       "jump speed: no separation up to the upper bracket speed within run.t_end");
-    lo = hi;
-    hi *= 2.0;
-  }
-  while (hi - lo > o.rel_tol * hi) {
-    const double mid = 0.5 * (lo + hi);
-    double th = NAN;
-    if (test(mid, &th, &v_mid)) {
-      hi = mid;
-      th_hi = th;
-      v_hi = v_mid;
-    } else {
-      lo = mid;
-    }
-  }
-  res.lo_rev_s = dir * lo;
-  res.hi_rev_s = dir * hi;
-  res.jump_speed_rev_s = dir * 0.5 * (lo + hi);
-  res.theta_deg = th_hi;
-  res.phenomenon_text = detail::verdict_one_line(v_hi);
-  for (const VerdictItem& v : v_hi)
-    if (res.phenomenon.empty() && v.kind != "seat_bounce") res.phenomenon = v.kind;
-  if (res.phenomenon.empty() && !v_hi.empty()) res.phenomenon = v_hi.front().kind;
-  return res;
-}
-
-}  // namespace
 
 }  // namespace camdyn

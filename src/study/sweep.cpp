@@ -102,6 +102,12 @@ const std::vector<std::string>& sweep_result_columns() {
 }
 
 void check_sweep_key(const Scene& scene, const std::string& key) {
+  if (key == "cam.speed_rpm") {
+    if (scene.rpm_per_rev_s > 0) return;
+    throw SceneError("--key", 0, "key", key,
+                     "the scene gives its speed in rev/s (cam.speed_rev_s): sweep cam.speed_rev_s, or give the "
+                     "scene's speed as cam.speed_rpm with cam.rpm_of (then the sweep speaks that rpm)");
+  }
   bool found = false, numeric = false;
   std::string kind;
   if (is_network_key(key)) {  // "elements.valve_spring.preload": the entry by name or index
@@ -256,7 +262,12 @@ std::string run_sweep_point(const SweepPlan& plan, long index, bool timing, doub
   watch.c0 = thread_cpu_seconds();
   try {
     Scene sc = plan.base;
-    for (std::size_t a = 0; a < vals.size(); ++a) apply_override(sc, plan.axes[a].key + "=" + num(vals[a]));
+    for (std::size_t a = 0; a < vals.size(); ++a) {
+      if (plan.axes[a].key == "cam.speed_rpm")  // the scene's rpm (camshaft or engine) → rev/s
+        apply_override(sc, "cam.speed_rev_s=" + num(vals[a] / plan.base.rpm_per_rev_s));
+      else
+        apply_override(sc, plan.axes[a].key + "=" + num(vals[a]));
+    }
     std::unique_ptr<Simulator> sim;
     if (plan.follower) {
       std::shared_ptr<const FollowerSystem> f = plan.follower();
