@@ -12,6 +12,9 @@
 //                   bar      nodes = [lower, upper], an elastic bar of `elements` elements
 //                            (mass, youngs_modulus, area, length, mass_matrix, Rayleigh)
 //                   lever    nodes = [input, output], q_output = ratio · q_input (a rocker)
+//                   progressive_spring  nodes = [lower, upper], a force–deflection table
+//                            (deflections, forces; monotone cubic), installed_deflection,
+//                            damping c: a nonlinear element
 //     [[contacts]]  cam      nodes = [node]          gap g = q + clearance − X_C(t)
 //                   lash     nodes = [lower, upper]  gap g = q_upper − q_lower + clearance
 //                   stop     nodes = [node], side = "below": g = q + clearance (a valve seat)
@@ -30,12 +33,12 @@
 
 namespace camdyn {
 
-enum class ElementKind { Spring, Dashpot, Bar, Lever };
+enum class ElementKind { Spring, Dashpot, Bar, Lever, ProgressiveSpring };
 enum class ContactPointKind { Cam, Lash, Stop };
 enum class StopSide { Below, Above };
 enum class BarMass { Consistent, Lumped };
 
-const char* to_string(ElementKind v);       // "spring" | "dashpot" | "bar" | "lever"
+const char* to_string(ElementKind v);       // "spring" | "dashpot" | "bar" | "lever" | "progressive_spring"
 const char* to_string(ContactPointKind v);  // "cam" | "lash" | "stop"
 const char* to_string(StopSide v);          // "below" | "above"
 const char* to_string(BarMass v);           // "lumped" | "consistent"
@@ -87,6 +90,14 @@ struct ElementSpec {
   double rayleigh_beta = 0.0;
   /// lever: q_output = ratio · q_input, ratio finite and ≠ 0.
   double ratio = 1.0;
+  /// progressive_spring: the force–deflection curve as a table, deflections [length]
+  /// strictly increasing, forces [force] non-decreasing (a monotone curve), ≥ 2 points of
+  /// the same count; F(δ) between them is the monotone cubic (PCHIP) through the points,
+  /// beyond them the straight line of the end slope.
+  std::vector<double> deflections;
+  std::vector<double> forces;
+  /// progressive_spring: the deflection at q = 0 [length], finite; the preload is F there.
+  double installed_deflection = 0.0;
 };
 
 /// A unilateral contact (any number per network).

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "legacy/engine.hpp"       // resolve_linear_solver
+#include "mechanism/element.hpp"
 #include "legacy/run_context.hpp"  // detail::fmt
 
 namespace camdyn {
@@ -16,6 +17,13 @@ namespace {
 std::string element_label(const ElementSpec& e, size_t i) {
   return e.name.empty() ? std::string(to_string(e.kind)) + " #" + std::to_string(i) : e.name;
 }
+}  // namespace
+
+std::string element_report_name(const ElementSpec& e, std::size_t index) {
+  return e.name.empty() ? std::string(to_string(e.kind)) + "_" + std::to_string(index) : e.name;
+}
+
+namespace {
 }  // namespace
 
 Mechanism::Mechanism(const Scene& scene) {
@@ -46,6 +54,10 @@ Mechanism::Mechanism(const Scene& scene) {
   for (size_t i = 0; i < net.nodes.size(); ++i)
     if (net.nodes[i].mass > 0.0) point_mass.emplace_back(int(i), net.nodes[i].mass);
   bool any_damping = false, any_preload = false, any_mass_matrix = false;
+  struct Nonlinear { std::unique_ptr<Element> element; std::vector<int> nodes; };
+  std::vector<Nonlinear> nonlinear;
+  struct TwoNodeForce { std::string name; int a, b; double k, c, P; };  // a reported linear force
+  std::vector<TwoNodeForce> two_node;
   for (size_t ei = 0; ei < net.elements.size(); ++ei) {
     const ElementSpec& e = net.elements[ei];
     const int a = dof(e.nodes.at(0)), b = dof(e.nodes.at(1));
@@ -82,6 +94,7 @@ Mechanism::Mechanism(const Scene& scene) {
             << e.masses << " masses";
         } else {
           links.push_back({a, b, k, e.damping, P});
+          two_node.push_back({element_report_name(e, ei), a, b, k, e.damping, P});
           if (e.kind == ElementKind::Spring) d << " k " << fmt(k) << ", preload " << fmt(P);
         }
         if (e.damping != 0.0) d << ", c " << fmt(e.damping);
@@ -116,6 +129,13 @@ Mechanism::Mechanism(const Scene& scene) {
         levers.push_back({b, {a, e.ratio}});
         d << " ratio " << fmt(e.ratio);
         break;
+      case ElementKind::ProgressiveSpring: {
+        std::unique_ptr<Element> el = make_element(e, element_report_name(e, ei));
+        any_damping |= el->damps();
+        d.str(el->describe());
+        nonlinear.push_back({std::move(el), {a, b}});
+        break;
+      }
     }
     desc_.network.push_back(d.str());
   }
@@ -197,6 +217,23 @@ Mechanism::Mechanism(const Scene& scene) {
 
   factor_mass();
 
+  // ---- nonlinear elements and the reported linear forces, on the reduced DOFs
+  auto reduced = [&](int i) { return i >= 0 ? lrow[i] : std::make_pair(-1, 0.0); };
+  for (Nonlinear& nl : nonlinear) {
+    std::vector<int> dofs;
+    std::vector<double> w;
+    for (int i : nl.nodes) {
+      dofs.push_back(reduced(i).first);
+      w.push_back(reduced(i).second);
+    }
+    elements_.add(std::move(nl.element), std::move(dofs), std::move(w));
+  }
+  elements_.finish(n_);
+  for (const TwoNodeForce& f : two_node) {
+    const auto ra = reduced(f.a), rb = reduced(f.b);
+    linear_forces_.push_back({f.name, ra.first, rb.first, ra.second, rb.second, f.k, f.c, f.P});
+  }
+
   // ---- contacts
   for (const ContactPointSpec& cs : net.contacts) {
     MechanismContact c;
@@ -227,10 +264,8 @@ Mechanism::Mechanism(const Scene& scene) {
     }
     c.g0 = cs.clearance;
     c.t = tr;
-    c.restitution = cs.restitution.value_or(scene.contact.restitution);
-    c.penalty_stiffness = cs.penalty_stiffness.value_or(scene.contact.penalty_stiffness);
-    c.penalty_damping = cs.penalty_damping.value_or(scene.contact.penalty_damping);
-    d << ", clearance " << fmt(c.g0) << ", e " << fmt(c.restitution) << ")";
+    c.law = ContactLaw::of(scene.contact, cs.restitution, cs.penalty_stiffness, cs.penalty_damping);
+    d << ", clearance " << fmt(c.g0) << ", e " << fmt(c.law.impact.restitution) << ")";
     desc_.network.push_back(d.str());
     contacts_.push_back(std::move(c));
   }
@@ -238,6 +273,11 @@ Mechanism::Mechanism(const Scene& scene) {
     Eigen::Map<Eigen::VectorXd>(x, n_) = Mldlt_.solve(Eigen::Map<const Eigen::VectorXd>(b, n_));
   });
   force_scale_ = f0_.size() ? f0_.cwiseAbs().maxCoeff() : 0.0;
+  if (!elements_.empty()) {  // the elements' forces at q = 0 (their preloads)
+    Eigen::VectorXd re = Eigen::VectorXd::Zero(n_), z = re;
+    elements_.add_force(0.0, z.data(), z.data(), re.data());
+    force_scale_ = std::max(force_scale_, re.cwiseAbs().maxCoeff());
+  }
 
   // ---- initial state: named nodes as given, inside nodes linear between their ends
   Eigen::VectorXd qf = Eigen::VectorXd::Zero(n_full), vf = qf;
@@ -276,17 +316,38 @@ Mechanism::Mechanism(const Scene& scene) {
   if (any_preload) desc_.rhs_terms.push_back("preload");
   if (any_damping) desc_.rhs_terms.push_back("damping");
   if (!levers.empty()) desc_.rhs_terms.push_back("levers");
+  if (!elements_.empty()) desc_.rhs_terms.push_back("nonlinear elements");
   desc_.rhs_terms.push_back("contacts");
 }
 
-bool Mechanism::acceleration_jacobian(double, const double*, const double*, Eigen::MatrixXd& dadq,
+bool Mechanism::acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
                                       Eigen::MatrixXd& dadv) const {
-  dadq = -Mldlt_.solve(Eigen::MatrixXd(K_));
-  if (damped())
-    dadv = -Mldlt_.solve(Eigen::MatrixXd(C_));
-  else
-    dadv.setZero(n_, n_);
+  Eigen::MatrixXd K(K_), C = damped() ? Eigen::MatrixXd(C_) : Eigen::MatrixXd::Zero(n_, n_);
+  if (!elements_.empty()) {
+    SparseMatrix Ke, Ce;
+    elements_.tangent(t, q, v, Ke, Ce);
+    K += Eigen::MatrixXd(Ke);
+    if (elements_.damps()) C += Eigen::MatrixXd(Ce);
+  }
+  dadq = -Mldlt_.solve(K);
+  dadv = -Mldlt_.solve(C);
   return true;
+}
+
+std::vector<std::string> Mechanism::element_force_names() const {
+  std::vector<std::string> n;
+  for (const LinearForce& f : linear_forces_) n.push_back(f.name);
+  for (const std::string& s : elements_.force_names()) n.push_back(s);
+  return n;
+}
+
+void Mechanism::element_forces(double t, const double* q, const double* v, double* out) const {
+  for (const LinearForce& f : linear_forces_) {
+    const double xa = f.a >= 0 ? f.wa * q[f.a] : 0.0, xb = f.b >= 0 ? f.wb * q[f.b] : 0.0;
+    const double va = f.a >= 0 ? f.wa * v[f.a] : 0.0, vb = f.b >= 0 ? f.wb * v[f.b] : 0.0;
+    *out++ = f.P + f.k * (xa - xb) + f.c * (va - vb);
+  }
+  elements_.forces(t, q, v, out);
 }
 
 void Mechanism::factor_mass() {
@@ -335,7 +396,7 @@ void Mechanism::solve_mass(Eigen::Ref<Eigen::VectorXd> x) const {
   }
 }
 
-void Mechanism::acceleration(double, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
+void Mechanism::acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
                              bool homogeneous) const {
   Eigen::Map<Eigen::VectorXd> A(a, n_);
   if (!single_follower_) {
@@ -346,6 +407,7 @@ void Mechanism::acceleration(double, const double* q, const double* v, const Eig
     Eigen::VectorXd r = -(K_ * Q);
     if (!homogeneous) r += f0_;
     if (damped()) r.noalias() -= C_ * V;
+    if (!elements_.empty() && !homogeneous) elements_.add_force(t, q, v, r.data());
     A = Mldlt_.solve(r);
     if (F.size()) A.noalias() += MinvTt_ * F;
     return;
@@ -394,12 +456,17 @@ double Mechanism::kinetic_energy(const double* v) const {
 }
 double Mechanism::potential_energy(const double* q) const {
   Eigen::Map<const Eigen::VectorXd> Q(q, n_);
-  return 0.5 * Q.dot(K_ * Q) - f0_.dot(Q);
+  return 0.5 * Q.dot(K_ * Q) - f0_.dot(Q) + (elements_.empty() ? 0.0 : elements_.stored_energy(q));
 }
 double Mechanism::damping_power(const double* v) const {
   if (!damped()) return 0.0;
   Eigen::Map<const Eigen::VectorXd> V(v, n_);
   return V.dot(C_ * V);
+}
+double Mechanism::damping_power(double t, const double* q, const double* v) const {
+  double P = damping_power(v);
+  if (elements_.damps()) P += elements_.dissipated_power(t, q, v);
+  return P;
 }
 
 }  // namespace camdyn
@@ -447,9 +514,7 @@ class UserMechanism final : public MechanicalSystem {
       m.t = Eigen::Map<const Eigen::RowVectorXd>(c.row.data(), n_);
       m.g0 = c.clearance;
       m.cam = c.cam;
-      m.restitution = c.restitution.value_or(scene.contact.restitution);
-      m.penalty_stiffness = c.penalty_stiffness.value_or(scene.contact.penalty_stiffness);
-      m.penalty_damping = c.penalty_damping.value_or(scene.contact.penalty_damping);
+      m.law = ContactLaw::of(scene.contact, c.restitution, c.penalty_stiffness, c.penalty_damping);
       contacts_.push_back(std::move(m));
     }
     finish_contacts([&](const double* b, double* x) { f_->solve_mass(b, x); });
@@ -478,7 +543,7 @@ class UserMechanism final : public MechanicalSystem {
                        "contacts"};
     for (const MechanismContact& c : contacts_)
       desc_.network.push_back("contact '" + c.name + "' (" + (c.cam ? "cam" : "stop") + ", clearance " +
-                              detail::fmt(c.g0) + ", e " + detail::fmt(c.restitution) + ")");
+                              detail::fmt(c.g0) + ", e " + detail::fmt(c.law.impact.restitution) + ")");
   }
   bool linear() const override { return f_->linear(); }
   void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
@@ -507,7 +572,7 @@ class UserMechanism final : public MechanicalSystem {
   }
   double kinetic_energy(const double* v) const override { return f_->kinetic_energy(v); }
   double potential_energy(const double* q) const override { return f_->potential_energy(q); }
-  double damping_power(const double* v) const override { return f_->damping_power(v); }
+  double damping_power(double, const double*, const double* v) const override { return f_->damping_power(v); }
 
  private:
   std::shared_ptr<const FollowerSystem> f_;

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "camdyn/model.hpp"
-#include "contact/laws/penalty_law.hpp"
+#include "contact/laws/contact_law.hpp"
 #include "run/initial_check.hpp"
 #include "mechanism/mechanism.hpp"
 #include "legacy/run_context.hpp"  // fmt
@@ -90,13 +90,6 @@ FollowerStart initial_state_on_cam(const Scene& scene, const FollowerSystem& fol
 namespace detail {
 namespace {
 
-// The penetration at which the penalty law carries force F (ŝ = 0).
-double penalty_depth(const Scene& sc, double kp, double F) {
-  if (!(F > 0.0)) return 0.0;
-  return sc.contact.penalty_law == PenaltyLaw::Linear ? F / kp
-                                                      : std::pow(F / kp, 1.0 / sc.contact.penalty_exponent);
-}
-
 // "G < bound" of the message: −contact.tol_u, or the penalty method's −(s + tol_u).
 std::string below(const Scene& sc, double gap, double depth) {
   const double tol = sc.contact.tol_u;
@@ -129,7 +122,7 @@ void check_start(const Scene& sc, const FollowerModel& model) {
   if (sc.contact.model == ContactModel::Penalty) {
     const Eigen::VectorXd v = Eigen::VectorXd::Zero(model.n());
     const double a = model.contact_acceleration(model.initial_displacement().data(), v.data(), 0.0);
-    depth = penalty_depth(sc, sc.contact.penalty_stiffness, (cm.Xddot - a) / model.mstar());
+    depth = ContactLaw::of(sc.contact).penalty.depth_at((cm.Xddot - a) / model.mstar());
   }
   if (gap >= -(depth + sc.contact.tol_u)) return;
   throw SceneError(sc.source, 0, "contact.initial_gap", fmt(sc.contact.initial_gap),
@@ -159,7 +152,7 @@ void check_start(const Scene& sc, const MechanicalSystem& mech, bool user) {
         have_a0 = true;
       }
       const double F = ((c.cam ? cm.Xddot : 0.0) - c.t.dot(a0)) / mech.W()(j, j);
-      depth = penalty_depth(sc, c.penalty_stiffness, F);
+      depth = c.law.penalty.depth_at(F);
       if (gap >= -(depth + sc.contact.tol_u)) continue;
     }
     // The keys that set this gap.

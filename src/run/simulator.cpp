@@ -177,7 +177,7 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   if (scene_.follower.kind == FollowerKind::Network) {
     runs_on_mechanism(scene_);  // @throws SceneError for the classic step
     mech_ = std::make_shared<const Mechanism>(scene_);
-    extra_columns_ = detail::ContactRun::extra_columns(*mech_);
+    extra_columns_ = detail::ContactRun::extra_columns(*mech_, scene_.run.element_forces);
     detail::check_start(scene_, *mech_, false);
     warnings_ = scene_warnings(scene_);
   } else {

@@ -347,6 +347,37 @@ class Validator {
           if (!(std::isfinite(e.ratio) && e.ratio != 0.0))
             net_fail(p + ".ratio", fmt_num(e.ratio), "must be finite and != 0 (" + who + ")");
           break;
+        case ElementKind::ProgressiveSpring: {
+          const std::vector<double>& x = e.deflections;
+          const std::vector<double>& y = e.forces;
+          if (x.size() < 2)
+            net_fail(p + ".deflections", std::to_string(x.size()) + " points",
+                     "must have at least 2 points (" + who + ")");
+          if (y.size() != x.size())
+            net_fail(p + ".forces", std::to_string(y.size()) + " points",
+                     "must have as many points as " + p + ".deflections (" + std::to_string(x.size()) + ") (" +
+                         who + ")");
+          for (std::size_t k = 0; k < x.size(); ++k) {
+            net_finite(elem(p + ".deflections", k), x[k], who);
+            net_finite(elem(p + ".forces", k), y[k], who);
+          }
+          for (std::size_t k = 1; k < x.size(); ++k) {
+            if (!(x[k] > x[k - 1]))
+              net_fail(elem(p + ".deflections", k), fmt_num(x[k]),
+                       "must be strictly increasing (> " + elem(p + ".deflections", k - 1) + " = " +
+                           fmt_num(x[k - 1]) + ") (" + who + ")");
+            if (!(y[k] >= y[k - 1]))
+              net_fail(elem(p + ".forces", k), fmt_num(y[k]),
+                       "must be non-decreasing, a monotone force-deflection curve (>= " +
+                           elem(p + ".forces", k - 1) + " = " + fmt_num(y[k - 1]) + ") (" + who + ")");
+          }
+          if (!(y.back() > y.front()))
+            net_fail(p + ".forces", fmt_num(y.back()),
+                     "must rise somewhere: the last force must be > the first (" + who + ")");
+          net_finite(p + ".installed_deflection", e.installed_deflection, who);
+          net_ge(p + ".damping", e.damping, 0.0, who);
+          break;
+        }
       }
     }
 
@@ -423,7 +454,8 @@ class Validator {
     };
     std::vector<bool> anchored(nn, false);
     for (const auto& e : n.elements) {
-      const bool stiff = (e.kind == ElementKind::Spring && e.stiffness > 0) || e.kind == ElementKind::Bar;
+      const bool stiff = (e.kind == ElementKind::Spring && e.stiffness > 0) || e.kind == ElementKind::Bar ||
+                         e.kind == ElementKind::ProgressiveSpring;
       const bool joins = stiff || e.kind == ElementKind::Lever || (e.kind == ElementKind::Spring && e.mass > 0);
       if (!joins) continue;
       const bool g0 = e.nodes[0] == "ground", g1 = e.nodes[1] == "ground";
