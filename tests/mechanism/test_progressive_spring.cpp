@@ -300,6 +300,27 @@ TEST(ProgressiveSpring, ElementForceColumns) {
   for (const std::string& c : sim2.extra_columns()) EXPECT_NE(c.rfind("force_", 0), 0u) << c;
 }
 
+// A linear spring's column is P + kδ + cδ̇ from the node columns (the two-mass OHC train's
+// stem [tappet, valve] k = 5e7, c = 30, and valve spring [valve, ground] k = 35e3, P = 250,
+// c = 2; measured |Δ| = 0: the same terms, so any sign, lever factor or missing term shows).
+TEST(ProgressiveSpring, LinearSpringForceColumns) {
+  Scene s = camdyn_test::two_mass_train();
+  s.run.t_end = 0.02;
+  s.run.output_dt = 1e-4;
+  s.run.element_forces = true;
+  const camdyn_test::NetRun r = camdyn_test::run_keeping_rows(s);
+  ASSERT_EQ(r.sum.termination, Termination::Finished) << r.sum.message;
+  double es = 0.0, ev = 0.0;
+  for (const HistoryRow& row : r.rows) {
+    const double ut = r.col(row, "u_tappet"), uv = r.col(row, "u_valve");
+    const double vt = r.col(row, "v_tappet"), vv = r.col(row, "v_valve");
+    es = std::max(es, std::abs(r.col(row, "force_stem") - (5e7 * (ut - uv) + 30.0 * (vt - vv))));
+    ev = std::max(ev, std::abs(r.col(row, "force_valve_spring") - (250.0 + 35e3 * uv + 2.0 * vv)));
+  }
+  EXPECT_LT(es, 1e-8);
+  EXPECT_LT(ev, 1e-9);
+}
+
 TEST(ProgressiveSpring, BadTablesNameKeyValueAndRule) {
   const std::string head = R"(
 [cam]
