@@ -24,14 +24,13 @@ Scratch& scratch(int nodes) {
 }
 }  // namespace
 
-void ElementSet::add(std::unique_ptr<const Element> element, std::vector<int> dof, std::vector<double> w) {
+void ElementSet::add(std::unique_ptr<const Element> element, std::vector<Row> rows) {
   if (element->states() > 0)
     throw std::invalid_argument("element '" + element->name() +
                                 "': elements with internal states are not integrated by the engines yet");
   Placed p;
   p.element = std::move(element);
-  p.dof = std::move(dof);
-  p.w = std::move(w);
+  p.rows = std::move(rows);
   placed_.push_back(std::move(p));
 }
 
@@ -45,10 +44,11 @@ void ElementSet::finish(int n) {
     any_c |= p.element->damps();
     for (int j = 0; j < k; ++j)
       for (int i = 0; i < k; ++i)
-        if (p.dof[std::size_t(i)] >= 0 && p.dof[std::size_t(j)] >= 0) {
-          tk.emplace_back(p.dof[std::size_t(i)], p.dof[std::size_t(j)], 0.0);
-          if (p.element->damps()) tc.emplace_back(p.dof[std::size_t(i)], p.dof[std::size_t(j)], 0.0);
-        }
+        for (const auto& b : p.rows[std::size_t(j)])
+          for (const auto& a : p.rows[std::size_t(i)]) {
+            tk.emplace_back(a.first, b.first, 0.0);
+            if (p.element->damps()) tc.emplace_back(a.first, b.first, 0.0);
+          }
   }
   Ke_.resize(n, n);
   Ke_.setFromTriplets(tk.begin(), tk.end());
@@ -67,15 +67,15 @@ void ElementSet::finish(int n) {
   };
   for (Placed& p : placed_) {
     const int k = p.element->nodes();
-    p.pos_k.assign(std::size_t(k * k), -1);
-    if (p.element->damps()) p.pos_c.assign(std::size_t(k * k), -1);
+    p.pos_k.clear();
+    p.pos_c.clear();
     for (int j = 0; j < k; ++j)
-      for (int i = 0; i < k; ++i) {
-        const int a = p.dof[std::size_t(i)], b = p.dof[std::size_t(j)];
-        if (a < 0 || b < 0) continue;
-        p.pos_k[std::size_t(i + j * k)] = position(Ke_, a, b);
-        if (p.element->damps()) p.pos_c[std::size_t(i + j * k)] = position(Ce_, a, b);
-      }
+      for (int i = 0; i < k; ++i)
+        for (const auto& b : p.rows[std::size_t(j)])
+          for (const auto& a : p.rows[std::size_t(i)]) {
+            p.pos_k.push_back(position(Ke_, a.first, b.first));
+            if (p.element->damps()) p.pos_c.push_back(position(Ce_, a.first, b.first));
+          }
   }
 }
 
@@ -83,9 +83,13 @@ ElementState ElementSet::gather(const Placed& p, double t, const double* q, cons
   const int k = p.element->nodes();
   Scratch& s = scratch(k);
   for (int i = 0; i < k; ++i) {
-    const int d = p.dof[std::size_t(i)];
-    s.x[std::size_t(i)] = d >= 0 ? p.w[std::size_t(i)] * q[d] : 0.0;
-    s.xd[std::size_t(i)] = d >= 0 && v ? p.w[std::size_t(i)] * v[d] : 0.0;
+    double x = 0.0, xd = 0.0;
+    for (const auto& e : p.rows[std::size_t(i)]) {
+      x += e.second * q[e.first];
+      if (v) xd += e.second * v[e.first];
+    }
+    s.x[std::size_t(i)] = x;
+    s.xd[std::size_t(i)] = xd;
   }
   ElementState e;
   e.t = t;
@@ -101,7 +105,7 @@ void ElementSet::add_force(double t, const double* q, const double* v, double* r
     double* f = scratch(k).f.data();
     p.element->force(e, f);
     for (int i = 0; i < k; ++i)
-      if (p.dof[std::size_t(i)] >= 0) r[p.dof[std::size_t(i)]] += p.w[std::size_t(i)] * f[i];
+      for (const auto& e : p.rows[std::size_t(i)]) r[e.first] += e.second * f[i];
   }
 }
 
@@ -118,13 +122,17 @@ void ElementSet::tangent(double t, const double* q, const double* v, SparseMatri
     Scratch& s = scratch(k);
     const bool c = p.element->damps();
     p.element->force_jacobian(e, s.dfdx.data(), c ? s.dfdxd.data() : nullptr);
+    std::size_t n = 0;
     for (int j = 0; j < k; ++j)
       for (int i = 0; i < k; ++i) {
         const std::size_t ij = std::size_t(i + j * k);
-        if (p.pos_k[ij] < 0) continue;
-        const double ww = p.w[std::size_t(i)] * p.w[std::size_t(j)];
-        kv[p.pos_k[ij]] -= ww * s.dfdx[ij];
-        if (c) cv[p.pos_c[ij]] -= ww * s.dfdxd[ij];
+        for (const auto& b : p.rows[std::size_t(j)])
+          for (const auto& a : p.rows[std::size_t(i)]) {
+            const double ww = a.second * b.second;
+            kv[p.pos_k[n]] -= ww * s.dfdx[ij];
+            if (c) cv[p.pos_c[n]] -= ww * s.dfdxd[ij];
+            ++n;
+          }
       }
   }
 }

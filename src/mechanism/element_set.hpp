@@ -1,8 +1,9 @@
 // camdyn (private) — the nonlinear elements of a mechanism placed on its unknowns
 // (element.hpp has the element interface).
 //
-//   Node i of element e reads x_i = w_i q[dof_i] (the lever-eliminated unknown of the node
-//   and its lever factor; dof_i = −1: ground or a node tied to ground, x_i = 0). The
+//   Node i of element e reads x_i = Σ_k w_ik q[dof_ik] (its row of the lever elimination
+//   q_full = L q: one entry for an independent node or a fixed-pivot lever's output, two or
+//   more below a moving pivot, none for ground). The
 //   generalised force r_e = Σ_e Bₑᵀ fₑ, its tangent K_e = −∂r_e/∂q = −Σ Bₑᵀ (∂fₑ/∂x) Bₑ and
 //   C_e = −∂r_e/∂q̇ on sparse patterns fixed by finish() (an implicit engine's KLU analyses
 //   them once per run).
@@ -19,17 +20,17 @@ namespace camdyn {
 
 class ElementSet {
  public:
+  using Row = std::vector<std::pair<int, double>>;  ///< (unknown, coefficient)
   struct Placed {
     std::unique_ptr<const Element> element;
-    std::vector<int> dof;     ///< per element node: the unknown it reads, −1 for none
-    std::vector<double> w;    ///< per element node: x_i = w_i q[dof_i]
-    std::vector<long> pos_k;  ///< per local (i, j), column-major: position in K_e's values, −1
+    std::vector<Row> rows;    ///< per element node: x_i = Σ coefficient · q[unknown]
+    std::vector<long> pos_k;  ///< per (j, i, entry of row j, entry of row i) in tangent(): K_e position
     std::vector<long> pos_c;  ///< the same in C_e (empty if the element does not damp)
   };
 
-  /// @pre dof, w have element->nodes() entries; @throws std::invalid_argument for an element
+  /// @pre rows has element->nodes() entries; @throws std::invalid_argument for an element
   /// with internal states (the engines do not carry element states).
-  void add(std::unique_ptr<const Element> element, std::vector<int> dof, std::vector<double> w);
+  void add(std::unique_ptr<const Element> element, std::vector<Row> rows);
   /// Builds the tangent patterns over n unknowns (after the last add()).
   void finish(int n);
   bool empty() const { return placed_.empty(); }

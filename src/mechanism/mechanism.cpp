@@ -48,7 +48,9 @@ Mechanism::Mechanism(const Scene& scene) {
   std::vector<std::pair<int, double>> point_mass;  // (dof, mass)
   struct MassPair { int a, b; double md, mo; };    // element mass matrix [md mo; mo md]
   std::vector<MassPair> mass_pairs;
-  std::vector<std::pair<int, std::pair<int, double>>> levers;  // out → (in, ratio)
+  // a lever: out = ratio·in + (1 − ratio)·pivot (pivot −1: fixed, out = ratio·in)
+  struct LeverTie { int out, in, pivot; double ratio; };
+  std::vector<LeverTie> levers;
   std::vector<std::pair<int, int>> inner_ends;  // per inner node: its chain's end DOFs
   std::vector<double> inner_frac;               // position along the chain (0 at a, 1 at b)
   for (size_t i = 0; i < net.nodes.size(); ++i)
@@ -126,8 +128,9 @@ Mechanism::Mechanism(const Scene& scene) {
         break;
       }
       case ElementKind::Lever:
-        levers.push_back({b, {a, e.ratio}});
+        levers.push_back({b, a, e.nodes.size() == 3 ? dof(e.nodes[2]) : -1, e.ratio});
         d << " ratio " << fmt(e.ratio);
+        if (e.nodes.size() == 3) d << ", pivot " << e.nodes[2] << " (moving)";
         break;
       case ElementKind::ProgressiveSpring: {
         std::unique_ptr<Element> el = make_element(e, element_report_name(e, ei));
@@ -140,42 +143,55 @@ Mechanism::Mechanism(const Scene& scene) {
     desc_.network.push_back(d.str());
   }
 
-  // ---- levers: q_full = Lf q (an output is ratio × its input, chains resolved: every row
-  //      of Lf has at most one entry)
+  // ---- levers: q_full = Lf q (an output is ratio × its input plus (1 − ratio) × its
+  //      pivot when the pivot moves; chains resolved: a row of Lf has one entry per
+  //      independent node it depends on)
+  using Row = std::vector<std::pair<int, double>>;  // (reduced DOF, coefficient)
   std::vector<int> red(n_full, -1);
-  std::map<int, std::pair<int, double>> dep;
-  for (const auto& lv : levers) dep[lv.first] = lv.second;
+  std::map<int, const LeverTie*> dep;
+  for (const LeverTie& lv : levers) dep[lv.out] = &lv;
   n_ = 0;
   for (int i = 0; i < n_full; ++i)
     if (!dep.count(i)) red[i] = n_++;
-  std::vector<std::pair<int, double>> lrow(n_full);  // (reduced DOF or −1, coefficient)
-  for (int i = 0; i < n_full; ++i) {
-    int k = i, depth = 0;
-    double c = 1.0;
-    for (auto it = dep.find(k); it != dep.end(); it = dep.find(k)) {
-      if (++depth > n_full) throw std::invalid_argument("levers form a cycle");
-      c *= it->second.second;
-      k = it->second.first;
-      if (k < 0) break;
+  std::vector<Row> lrow(n_full);
+  std::vector<char> state(n_full, 0);  // 0 unresolved, 1 in progress, 2 done
+  std::function<const Row&(int)> resolve = [&](int i) -> const Row& {
+    if (state[i] == 2) return lrow[i];
+    if (state[i] == 1) throw std::invalid_argument("levers form a cycle");
+    state[i] = 1;
+    Row r;
+    const auto it = dep.find(i);
+    if (it == dep.end()) {
+      r.emplace_back(red[i], 1.0);
+    } else {
+      const LeverTie& lv = *it->second;
+      std::map<int, double> sum;
+      for (const auto& e : resolve(lv.in)) sum[e.first] += lv.ratio * e.second;
+      if (lv.pivot >= 0)
+        for (const auto& e : resolve(lv.pivot)) sum[e.first] += (1.0 - lv.ratio) * e.second;
+      for (const auto& e : sum)
+        if (e.second != 0.0) r.push_back(e);
     }
-    lrow[i] = k < 0 ? std::make_pair(-1, 0.0) : std::make_pair(red[k], c);
-  }
+    lrow[i] = std::move(r);
+    state[i] = 2;
+    return lrow[i];
+  };
+  for (int i = 0; i < n_full; ++i) resolve(i);
 
   // ---- assemble M, K, C, f₀ directly over the reduced DOFs: Lfᵀ A Lf entry by entry
   using Trip = Eigen::Triplet<double, long>;
   std::vector<Trip> tm, tk, tc;
   Eigen::VectorXd ff = Eigen::VectorXd::Zero(n_full);
   // x [1 −1; −1 1] on full DOFs (a, b); ground (−1) and grounded lever outputs dropped
+  // (ground and grounded rows are empty): x (r_a − r_b)ᵀ(r_a − r_b) with r the rows of Lf
+  const Row ground_row;
+  auto row = [&](int i) -> const Row& { return i >= 0 ? lrow[i] : ground_row; };
   auto add2 = [&](std::vector<Trip>& A, int a, int b, double x) {
     if (x == 0.0) return;
-    const int ia = a >= 0 ? lrow[a].first : -1, ib = b >= 0 ? lrow[b].first : -1;
-    const double ca = ia >= 0 ? lrow[a].second : 0.0, cb = ib >= 0 ? lrow[b].second : 0.0;
-    if (ia >= 0) A.emplace_back(ia, ia, x * ca * ca);
-    if (ib >= 0) A.emplace_back(ib, ib, x * cb * cb);
-    if (ia >= 0 && ib >= 0) {
-      A.emplace_back(ia, ib, -x * ca * cb);
-      A.emplace_back(ib, ia, -x * ca * cb);
-    }
+    Row d = row(a);
+    for (const auto& e : row(b)) d.emplace_back(e.first, -e.second);
+    for (const auto& u : d)
+      for (const auto& w : d) A.emplace_back(u.first, w.first, x * u.second * w.second);
   };
   for (const Stiff& l : links) {
     add2(tk, l.a, l.b, l.k);
@@ -184,8 +200,8 @@ Mechanism::Mechanism(const Scene& scene) {
     if (l.b >= 0) ff[l.b] += l.P;
   }
   auto add_mass = [&](int a, int b, double x) {  // x on (a, b) of the full mass matrix
-    if (a < 0 || b < 0 || lrow[a].first < 0 || lrow[b].first < 0) return;
-    tm.emplace_back(lrow[a].first, lrow[b].first, x * lrow[a].second * lrow[b].second);
+    for (const auto& u : row(a))
+      for (const auto& w : row(b)) tm.emplace_back(u.first, w.first, x * u.second * w.second);
   };
   for (const auto& pm : point_mass) add_mass(pm.first, pm.first, pm.second);
   for (const MassPair& p : mass_pairs) {
@@ -206,11 +222,11 @@ Mechanism::Mechanism(const Scene& scene) {
   }
   f0_ = Eigen::VectorXd::Zero(n_);
   for (int i = 0; i < n_full; ++i)
-    if (lrow[i].first >= 0) f0_[lrow[i].first] += lrow[i].second * ff[i];
+    for (const auto& e : lrow[i]) f0_[e.first] += e.second * ff[i];
   {
     std::vector<Trip> tl;
     for (int i = 0; i < n_named; ++i)
-      if (lrow[i].first >= 0) tl.emplace_back(i, lrow[i].first, lrow[i].second);
+      for (const auto& e : lrow[i]) tl.emplace_back(i, e.first, e.second);
     L_.resize(n_named, n_);
     L_.setFromTriplets(tl.begin(), tl.end());
   }
@@ -218,21 +234,13 @@ Mechanism::Mechanism(const Scene& scene) {
   factor_mass();
 
   // ---- nonlinear elements and the reported linear forces, on the reduced DOFs
-  auto reduced = [&](int i) { return i >= 0 ? lrow[i] : std::make_pair(-1, 0.0); };
   for (Nonlinear& nl : nonlinear) {
-    std::vector<int> dofs;
-    std::vector<double> w;
-    for (int i : nl.nodes) {
-      dofs.push_back(reduced(i).first);
-      w.push_back(reduced(i).second);
-    }
-    elements_.add(std::move(nl.element), std::move(dofs), std::move(w));
+    std::vector<Row> rows;
+    for (int i : nl.nodes) rows.push_back(row(i));
+    elements_.add(std::move(nl.element), std::move(rows));
   }
   elements_.finish(n_);
-  for (const TwoNodeForce& f : two_node) {
-    const auto ra = reduced(f.a), rb = reduced(f.b);
-    linear_forces_.push_back({f.name, ra.first, rb.first, ra.second, rb.second, f.k, f.c, f.P});
-  }
+  for (const TwoNodeForce& f : two_node) linear_forces_.push_back({f.name, row(f.a), row(f.b), f.k, f.c, f.P});
 
   // ---- contacts
   for (const ContactPointSpec& cs : net.contacts) {
@@ -241,7 +249,7 @@ Mechanism::Mechanism(const Scene& scene) {
     c.kind = cs.kind;
     Eigen::RowVectorXd tr = Eigen::RowVectorXd::Zero(n_);  // the row over the reduced DOFs
     auto tf = [&](int i, double x) {
-      if (i >= 0 && lrow[i].first >= 0) tr[lrow[i].first] += x * lrow[i].second;
+      for (const auto& e : row(i)) tr[e.first] += x * e.second;
     };
     const int a = dof(cs.nodes.at(0));
     std::ostringstream d;
@@ -342,11 +350,13 @@ std::vector<std::string> Mechanism::element_force_names() const {
 }
 
 void Mechanism::element_forces(double t, const double* q, const double* v, double* out) const {
-  for (const LinearForce& f : linear_forces_) {
-    const double xa = f.a >= 0 ? f.wa * q[f.a] : 0.0, xb = f.b >= 0 ? f.wb * q[f.b] : 0.0;
-    const double va = f.a >= 0 ? f.wa * v[f.a] : 0.0, vb = f.b >= 0 ? f.wb * v[f.b] : 0.0;
-    *out++ = f.P + f.k * (xa - xb) + f.c * (va - vb);
-  }
+  auto dot = [](const std::vector<std::pair<int, double>>& r, const double* x) {
+    double s = 0.0;
+    for (const auto& e : r) s += e.second * x[e.first];
+    return s;
+  };
+  for (const LinearForce& f : linear_forces_)
+    *out++ = f.P + f.k * (dot(f.a, q) - dot(f.b, q)) + f.c * (dot(f.a, v) - dot(f.b, v));
   elements_.forces(t, q, v, out);
 }
 

@@ -5,7 +5,8 @@
 //   gap of contact j:  g_j = T_j q + g₀_j − X_C(t)·[j touches the cam]
 //
 //   Assembly over the network's nodes (ground dropped), then levers eliminated:
-//     q_full = L q  (a lever's output node is ratio × its input node; chains resolved),
+//     q_full = L q  (a lever's output node is ratio × its input node, plus (1 − ratio) × its
+//     pivot node on a moving pivot; chains resolved),
 //     M = LᵀM_f L, C = LᵀC_f L, K = LᵀK_f L, f₀ = Lᵀf₀_f, T = T_f L.
 //   spring [a, b] (δ = q_a − q_b):  K_f += k[1 −1; −1 1], C_f += c[…], f₀_f += P(−e_a + e_b)
 //   spring with mass m_s, N masses: N + 1 springs of (N + 1)k (and (N + 1)c) in series,
@@ -188,8 +189,7 @@ class Mechanism final : public MechanicalSystem {
   ElementSet elements_;
   struct LinearForce {  // a spring's or dashpot's reported force
     std::string name;
-    int a, b;       // reduced DOFs of its ends (−1: none)
-    double wa, wb;  // their lever factors
+    std::vector<std::pair<int, double>> a, b;  // its ends' rows of Lf: (reduced DOF, coefficient)
     double k, c, P;
   };
   std::vector<LinearForce> linear_forces_;

@@ -153,8 +153,9 @@ const KeyDoc kDocs[] = {
     {"elements.name", "—", "Element name, for messages.", "string", "any string", "\"<type> #<index>\""},
     {"elements.type", "—", "Element type; decides the other keys allowed.", "enum",
      "must be one of \"spring\", \"dashpot\", \"bar\", \"lever\", \"progressive_spring\"", "(required)"},
-    {"elements.nodes", "—", "[lower, upper] (lever: [input, output]); \"ground\" may end a spring, dashpot or bar.",
-     "names", "exactly two different node names", "(required)"},
+    {"elements.nodes", "—", "[lower, upper] (lever: [input, output], or [input, output, pivot] for a lever on a moving "
+                            "pivot); \"ground\" may end a spring, dashpot, bar or progressive_spring.",
+     "names", "two different node names (a lever: two or three)", "(required)"},
     {"elements.stiffness", "force/length", "Spring stiffness k.", "real", "must be >= 0"},
     {"elements.preload", "force", "Compressive force P at q = 0 (> 0 pushes the ends apart).", "real",
      "must be finite"},
@@ -172,8 +173,10 @@ const KeyDoc kDocs[] = {
      "must be one of \"lumped\", \"consistent\""},
     {"elements.rayleigh_alpha", "1/time", "bar: Rayleigh α (C = αM + βK).", "real", "must be >= 0"},
     {"elements.rayleigh_beta", "time", "bar: Rayleigh β.", "real", "must be >= 0"},
-    {"elements.ratio", "—", "lever: q_output = ratio · q_input (negative: against the output's axis).", "real",
-     "finite and != 0"},
+    {"elements.ratio", "—", "lever: q_output = ratio · q_input (negative: against the output's axis); with a pivot node "
+                            "q_output = ratio · q_input + (1 − ratio) · q_pivot, ratio = output arm / input arm (signed "
+                            "distances from the pivot along the lever).", "real",
+     "finite and != 0 (!= 1 with a pivot node)"},
     {"elements.deflections", "length", "progressive_spring: the table's deflections δ (compression of [lower, upper]).",
      "array of reals", "at least 2, finite, strictly increasing"},
     {"elements.forces", "force", "progressive_spring: the table's forces F(δ), one per deflection; F between them is "

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -311,13 +312,20 @@ class Validator {
       const ElementSpec& e = n.elements[i];
       const std::string p = elem("elements", i);
       const std::string who = element_label(e, i);
-      if (e.nodes.size() != 2)
-        net_fail(p + ".nodes", quoted_names(e.nodes),
-                 "must name exactly 2 nodes, has " + std::to_string(e.nodes.size()) + " (" + who + ")");
       const bool lever = e.kind == ElementKind::Lever;
-      for (std::size_t k = 0; k < 2; ++k)
+      if (e.nodes.size() != 2 && !(lever && e.nodes.size() == 3))
+        net_fail(p + ".nodes", quoted_names(e.nodes),
+                 std::string(lever ? "must name 2 nodes [input, output] or 3 [input, output, pivot]"
+                                   : "must name exactly 2 nodes") +
+                     ", has " + std::to_string(e.nodes.size()) + " (" + who + ")");
+      for (std::size_t k = 0; k < e.nodes.size(); ++k)
         node_ref(elem(p + ".nodes", k), e.nodes[k], !lever, who, "\"ground\" cannot be a node of a lever");
-      if (e.nodes[0] == e.nodes[1]) net_fail(p + ".nodes", quoted_names(e.nodes), "must name two different nodes (" + who + ")");
+      for (std::size_t k = 1; k < e.nodes.size(); ++k)
+        for (std::size_t l = 0; l < k; ++l)
+          if (e.nodes[k] == e.nodes[l])
+            net_fail(p + ".nodes", quoted_names(e.nodes),
+                     std::string(e.nodes.size() == 3 ? "must name three" : "must name two") + " different nodes (" +
+                         who + ")");
       switch (e.kind) {
         case ElementKind::Spring:
           net_ge(p + ".stiffness", e.stiffness, 0.0, who);
@@ -346,6 +354,10 @@ class Validator {
         case ElementKind::Lever:
           if (!(std::isfinite(e.ratio) && e.ratio != 0.0))
             net_fail(p + ".ratio", fmt_num(e.ratio), "must be finite and != 0 (" + who + ")");
+          if (e.nodes.size() == 3 && e.ratio == 1.0)
+            net_fail(p + ".ratio", fmt_num(e.ratio),
+                     "must be != 1 on a lever with a pivot node (ratio 1 ties the output to the input alone; "
+                     "drop the pivot) (" + who + ")");
           break;
         case ElementKind::ProgressiveSpring: {
           const std::vector<double>& x = e.deflections;
@@ -423,17 +435,25 @@ class Validator {
                      elem("elements", it->second) + "); a node is the output of at most one lever (" +
                      element_label(e, i) + ")");
     }
+    // a lever's output depends on its input and pivot: no lever may depend on itself
     for (std::size_t i = 0; i < n.elements.size(); ++i) {
       const ElementSpec& e = n.elements[i];
       if (e.kind != ElementKind::Lever) continue;
-      std::string cur = e.nodes[0];
-      for (std::size_t steps = 0; steps <= lever_of_output.size(); ++steps) {
+      std::vector<std::string> todo(e.nodes.begin(), e.nodes.end());
+      todo.erase(todo.begin() + 1);  // input and pivot
+      std::set<std::string> seen;
+      while (!todo.empty()) {
+        const std::string cur = todo.back();
+        todo.pop_back();
+        if (!seen.insert(cur).second) continue;
         auto it = lever_of_output.find(cur);
-        if (it == lever_of_output.end()) break;
+        if (it == lever_of_output.end()) continue;
         if (it->second == i)
           net_fail(elem("elements", i) + ".nodes", quoted_names(e.nodes),
                    "levers form a cycle through node '" + e.nodes[1] + "' (" + element_label(e, i) + ")");
-        cur = n.elements[it->second].nodes[0];
+        const ElementSpec& up = n.elements[it->second];
+        todo.push_back(up.nodes[0]);
+        if (up.nodes.size() == 3) todo.push_back(up.nodes[2]);
       }
     }
 
@@ -464,6 +484,7 @@ class Validator {
         continue;
       }
       parent[root(node_index.at(e.nodes[0]))] = root(node_index.at(e.nodes[1]));
+      if (e.nodes.size() == 3) parent[root(node_index.at(e.nodes[2]))] = root(node_index.at(e.nodes[1]));
     }
     std::vector<bool> comp_anchored(nn, false);
     for (std::size_t i = 0; i < nn; ++i)
@@ -475,25 +496,33 @@ class Validator {
 
     // ---- mass: after lever elimination (a lever's output is tied to its input), every
     // remaining unknown needs positive mass from node masses, bars or springs with mass.
-    auto unknown_of = [&](std::string name) {
-      for (std::size_t steps = 0; steps <= lever_of_output.size(); ++steps) {
-        auto it = lever_of_output.find(name);
-        if (it == lever_of_output.end()) break;
-        name = n.elements[it->second].nodes[0];
-      }
-      return node_index.at(name);
-    };
+    // (the unknowns a node moves with: itself, or its lever's input and pivot, recursively)
     std::vector<bool> has_mass(nn, false);
+    auto give_mass = [&](const std::string& node) {
+      std::vector<std::string> todo{node};
+      for (std::size_t steps = 0; !todo.empty() && steps <= 4 * nn + 4; ++steps) {
+        const std::string cur = todo.back();
+        todo.pop_back();
+        auto it = lever_of_output.find(cur);
+        if (it == lever_of_output.end()) {
+          has_mass[node_index.at(cur)] = true;
+          continue;
+        }
+        const ElementSpec& lv = n.elements[it->second];
+        todo.push_back(lv.nodes[0]);
+        if (lv.nodes.size() == 3) todo.push_back(lv.nodes[2]);
+      }
+    };
     for (std::size_t i = 0; i < nn; ++i)
-      if (n.nodes[i].mass > 0) has_mass[unknown_of(n.nodes[i].name)] = true;
+      if (n.nodes[i].mass > 0) give_mass(n.nodes[i].name);
     for (const auto& e : n.elements) {
       const bool massive = e.kind == ElementKind::Bar || (e.kind == ElementKind::Spring && e.mass > 0);
       if (!massive) continue;
       for (const auto& name : e.nodes)
-        if (name != "ground") has_mass[unknown_of(name)] = true;
+        if (name != "ground") give_mass(name);
     }
     for (std::size_t i = 0; i < nn; ++i)
-      if (unknown_of(n.nodes[i].name) == i && !has_mass[i])
+      if (!lever_of_output.count(n.nodes[i].name) && !has_mass[i])
         net_fail(elem("nodes", i) + ".mass", fmt_num(n.nodes[i].mass),
                  "node '" + n.nodes[i].name +
                      "' has no mass (give it mass, or connect a bar or a spring with mass to it or to a node "
