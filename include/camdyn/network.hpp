@@ -11,7 +11,9 @@
 //                   dashpot  nodes = [lower, upper], damping c
 //                   bar      nodes = [lower, upper], an elastic bar of `elements` elements
 //                            (mass, youngs_modulus, area, length, mass_matrix, Rayleigh)
-//                   lever    nodes = [input, output], q_output = ratio · q_input (a rocker)
+//                   lever    nodes = [input, output], q_output = ratio · q_input (a rocker);
+//                            [input, output, pivot]: q_output = ratio · q_input
+//                            + (1 − ratio) · q_pivot (a finger on a moving pivot)
 //                   progressive_spring  nodes = [lower, upper], a force–deflection table
 //                            (deflections, forces; monotone cubic), installed_deflection,
 //                            damping c: a nonlinear element
@@ -20,7 +22,7 @@
 //                   stop     nodes = [node], side = "below": g = q + clearance (a valve seat)
 //                                        side = "above": g = clearance − q
 //
-//   "ground" (q ≡ 0) may end a spring, dashpot or bar. A spring, dashpot or bar between
+//   "ground" (q ≡ 0) may end a spring, dashpot, bar or progressive_spring. A spring, dashpot or bar between
 //   [lower, upper] is compressed by δ = q_lower − q_upper and pushes lower by −(P + kδ + cδ̇)
 //   and upper by +(P + kδ + cδ̇). A contact force F ≥ 0 acts along ∂g/∂q: the contact matrix
 //   T has one row per contact (g = T q + g₀ − X_C(t)·[cam]), the generalised force is TᵀF.
@@ -65,7 +67,8 @@ struct ElementSpec {
   /// Optional name for reports and errors (default: "<kind> #<index>").
   std::string name;
   ElementKind kind = ElementKind::Spring;
-  /// [lower, upper] (lever: [input, output]); exactly two, distinct.
+  /// [lower, upper] (lever: [input, output] or [input, output, pivot]); two (a lever: two
+  /// or three), distinct.
   std::vector<std::string> nodes;
   /// spring: stiffness k [force/length], ≥ 0.
   double stiffness = 0.0;
@@ -88,7 +91,8 @@ struct ElementSpec {
   BarMass mass_matrix = BarMass::Lumped;
   double rayleigh_alpha = 0.0;
   double rayleigh_beta = 0.0;
-  /// lever: q_output = ratio · q_input, ratio finite and ≠ 0.
+  /// lever: q_output = ratio · q_input, ratio finite and ≠ 0; with a pivot node
+  /// q_output = ratio · q_input + (1 − ratio) · q_pivot (ratio = output arm / input arm, ≠ 1).
   double ratio = 1.0;
   /// progressive_spring: the force–deflection curve as a table, deflections [length]
   /// strictly increasing, forces [force] non-decreasing (a monotone curve), ≥ 2 points of

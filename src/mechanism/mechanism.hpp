@@ -213,7 +213,7 @@ class Mechanism final : public MechanicalSystem {
 /// An element's name in reports and history columns: its scene name, or "<kind>_<index>".
 std::string element_report_name(const ElementSpec& e, std::size_t index);
 
-/// A user's follower as the system the network methods integrate (src/mechanism/mechanism.cpp).
+/// A user's follower as the system the network methods integrate (src/mechanism/user_mechanism.cpp).
 /// @throws SceneError (file "<follower>") naming the offending contact field.
 std::shared_ptr<const MechanicalSystem> make_user_system(const Scene& scene,
                                                          std::shared_ptr<const FollowerSystem> follower);
