@@ -11,13 +11,18 @@
 //                   dashpot  nodes = [lower, upper], damping c
 //                   bar      nodes = [lower, upper], an elastic bar of `elements` elements
 //                            (mass, youngs_modulus, area, length, mass_matrix, Rayleigh)
-//                   lever    nodes = [input, output], q_output = ratio · q_input (a rocker)
+//                   lever    nodes = [input, output], q_output = ratio · q_input (a rocker);
+//                            [input, output, pivot]: q_output = ratio · q_input
+//                            + (1 − ratio) · q_pivot (a finger on a moving pivot)
+//                   progressive_spring  nodes = [lower, upper], a force–deflection table
+//                            (deflections, forces; monotone cubic), installed_deflection,
+//                            damping c: a nonlinear element
 //     [[contacts]]  cam      nodes = [node]          gap g = q + clearance − X_C(t)
 //                   lash     nodes = [lower, upper]  gap g = q_upper − q_lower + clearance
 //                   stop     nodes = [node], side = "below": g = q + clearance (a valve seat)
 //                                        side = "above": g = clearance − q
 //
-//   "ground" (q ≡ 0) may end a spring, dashpot or bar. A spring, dashpot or bar between
+//   "ground" (q ≡ 0) may end a spring, dashpot, bar or progressive_spring. A spring, dashpot or bar between
 //   [lower, upper] is compressed by δ = q_lower − q_upper and pushes lower by −(P + kδ + cδ̇)
 //   and upper by +(P + kδ + cδ̇). A contact force F ≥ 0 acts along ∂g/∂q: the contact matrix
 //   T has one row per contact (g = T q + g₀ − X_C(t)·[cam]), the generalised force is TᵀF.
@@ -30,12 +35,12 @@
 
 namespace camdyn {
 
-enum class ElementKind { Spring, Dashpot, Bar, Lever };
+enum class ElementKind { Spring, Dashpot, Bar, Lever, ProgressiveSpring };
 enum class ContactPointKind { Cam, Lash, Stop };
 enum class StopSide { Below, Above };
 enum class BarMass { Consistent, Lumped };
 
-const char* to_string(ElementKind v);       // "spring" | "dashpot" | "bar" | "lever"
+const char* to_string(ElementKind v);       // "spring" | "dashpot" | "bar" | "lever" | "progressive_spring"
 const char* to_string(ContactPointKind v);  // "cam" | "lash" | "stop"
 const char* to_string(StopSide v);          // "below" | "above"
 const char* to_string(BarMass v);           // "lumped" | "consistent"
@@ -62,7 +67,8 @@ struct ElementSpec {
   /// Optional name for reports and errors (default: "<kind> #<index>").
   std::string name;
   ElementKind kind = ElementKind::Spring;
-  /// [lower, upper] (lever: [input, output]); exactly two, distinct.
+  /// [lower, upper] (lever: [input, output] or [input, output, pivot]); two (a lever: two
+  /// or three), distinct.
   std::vector<std::string> nodes;
   /// spring: stiffness k [force/length], ≥ 0.
   double stiffness = 0.0;
@@ -85,8 +91,17 @@ struct ElementSpec {
   BarMass mass_matrix = BarMass::Lumped;
   double rayleigh_alpha = 0.0;
   double rayleigh_beta = 0.0;
-  /// lever: q_output = ratio · q_input, ratio finite and ≠ 0.
+  /// lever: q_output = ratio · q_input, ratio finite and ≠ 0; with a pivot node
+  /// q_output = ratio · q_input + (1 − ratio) · q_pivot (ratio = output arm / input arm, ≠ 1).
   double ratio = 1.0;
+  /// progressive_spring: the force–deflection curve as a table, deflections [length]
+  /// strictly increasing, forces [force] non-decreasing (a monotone curve), ≥ 2 points of
+  /// the same count; F(δ) between them is the monotone cubic (PCHIP) through the points,
+  /// beyond them the straight line of the end slope.
+  std::vector<double> deflections;
+  std::vector<double> forces;
+  /// progressive_spring: the deflection at q = 0 [length], finite; the preload is F there.
+  double installed_deflection = 0.0;
 };
 
 /// A unilateral contact (any number per network).

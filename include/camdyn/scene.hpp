@@ -255,6 +255,11 @@ struct RunSpec {
   /// (docs/cam_laws.md): pressure_angle_deg, radius_of_curvature, contact_stress, side_load,
   /// cam_torque, cam_power, from the row's cam contact force. false: no such columns.
   bool designer_columns = false;
+  /// true: history.csv gets one column force_<name> per reported element force (after the
+  /// network columns and before the designer columns): every spring (without mass), dashpot
+  /// and nonlinear element (progressive_spring), unnamed ones as <type>_<index>; the
+  /// compressive force of the element along [lower, upper]. Networks only.
+  bool element_forces = false;
 };
 
 /// How the speed-range map (`camdyn jump`, jump_speed(); docs/guide/sweeps.md) judges one

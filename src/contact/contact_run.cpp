@@ -10,6 +10,7 @@
 
 #include "camdyn/initial_state.hpp"
 #include "contact/active_set.hpp"
+#include "mechanism/element_set.hpp"
 #include "cam/joints.hpp"  // one_sided_motion
 #include "contact/run_clock.hpp"
 #include "contact/run_failure.hpp"
@@ -37,6 +38,7 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
     sum_.contacts.back().name = c.name;
   }
   unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
+  element_force_count_ = mk_.element_force_names().size();
   if (sc.cam.land_on_breaks) break_angles_ = cam_.breakpoints();
   // The base circle, so that a cam contact's gap sees the lift X_C − X_base
   // (cam_lift_base, include/camdyn/initial_state.hpp: cam.base_radius for a lift table,
@@ -46,7 +48,7 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
     x_base_ = cam_lift_base(cam_, sc.cam);
 }
 
-std::vector<std::string> ContactRun::extra_columns(const MechanicalSystem& mech) {
+std::vector<std::string> ContactRun::extra_columns(const MechanicalSystem& mech, bool element_forces) {
   std::vector<std::string> c;
   if (mech.single_follower()) return c;  // the standard columns show its one contact
   for (const MechanismContact& k : mech.contacts()) {
@@ -58,6 +60,8 @@ std::vector<std::string> ContactRun::extra_columns(const MechanicalSystem& mech)
     c.push_back("u_" + nd);
     c.push_back("v_" + nd);
   }
+  if (element_forces)
+    for (const std::string& f : mech.element_force_names()) c.push_back("force_" + f);
   return c;
 }
 
@@ -81,6 +85,14 @@ std::shared_ptr<SparseNewton> ContactRun::sparse_newton() const {
   sn->K = &mech->K();
   sn->C = mech->damped() ? &mech->C() : nullptr;
   sn->T = mk_.T();
+  const ElementSet& el = mech->elements();
+  if (!el.empty()) {
+    sn->Ke_pattern = &el.stiffness_pattern();
+    sn->Ce_pattern = el.damps() ? &el.damping_pattern() : nullptr;
+    sn->element_tangent = [mech, n = n_](double t, const double* y, SparseMatrix& Ke, SparseMatrix& Ce) {
+      mech->elements().tangent(t, y, y + n, Ke, Ce);
+    };
+  }
   return sn;
 }
 
@@ -231,7 +243,7 @@ double ContactRun::potential(double t, const Eigen::VectorXd& y) const {
   return mk_.potential_energy(y.data()) + contact_potential(t, y.data());
 }
 double ContactRun::dissipation_power(double t, const Eigen::VectorXd& y) const {
-  return mk_.damping_power(y.data() + n_) + contact_dissipation(t, y);
+  return mk_.damping_power(t, y.data(), y.data() + n_) + contact_dissipation(t, y);
 }
 double ContactRun::cam_power(const Eigen::VectorXd& F, const CamMotion& cm) const {
   double p = 0.0;
@@ -272,6 +284,11 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
   for (Eigen::Index i = 0; i < u.size(); ++i) {
     r.extra.push_back(u[i]);
     r.extra.push_back(v[i]);
+  }
+  if (sc_.run.element_forces && !mk_.single_follower()) {
+    const std::size_t k = r.extra.size();
+    r.extra.resize(k + element_force_count_);
+    mk_.element_forces(t, y.data(), y.data() + n_, r.extra.data() + k);
   }
   if (sc_.run.designer_columns) {
     double Fc = 0.0;  // the cam's force: Σ over the cam contacts (their axial components)

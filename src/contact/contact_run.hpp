@@ -47,7 +47,8 @@ class ContactRun {
   Summary run();
 
   /// Names of HistoryRow::extra for a mechanism.
-  static std::vector<std::string> extra_columns(const MechanicalSystem& mech);
+  /// element_forces: with the elements' force_<name> columns (run.element_forces).
+  static std::vector<std::string> extra_columns(const MechanicalSystem& mech, bool element_forces = false);
 
  protected:
   /// The method's loop over accepted steps from (t_, y_, F_, active_) to t_end.
@@ -200,6 +201,7 @@ class ContactRun {
   int n_, m_;
   DesignerStats designer_;
   DesignerColumns design_cols_{sc_};  // run.designer_columns
+  std::size_t element_force_count_ = 0;  // run.element_forces: the mechanism's reported forces
   Summary sum_;
   double t_ = 0, work_ = 0, dissipated_ = 0, E0_ = 0, V0_ = 0, last_row_t_ = -1;
   Eigen::VectorXd y_, F_;

@@ -91,7 +91,7 @@ void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion
   bool soft = true;  // every closing contact only touches
   for (int j : closing) {
     const double approach = -gd[j];
-    const double e = mk_.contacts()[j].restitution;
+    const double e = mk_.contacts()[j].law.impact.restitution;
     stick[j] = plastic || !unilateral_ || e == 0.0 || (1.0 + e) * approach < v_stick[j];
     soft = soft && approach < v_stick[j];
   }
@@ -103,7 +103,7 @@ void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion
     b.resize(k);  // ġ⁻ − target
     for (int i = 0; i < k; ++i) {
       const int j = set[i];
-      const double target = is_closing[j] && !stick[j] ? -mk_.contacts()[j].restitution * gd[j] : 0.0;
+      const double target = is_closing[j] && !stick[j] ? -mk_.contacts()[j].law.impact.restitution * gd[j] : 0.0;
       b[i] = gd[j] - target;
       for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, set[l]);
     }

@@ -126,6 +126,9 @@ struct IdaHeldSet::Impl {
   Eigen::VectorXd q0, r0;
   SparseMatrix J0, J1;    // ∂F/∂y, ∂F/∂ẏ on one common (union) pattern
   std::vector<long> p_wl;  // positions of ∂F_W/∂λ_j (held cam contacts), −1 otherwise
+  // nonlinear elements: their tangent's values and positions in J0 (rows n + i)
+  SparseMatrix Ke, Ce;
+  std::vector<long> p_ke, p_ce;
   Eigen::VectorXd r, Mvp, dq;
   std::vector<double> jx;  // the Jacobian's values on the pattern
   bool tensile_on = true;
@@ -182,6 +185,17 @@ struct IdaHeldSet::Impl {
         for (SparseMatrix::InnerIterator it(mech.C(), j); it; ++it) add0(n + it.row(), n + j, it.value());
       for (SparseMatrix::InnerIterator it(M, j); it; ++it) add1(n + it.row(), n + j, it.value());
     }
+    const ElementSet& el = mech.elements();
+    if (!el.empty()) {  // F_v = M v̇ − r: ∂/∂q of −r_e is K_e, ∂/∂v is C_e (values per Jacobian)
+      Ke = el.stiffness_pattern();
+      for (long j = 0; j < n; ++j)
+        for (SparseMatrix::InnerIterator it(Ke, j); it; ++it) add0(n + it.row(), j, 0.0);
+      if (el.damps()) {
+        Ce = el.damping_pattern();
+        for (long j = 0; j < n; ++j)
+          for (SparseMatrix::InnerIterator it(Ce, j); it; ++it) add0(n + it.row(), n + j, 0.0);
+      }
+    }
     for (int c = 0; c < k; ++c) {
       for (const auto& e : held[std::size_t(c)].nz) {
         add0(e.first, iU + c, e.second);       // F_q: + T_cᵀ μ_c
@@ -202,6 +216,15 @@ struct IdaHeldSet::Impl {
     J1.makeCompressed();
     if (J0.nonZeros() != P.nonZeros() || J1.nonZeros() != P.nonZeros())
       throw std::logic_error("IdaHeldSet: Jacobian patterns differ");
+    auto position = [&](long i, long j) {
+      for (long p = J0.outerIndexPtr()[j]; p < J0.outerIndexPtr()[j + 1]; ++p)
+        if (J0.innerIndexPtr()[p] == i) return p;
+      throw std::logic_error("IdaHeldSet: element entry outside the pattern");
+    };
+    for (long j = 0; j < Ke.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(Ke, j); it; ++it) p_ke.push_back(position(n + it.row(), j));
+    for (long j = 0; j < Ce.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(Ce, j); it; ++it) p_ce.push_back(position(n + it.row(), n + j));
     p_wl.assign(std::size_t(k), -1);
     for (int c = 0; c < k; ++c)
       for (long p = J0.outerIndexPtr()[iL + c]; p < J0.outerIndexPtr()[iL + c + 1]; ++p)
@@ -217,6 +240,7 @@ struct IdaHeldSet::Impl {
     dq = Eigen::Map<const Eigen::VectorXd>(q, n) - q0;
     r.noalias() = r0 - mech.K() * dq;
     if (mech.damped()) r.noalias() -= mech.C() * Eigen::Map<const Eigen::VectorXd>(v, n);
+    if (!mech.elements().empty()) mech.elements().add_force(t, q, v, r.data());
     double Pw = 0.0;
     for (int j = 0; j < k; ++j) {
       const Row& h = held[std::size_t(j)];
@@ -235,7 +259,7 @@ struct IdaHeldSet::Impl {
   }
 
   // J = J0 + c_j J1 (with ∂F_W/∂λ_j = −Ẋ_C(t)).
-  void jacobian(double t, double cj, SUNMatrix Jac) {
+  void jacobian(double t, double cj, const double* y, SUNMatrix Jac) {
     const long nnz = J0.nonZeros();
     const double* a0 = J0.valuePtr();
     const double* a1 = J1.valuePtr();
@@ -245,6 +269,11 @@ struct IdaHeldSet::Impl {
     for (long p = 0; p < nnz; ++p) x[std::size_t(p)] = a0[p] + cj * a1[p];
     for (long p : p_wl)
       if (p >= 0) x[std::size_t(p)] = wl;
+    if (!p_ke.empty()) {
+      mech.elements().tangent(t, y, y + n, Ke, Ce);
+      for (std::size_t p = 0; p < p_ke.size(); ++p) x[std::size_t(p_ke[p])] += Ke.valuePtr()[p];
+      for (std::size_t p = 0; p < p_ce.size(); ++p) x[std::size_t(p_ce[p])] += Ce.valuePtr()[p];
+    }
     if (dense) {
       SUNMatZero(Jac);
       for (long j = 0; j < N; ++j) {
@@ -295,10 +324,10 @@ struct IdaHeldSet::Impl {
       return -1;
     }
   }
-  static int jac_cb(double t, double cj, N_Vector, N_Vector, N_Vector, SUNMatrix Jac, void* ud, N_Vector,
+  static int jac_cb(double t, double cj, N_Vector y, N_Vector, N_Vector, SUNMatrix Jac, void* ud, N_Vector,
                     N_Vector, N_Vector) {
     try {
-      static_cast<Impl*>(ud)->jacobian(t, cj, Jac);
+      static_cast<Impl*>(ud)->jacobian(t, cj, N_VGetArrayPointer(y), Jac);
       return 0;
     } catch (...) {
       return -1;

@@ -53,6 +53,13 @@ struct SparseNewton {
   /// T_A P = 0 — read at every solve: the system is bordered with T_A (x_v,A = b_v,A).
   /// Null: none.
   const std::vector<int>* held = nullptr;
+  /// Nonlinear elements (src/mechanism/element_set.hpp): their tangent K_e = −∂r_e/∂q and
+  /// C_e = −∂r_e/∂q̇ enter K̃ = K + K_e − …, C̃ = C + C_e − …. Ke_pattern (and Ce_pattern,
+  /// null if no element damps) fix the pattern; element_tangent(t, y, Ke, Ce) writes the
+  /// values at (t, y) on copies of them. Empty: none (a linear mechanism).
+  const SparseMatrix* Ke_pattern = nullptr;
+  const SparseMatrix* Ce_pattern = nullptr;
+  std::function<void(double t, const double* y, SparseMatrix& Ke, SparseMatrix& Ce)> element_tangent;
 };
 
 /// The system an OdeEngine integrates.

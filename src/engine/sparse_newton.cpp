@@ -40,6 +40,10 @@ SparseNewtonSolver::SparseNewtonSolver(const SparseNewton& sys, bool dense, Engi
   pattern(*sys.M);
   pattern(*sys.K);
   if (sys.C) pattern(*sys.C);
+  if (sys.element_tangent) {
+    pattern(*sys.Ke_pattern);
+    if (sys.Ce_pattern) pattern(*sys.Ce_pattern);
+  }
   for (long i = 0; i < n_; ++i) t.emplace_back(i, i, 0.0);
   std::vector<std::vector<std::pair<long, double>>> rows(static_cast<std::size_t>(m_));
   if (sys.contact_derivatives) {
@@ -56,6 +60,14 @@ SparseNewtonSolver::SparseNewtonSolver(const SparseNewton& sys, bool dense, Engi
   pos_m_ = positions(S_, *sys.M);
   pos_k_ = positions(S_, *sys.K);
   if (sys.C) pos_c_ = positions(S_, *sys.C);
+  if (sys.element_tangent) {
+    Ke_ = Ke_f_ = *sys.Ke_pattern;
+    pos_ke_ = positions(S_, Ke_);
+    if (sys.Ce_pattern) {
+      Ce_ = Ce_f_ = *sys.Ce_pattern;
+      pos_ce_ = positions(S_, Ce_);
+    }
+  }
   for (int j = 0; j < m_; ++j)
     for (const auto& a : rows[std::size_t(j)])
       for (const auto& b : rows[std::size_t(j)]) outer_.push_back({position(S_, a.first, b.first), j, a.second * b.second});
@@ -65,10 +77,19 @@ SparseNewtonSolver::SparseNewtonSolver(const SparseNewton& sys, bool dense, Engi
 void SparseNewtonSolver::prepare(double t, const double* y, double gamma) {
   gamma_ = gamma;
   if (sys_.contact_derivatives) sys_.contact_derivatives(t, y, dFdg_, dFdgd_);
+  if (sys_.element_tangent) sys_.element_tangent(t, y, Ke_, Ce_);
 }
 
+namespace {
+bool same_values(const SparseMatrix& a, const SparseMatrix& b) {
+  return a.nonZeros() == b.nonZeros() && std::equal(a.valuePtr(), a.valuePtr() + a.nonZeros(), b.valuePtr());
+}
+}  // namespace
+
 void SparseNewtonSolver::setup() {
-  if (factored_ && gamma_ == gamma_f_ && dFdg_ == dFdg_f_ && dFdgd_ == dFdgd_f_) return;  // S unchanged
+  if (factored_ && gamma_ == gamma_f_ && dFdg_ == dFdg_f_ && dFdgd_ == dFdgd_f_ &&
+      (!sys_.element_tangent || (same_values(Ke_, Ke_f_) && same_values(Ce_, Ce_f_))))
+    return;  // S unchanged
   const double g = gamma_;
   double* x = S_.valuePtr();
   std::fill(x, x + S_.nonZeros(), 0.0);
@@ -81,6 +102,14 @@ void SparseNewtonSolver::setup() {
     for (std::size_t p = 0; p < pos_c_.size(); ++p) x[pos_c_[p]] += g * v[p];
   }
   for (const Outer& o : outer_) x[o.pos] -= (g * dFdgd_[o.j] + g * g * dFdg_[o.j]) * o.w;
+  if (sys_.element_tangent) {
+    v = Ke_.valuePtr();
+    for (std::size_t p = 0; p < pos_ke_.size(); ++p) x[pos_ke_[p]] += g * g * v[p];
+    v = Ce_.valuePtr();
+    for (std::size_t p = 0; p < pos_ce_.size(); ++p) x[pos_ce_[p]] += g * v[p];
+    Ke_f_ = Ke_;
+    Ce_f_ = Ce_;
+  }
   lu_.factor(S_);
   ++stats_.lin_setups;
   gamma_f_ = g;
@@ -96,6 +125,7 @@ void SparseNewtonSolver::solve(double* b) {
   Eigen::Map<Eigen::VectorXd> U(b, n_), V(b + n_, n_);
   rhs_.noalias() = *sys_.M * V;
   rhs_.noalias() -= g * (*sys_.K * U);
+  if (sys_.element_tangent) rhs_.noalias() -= g * (Ke_f_ * U);
   if (sys_.contact_derivatives)
     for (int j = 0; j < m_; ++j)
       if (dFdg_f_[j] != 0.0) rhs_.noalias() += (g * dFdg_f_[j] * sys_.T.row(j).dot(U)) * sys_.T.row(j).transpose();

@@ -1,9 +1,10 @@
 // camdyn (private) — the Newton systems of a mechanism's implicit engines (ode_engine.cpp)
 // through the sparse Schur complement (SparseNewton in ode_engine.hpp has the maths).
 //
-// S's pattern is the union of M, C, K and, when F depends on the state, Tᵀ T; it is fixed
-// at construction, so KLU analyses it once per run. setup() refills S's values in O(nnz)
-// and refactors only when γ or the contact derivatives changed; solve() costs one sparse
+// S's pattern is the union of M, C, K, the elements' tangent and, when F depends on the
+// state, Tᵀ T; it is fixed at construction, so KLU analyses it once per run. setup() refills
+// S's values in O(nnz) and refactors only when γ, the contact derivatives or the elements'
+// tangent changed; solve() costs one sparse
 // product with M and K, one KLU solve, and for k held contacts a k × k bordering
 // (Z = S⁻¹T_Aᵀ: k solves per factorisation and held set).
 #pragma once
@@ -39,6 +40,9 @@ class SparseNewtonSolver {
   struct Outer { long pos; int j; double w; };  // S(pos) += coefficient_j · w
   std::vector<Outer> outer_;
   Eigen::VectorXd dFdg_, dFdgd_, dFdg_f_, dFdgd_f_;  // prepared / factorised
+  // the elements' tangent: prepared (Ke_, Ce_) and factorised (Ke_f_, Ce_f_); positions in S_
+  SparseMatrix Ke_, Ce_, Ke_f_, Ce_f_;
+  std::vector<long> pos_ke_, pos_ce_;
   double gamma_ = 0, gamma_f_ = -1;
   bool factored_ = false;
   Eigen::VectorXd rhs_, r_;

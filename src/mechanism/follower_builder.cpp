@@ -39,9 +39,7 @@ void Mechanism::build_follower(const Scene& scene) {
   c.t[0] = 1.0;
   c.g0 = 0.0;
   c.cam = true;
-  c.restitution = scene.contact.restitution;
-  c.penalty_stiffness = scene.contact.penalty_stiffness;
-  c.penalty_damping = scene.contact.penalty_damping;
+  c.law = ContactLaw::of(scene.contact);
   contacts_.push_back(std::move(c));
   finish_contacts([&](const double* b, double* x) {
     Eigen::Map<Eigen::VectorXd> X(x, n_);

@@ -7,8 +7,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "engine/engine_stats.hpp"  // resolve_linear_solver
 #include "cam/format.hpp"            // detail::fmt
+#include "engine/engine_stats.hpp"  // resolve_linear_solver
+#include "mechanism/element.hpp"
 
 namespace camdyn {
 
@@ -16,6 +17,13 @@ namespace {
 std::string element_label(const ElementSpec& e, size_t i) {
   return e.name.empty() ? std::string(to_string(e.kind)) + " #" + std::to_string(i) : e.name;
 }
+}  // namespace
+
+std::string element_report_name(const ElementSpec& e, std::size_t index) {
+  return e.name.empty() ? std::string(to_string(e.kind)) + "_" + std::to_string(index) : e.name;
+}
+
+namespace {
 }  // namespace
 
 Mechanism::Mechanism(const Scene& scene) {
@@ -40,12 +48,18 @@ Mechanism::Mechanism(const Scene& scene) {
   std::vector<std::pair<int, double>> point_mass;  // (dof, mass)
   struct MassPair { int a, b; double md, mo; };    // element mass matrix [md mo; mo md]
   std::vector<MassPair> mass_pairs;
-  std::vector<std::pair<int, std::pair<int, double>>> levers;  // out → (in, ratio)
+  // a lever: out = ratio·in + (1 − ratio)·pivot (pivot −1: fixed, out = ratio·in)
+  struct LeverTie { int out, in, pivot; double ratio; };
+  std::vector<LeverTie> levers;
   std::vector<std::pair<int, int>> inner_ends;  // per inner node: its chain's end DOFs
   std::vector<double> inner_frac;               // position along the chain (0 at a, 1 at b)
   for (size_t i = 0; i < net.nodes.size(); ++i)
     if (net.nodes[i].mass > 0.0) point_mass.emplace_back(int(i), net.nodes[i].mass);
   bool any_damping = false, any_preload = false, any_mass_matrix = false;
+  struct Nonlinear { std::unique_ptr<Element> element; std::vector<int> nodes; };
+  std::vector<Nonlinear> nonlinear;
+  struct TwoNodeForce { std::string name; int a, b; double k, c, P; };  // a reported linear force
+  std::vector<TwoNodeForce> two_node;
   for (size_t ei = 0; ei < net.elements.size(); ++ei) {
     const ElementSpec& e = net.elements[ei];
     const int a = dof(e.nodes.at(0)), b = dof(e.nodes.at(1));
@@ -82,6 +96,7 @@ Mechanism::Mechanism(const Scene& scene) {
             << e.masses << " masses";
         } else {
           links.push_back({a, b, k, e.damping, P});
+          two_node.push_back({element_report_name(e, ei), a, b, k, e.damping, P});
           if (e.kind == ElementKind::Spring) d << " k " << fmt(k) << ", preload " << fmt(P);
         }
         if (e.damping != 0.0) d << ", c " << fmt(e.damping);
@@ -113,49 +128,70 @@ Mechanism::Mechanism(const Scene& scene) {
         break;
       }
       case ElementKind::Lever:
-        levers.push_back({b, {a, e.ratio}});
+        levers.push_back({b, a, e.nodes.size() == 3 ? dof(e.nodes[2]) : -1, e.ratio});
         d << " ratio " << fmt(e.ratio);
+        if (e.nodes.size() == 3) d << ", pivot " << e.nodes[2] << " (moving)";
         break;
+      case ElementKind::ProgressiveSpring: {
+        std::unique_ptr<Element> el = make_element(e, element_report_name(e, ei));
+        any_damping |= el->damps();
+        d.str(el->describe());
+        nonlinear.push_back({std::move(el), {a, b}});
+        break;
+      }
     }
     desc_.network.push_back(d.str());
   }
 
-  // ---- levers: q_full = Lf q (an output is ratio × its input, chains resolved: every row
-  //      of Lf has at most one entry)
+  // ---- levers: q_full = Lf q (an output is ratio × its input plus (1 − ratio) × its
+  //      pivot when the pivot moves; chains resolved: a row of Lf has one entry per
+  //      independent node it depends on)
+  using Row = std::vector<std::pair<int, double>>;  // (reduced DOF, coefficient)
   std::vector<int> red(n_full, -1);
-  std::map<int, std::pair<int, double>> dep;
-  for (const auto& lv : levers) dep[lv.first] = lv.second;
+  std::map<int, const LeverTie*> dep;
+  for (const LeverTie& lv : levers) dep[lv.out] = &lv;
   n_ = 0;
   for (int i = 0; i < n_full; ++i)
     if (!dep.count(i)) red[i] = n_++;
-  std::vector<std::pair<int, double>> lrow(n_full);  // (reduced DOF or −1, coefficient)
-  for (int i = 0; i < n_full; ++i) {
-    int k = i, depth = 0;
-    double c = 1.0;
-    for (auto it = dep.find(k); it != dep.end(); it = dep.find(k)) {
-      if (++depth > n_full) throw std::invalid_argument("levers form a cycle");
-      c *= it->second.second;
-      k = it->second.first;
-      if (k < 0) break;
+  std::vector<Row> lrow(n_full);
+  std::vector<char> state(n_full, 0);  // 0 unresolved, 1 in progress, 2 done
+  std::function<const Row&(int)> resolve = [&](int i) -> const Row& {
+    if (state[i] == 2) return lrow[i];
+    if (state[i] == 1) throw std::invalid_argument("levers form a cycle");
+    state[i] = 1;
+    Row r;
+    const auto it = dep.find(i);
+    if (it == dep.end()) {
+      r.emplace_back(red[i], 1.0);
+    } else {
+      const LeverTie& lv = *it->second;
+      std::map<int, double> sum;
+      for (const auto& e : resolve(lv.in)) sum[e.first] += lv.ratio * e.second;
+      if (lv.pivot >= 0)
+        for (const auto& e : resolve(lv.pivot)) sum[e.first] += (1.0 - lv.ratio) * e.second;
+      for (const auto& e : sum)
+        if (e.second != 0.0) r.push_back(e);
     }
-    lrow[i] = k < 0 ? std::make_pair(-1, 0.0) : std::make_pair(red[k], c);
-  }
+    lrow[i] = std::move(r);
+    state[i] = 2;
+    return lrow[i];
+  };
+  for (int i = 0; i < n_full; ++i) resolve(i);
 
   // ---- assemble M, K, C, f₀ directly over the reduced DOFs: Lfᵀ A Lf entry by entry
   using Trip = Eigen::Triplet<double, long>;
   std::vector<Trip> tm, tk, tc;
   Eigen::VectorXd ff = Eigen::VectorXd::Zero(n_full);
   // x [1 −1; −1 1] on full DOFs (a, b); ground (−1) and grounded lever outputs dropped
+  // (ground and grounded rows are empty): x (r_a − r_b)ᵀ(r_a − r_b) with r the rows of Lf
+  const Row ground_row;
+  auto row = [&](int i) -> const Row& { return i >= 0 ? lrow[i] : ground_row; };
   auto add2 = [&](std::vector<Trip>& A, int a, int b, double x) {
     if (x == 0.0) return;
-    const int ia = a >= 0 ? lrow[a].first : -1, ib = b >= 0 ? lrow[b].first : -1;
-    const double ca = ia >= 0 ? lrow[a].second : 0.0, cb = ib >= 0 ? lrow[b].second : 0.0;
-    if (ia >= 0) A.emplace_back(ia, ia, x * ca * ca);
-    if (ib >= 0) A.emplace_back(ib, ib, x * cb * cb);
-    if (ia >= 0 && ib >= 0) {
-      A.emplace_back(ia, ib, -x * ca * cb);
-      A.emplace_back(ib, ia, -x * ca * cb);
-    }
+    Row d = row(a);
+    for (const auto& e : row(b)) d.emplace_back(e.first, -e.second);
+    for (const auto& u : d)
+      for (const auto& w : d) A.emplace_back(u.first, w.first, x * u.second * w.second);
   };
   for (const Stiff& l : links) {
     add2(tk, l.a, l.b, l.k);
@@ -164,8 +200,8 @@ Mechanism::Mechanism(const Scene& scene) {
     if (l.b >= 0) ff[l.b] += l.P;
   }
   auto add_mass = [&](int a, int b, double x) {  // x on (a, b) of the full mass matrix
-    if (a < 0 || b < 0 || lrow[a].first < 0 || lrow[b].first < 0) return;
-    tm.emplace_back(lrow[a].first, lrow[b].first, x * lrow[a].second * lrow[b].second);
+    for (const auto& u : row(a))
+      for (const auto& w : row(b)) tm.emplace_back(u.first, w.first, x * u.second * w.second);
   };
   for (const auto& pm : point_mass) add_mass(pm.first, pm.first, pm.second);
   for (const MassPair& p : mass_pairs) {
@@ -186,16 +222,25 @@ Mechanism::Mechanism(const Scene& scene) {
   }
   f0_ = Eigen::VectorXd::Zero(n_);
   for (int i = 0; i < n_full; ++i)
-    if (lrow[i].first >= 0) f0_[lrow[i].first] += lrow[i].second * ff[i];
+    for (const auto& e : lrow[i]) f0_[e.first] += e.second * ff[i];
   {
     std::vector<Trip> tl;
     for (int i = 0; i < n_named; ++i)
-      if (lrow[i].first >= 0) tl.emplace_back(i, lrow[i].first, lrow[i].second);
+      for (const auto& e : lrow[i]) tl.emplace_back(i, e.first, e.second);
     L_.resize(n_named, n_);
     L_.setFromTriplets(tl.begin(), tl.end());
   }
 
   factor_mass();
+
+  // ---- nonlinear elements and the reported linear forces, on the reduced DOFs
+  for (Nonlinear& nl : nonlinear) {
+    std::vector<Row> rows;
+    for (int i : nl.nodes) rows.push_back(row(i));
+    elements_.add(std::move(nl.element), std::move(rows));
+  }
+  elements_.finish(n_);
+  for (const TwoNodeForce& f : two_node) linear_forces_.push_back({f.name, row(f.a), row(f.b), f.k, f.c, f.P});
 
   // ---- contacts
   for (const ContactPointSpec& cs : net.contacts) {
@@ -204,7 +249,7 @@ Mechanism::Mechanism(const Scene& scene) {
     c.kind = cs.kind;
     Eigen::RowVectorXd tr = Eigen::RowVectorXd::Zero(n_);  // the row over the reduced DOFs
     auto tf = [&](int i, double x) {
-      if (i >= 0 && lrow[i].first >= 0) tr[lrow[i].first] += x * lrow[i].second;
+      for (const auto& e : row(i)) tr[e.first] += x * e.second;
     };
     const int a = dof(cs.nodes.at(0));
     std::ostringstream d;
@@ -227,10 +272,8 @@ Mechanism::Mechanism(const Scene& scene) {
     }
     c.g0 = cs.clearance;
     c.t = tr;
-    c.restitution = cs.restitution.value_or(scene.contact.restitution);
-    c.penalty_stiffness = cs.penalty_stiffness.value_or(scene.contact.penalty_stiffness);
-    c.penalty_damping = cs.penalty_damping.value_or(scene.contact.penalty_damping);
-    d << ", clearance " << fmt(c.g0) << ", e " << fmt(c.restitution) << ")";
+    c.law = ContactLaw::of(scene.contact, cs.restitution, cs.penalty_stiffness, cs.penalty_damping);
+    d << ", clearance " << fmt(c.g0) << ", e " << fmt(c.law.impact.restitution) << ")";
     desc_.network.push_back(d.str());
     contacts_.push_back(std::move(c));
   }
@@ -238,6 +281,11 @@ Mechanism::Mechanism(const Scene& scene) {
     Eigen::Map<Eigen::VectorXd>(x, n_) = Mldlt_.solve(Eigen::Map<const Eigen::VectorXd>(b, n_));
   });
   force_scale_ = f0_.size() ? f0_.cwiseAbs().maxCoeff() : 0.0;
+  if (!elements_.empty()) {  // the elements' forces at q = 0 (their preloads)
+    Eigen::VectorXd re = Eigen::VectorXd::Zero(n_), z = re;
+    elements_.add_force(0.0, z.data(), z.data(), re.data());
+    force_scale_ = std::max(force_scale_, re.cwiseAbs().maxCoeff());
+  }
 
   // ---- initial state: named nodes as given, inside nodes linear between their ends
   Eigen::VectorXd qf = Eigen::VectorXd::Zero(n_full), vf = qf;
@@ -276,17 +324,40 @@ Mechanism::Mechanism(const Scene& scene) {
   if (any_preload) desc_.rhs_terms.push_back("preload");
   if (any_damping) desc_.rhs_terms.push_back("damping");
   if (!levers.empty()) desc_.rhs_terms.push_back("levers");
+  if (!elements_.empty()) desc_.rhs_terms.push_back("nonlinear elements");
   desc_.rhs_terms.push_back("contacts");
 }
 
-bool Mechanism::acceleration_jacobian(double, const double*, const double*, Eigen::MatrixXd& dadq,
+bool Mechanism::acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
                                       Eigen::MatrixXd& dadv) const {
-  dadq = -Mldlt_.solve(Eigen::MatrixXd(K_));
-  if (damped())
-    dadv = -Mldlt_.solve(Eigen::MatrixXd(C_));
-  else
-    dadv.setZero(n_, n_);
+  Eigen::MatrixXd K(K_), C = damped() ? Eigen::MatrixXd(C_) : Eigen::MatrixXd::Zero(n_, n_);
+  if (!elements_.empty()) {
+    SparseMatrix Ke, Ce;
+    elements_.tangent(t, q, v, Ke, Ce);
+    K += Eigen::MatrixXd(Ke);
+    if (elements_.damps()) C += Eigen::MatrixXd(Ce);
+  }
+  dadq = -Mldlt_.solve(K);
+  dadv = -Mldlt_.solve(C);
   return true;
+}
+
+std::vector<std::string> Mechanism::element_force_names() const {
+  std::vector<std::string> n;
+  for (const LinearForce& f : linear_forces_) n.push_back(f.name);
+  for (const std::string& s : elements_.force_names()) n.push_back(s);
+  return n;
+}
+
+void Mechanism::element_forces(double t, const double* q, const double* v, double* out) const {
+  auto dot = [](const std::vector<std::pair<int, double>>& r, const double* x) {
+    double s = 0.0;
+    for (const auto& e : r) s += e.second * x[e.first];
+    return s;
+  };
+  for (const LinearForce& f : linear_forces_)
+    *out++ = f.P + f.k * (dot(f.a, q) - dot(f.b, q)) + f.c * (dot(f.a, v) - dot(f.b, v));
+  elements_.forces(t, q, v, out);
 }
 
 void Mechanism::factor_mass() {
@@ -335,7 +406,7 @@ void Mechanism::solve_mass(Eigen::Ref<Eigen::VectorXd> x) const {
   }
 }
 
-void Mechanism::acceleration(double, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
+void Mechanism::acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
                              bool homogeneous) const {
   Eigen::Map<Eigen::VectorXd> A(a, n_);
   if (!single_follower_) {
@@ -346,6 +417,7 @@ void Mechanism::acceleration(double, const double* q, const double* v, const Eig
     Eigen::VectorXd r = -(K_ * Q);
     if (!homogeneous) r += f0_;
     if (damped()) r.noalias() -= C_ * V;
+    if (!elements_.empty() && !homogeneous) elements_.add_force(t, q, v, r.data());
     A = Mldlt_.solve(r);
     if (F.size()) A.noalias() += MinvTt_ * F;
     return;
@@ -394,145 +466,17 @@ double Mechanism::kinetic_energy(const double* v) const {
 }
 double Mechanism::potential_energy(const double* q) const {
   Eigen::Map<const Eigen::VectorXd> Q(q, n_);
-  return 0.5 * Q.dot(K_ * Q) - f0_.dot(Q);
+  return 0.5 * Q.dot(K_ * Q) - f0_.dot(Q) + (elements_.empty() ? 0.0 : elements_.stored_energy(q));
 }
 double Mechanism::damping_power(const double* v) const {
   if (!damped()) return 0.0;
   Eigen::Map<const Eigen::VectorXd> V(v, n_);
   return V.dot(C_ * V);
 }
-
-}  // namespace camdyn
-
-// ---- a user's follower (include/camdyn/follower_system.hpp) as a MechanicalSystem ----------
-namespace camdyn {
-
-namespace {
-class UserMechanism final : public MechanicalSystem {
- public:
-  UserMechanism(const Scene& scene, std::shared_ptr<const FollowerSystem> f) : f_(std::move(f)) {
-    auto fail = [](const std::string& key, const std::string& value, const std::string& rule) {
-      throw SceneError("<follower>", 0, key, value, rule);
-    };
-    n_ = f_->size();
-    if (n_ < 1) fail("size()", std::to_string(n_), "must be >= 1");
-    // A user follower is dense (its Jacobian is n × n, each factorisation n³): size 6000
-    // took 88 s and 867 MB for 1e-4 s. Larger trains are networks (sparse, KLU).
-    constexpr int kMaxUserSize = 1000;
-    if (n_ > kMaxUserSize)
-      fail("size()", std::to_string(n_),
-           "must be <= " + std::to_string(kMaxUserSize) +
-               ": a user follower's Jacobian is dense (n² memory, n³ per factorisation); write a larger train as a "
-               "network (follower.kind = \"network\", sparse)");
-    const std::vector<FollowerContact> cs = f_->contacts();
-    if (cs.empty()) fail("contacts()", "[]", "needs at least one contact");
-    for (size_t i = 0; i < cs.size(); ++i) {
-      const FollowerContact& c = cs[i];
-      const std::string p = "contacts()[" + std::to_string(i) + "]";
-      if (c.name.empty() || c.name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
-        fail(p + ".name", "\"" + c.name + "\"", "must be non-empty, letters, digits, '_' and '-' only");
-      for (size_t k = 0; k < i; ++k)
-        if (cs[k].name == c.name) fail(p + ".name", "\"" + c.name + "\"", "must be unique");
-      if (int(c.row.size()) != n_)
-        fail(p + ".row", std::to_string(c.row.size()) + " entries", "must have size() = " + std::to_string(n_) + " entries");
-      bool nonzero = false;
-      for (double x : c.row) {
-        if (!std::isfinite(x)) fail(p + ".row", "non-finite entry", "must be finite");
-        nonzero |= x != 0.0;
-      }
-      if (!nonzero) fail(p + ".row", "all zero", "must not be all zero");
-      if (!(c.clearance >= 0.0) || !std::isfinite(c.clearance))
-        fail(p + ".clearance", detail::fmt(c.clearance), "must be finite and >= 0");
-      if (c.restitution && !(*c.restitution >= 0.0 && *c.restitution <= 1.0))
-        fail(p + ".restitution", detail::fmt(*c.restitution), "must be >= 0 and <= 1");
-      if (c.penalty_stiffness && !(*c.penalty_stiffness > 0.0))
-        fail(p + ".penalty_stiffness", detail::fmt(*c.penalty_stiffness), "must be > 0");
-      if (c.penalty_damping && !(*c.penalty_damping >= 0.0))
-        fail(p + ".penalty_damping", detail::fmt(*c.penalty_damping), "must be >= 0");
-      MechanismContact m;
-      m.name = c.name;
-      m.kind = c.cam ? ContactPointKind::Cam : ContactPointKind::Stop;
-      m.t = Eigen::Map<const Eigen::RowVectorXd>(c.row.data(), n_);
-      m.g0 = c.clearance;
-      m.cam = c.cam;
-      m.restitution = c.restitution.value_or(scene.contact.restitution);
-      m.penalty_stiffness = c.penalty_stiffness.value_or(scene.contact.penalty_stiffness);
-      m.penalty_damping = c.penalty_damping.value_or(scene.contact.penalty_damping);
-      contacts_.push_back(std::move(m));
-    }
-    finish_contacts([&](const double* b, double* x) { f_->solve_mass(b, x); });
-    if (!W_.allFinite() || W_.diagonal().minCoeff() <= 0.0)
-      fail("solve_mass()", "T M⁻¹ Tᵀ", "must give a positive diagonal (M symmetric positive definite)");
-    q0_.resize(n_);
-    v0_.resize(n_);
-    f_->initial_state(q0_.data(), v0_.data());
-    // the force at rest: the scale of the force thresholds
-    Eigen::VectorXd r(n_), zero = Eigen::VectorXd::Zero(n_);
-    f_->force(0.0, q0_.data(), zero.data(), r.data());
-    force_scale_ = r.cwiseAbs().maxCoeff();
-    for (int i = 0; i < n_; ++i) node_names_.push_back("q" + std::to_string(i));
-    L_.resize(n_, n_);
-    L_.setIdentity();
-    desc_.follower = "user: " + f_->name();
-    desc_.nodes = n_;
-    desc_.unknowns = 2 * n_;
-    desc_.mass = "user (M⁻¹ action)";
-    desc_.linear_solver = scene.solver.integrator == Integrator::ArkodeErk ? "none" : "dense";
-    desc_.contact = "unilateral × " + std::to_string(m());
-    Eigen::MatrixXd dq, dv;
-    const bool jac = f_->force_jacobian(0.0, q0_.data(), v0_.data(), (dq = Eigen::MatrixXd(n_, n_)).data(),
-                                        (dv = Eigen::MatrixXd(n_, n_)).data());
-    desc_.rhs_terms = {"inertia", "user force r(t, q, v)", jac ? "user Jacobian" : "difference-quotient Jacobian",
-                       "contacts"};
-    for (const MechanismContact& c : contacts_)
-      desc_.network.push_back("contact '" + c.name + "' (" + (c.cam ? "cam" : "stop") + ", clearance " +
-                              detail::fmt(c.g0) + ", e " + detail::fmt(c.restitution) + ")");
-  }
-  bool linear() const override { return f_->linear(); }
-  void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
-                    bool homogeneous) const override {
-    r_.resize(n_);
-    f_->force(t, q, v, r_.data());
-    // A non-finite force is named here (the engine would only see its step size collapse).
-    for (int i = 0; i < n_; ++i)
-      if (!std::isfinite(r_[i]))
-        throw std::runtime_error("the follower's force(t, q, v) returned a non-finite value at t = " +
-                                 std::to_string(t) + ": entry " + std::to_string(i) + " is " +
-                                 (std::isnan(r_[i]) ? "nan" : r_[i] > 0 ? "inf" : "-inf"));
-    if (homogeneous) {  // linear only: drop r's constant part r(t, 0, 0)
-      Eigen::VectorXd z = Eigen::VectorXd::Zero(n_), r0(n_);
-      f_->force(t, z.data(), z.data(), r0.data());
-      r_ -= r0;
-    }
-    if (F.size()) r_.noalias() += T_.transpose() * F;
-    f_->solve_mass(r_.data(), a);
-  }
-  bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
-                             Eigen::MatrixXd& dadv) const override {
-    Eigen::MatrixXd drdq(n_, n_), drdv(n_, n_);
-    if (!f_->force_jacobian(t, q, v, drdq.data(), drdv.data())) return false;
-    dadq.resize(n_, n_);
-    dadv.resize(n_, n_);
-    for (int j = 0; j < n_; ++j) {
-      f_->solve_mass(drdq.col(j).data(), dadq.col(j).data());
-      f_->solve_mass(drdv.col(j).data(), dadv.col(j).data());
-    }
-    return true;
-  }
-  double kinetic_energy(const double* v) const override { return f_->kinetic_energy(v); }
-  double potential_energy(const double* q) const override { return f_->potential_energy(q); }
-  double damping_power(const double* v) const override { return f_->damping_power(v); }
-
- private:
-  std::shared_ptr<const FollowerSystem> f_;
-  mutable Eigen::VectorXd r_;
-};
-}  // namespace
-
-std::shared_ptr<const MechanicalSystem> make_user_system(const Scene& scene,
-                                                         std::shared_ptr<const FollowerSystem> follower) {
-  if (!follower) throw std::invalid_argument("Simulator: the follower is null");
-  return std::make_shared<const UserMechanism>(scene, std::move(follower));
+double Mechanism::damping_power(double t, const double* q, const double* v) const {
+  double P = damping_power(v);
+  if (elements_.damps()) P += elements_.dissipated_power(t, q, v);
+  return P;
 }
 
 }  // namespace camdyn

@@ -5,7 +5,8 @@
 //   gap of contact j:  g_j = T_j q + g₀_j − X_C(t)·[j touches the cam]
 //
 //   Assembly over the network's nodes (ground dropped), then levers eliminated:
-//     q_full = L q  (a lever's output node is ratio × its input node; chains resolved),
+//     q_full = L q  (a lever's output node is ratio × its input node, plus (1 − ratio) × its
+//     pivot node on a moving pivot; chains resolved),
 //     M = LᵀM_f L, C = LᵀC_f L, K = LᵀK_f L, f₀ = Lᵀf₀_f, T = T_f L.
 //   spring [a, b] (δ = q_a − q_b):  K_f += k[1 −1; −1 1], C_f += c[…], f₀_f += P(−e_a + e_b)
 //   spring with mass m_s, N masses: N + 1 springs of (N + 1)k (and (N + 1)c) in series,
@@ -33,6 +34,8 @@
 #include "mechanism/sparse_matrix.hpp"
 #include "camdyn/model_description.hpp"
 #include "camdyn/scene.hpp"
+#include "contact/laws/contact_law.hpp"
+#include "mechanism/element_set.hpp"
 
 namespace camdyn {
 
@@ -43,7 +46,7 @@ struct MechanismContact {
   Eigen::RowVectorXd t;  ///< row of T over the unknowns
   double g0 = 0.0;       ///< gap at q = 0 (and X_C = 0)
   bool cam = false;      ///< the cam's lift X_C(t) enters the gap
-  double restitution = 0.0, penalty_stiffness = 0.0, penalty_damping = 0.0;
+  ContactLaw law;        ///< its impact and penalty laws (scene values, [contact] as defaults)
 };
 
 /// What the network methods integrate: M q̈ = r(t, q, q̇) + TᵀF with constant M and contact
@@ -98,7 +101,13 @@ class MechanicalSystem {
   virtual double kinetic_energy(const double* v) const = 0;
   /// Up to a constant.
   virtual double potential_energy(const double* q) const = 0;
-  virtual double damping_power(const double* v) const = 0;
+  /// The power dissipated inside the mechanism (not at its contacts) at (t, q, v).
+  virtual double damping_power(double t, const double* q, const double* v) const = 0;
+  /// The elements' reported forces (history columns force_<name>, run.element_forces): their
+  /// names, and their values at (t, q, v) (element_force_names().size() entries). Default:
+  /// none.
+  virtual std::vector<std::string> element_force_names() const { return {}; }
+  virtual void element_forces(double /*t*/, const double* /*q*/, const double* /*v*/, double* /*out*/) const {}
   /// false: damping_power is zero for every v (a quadrature of it may skip the state).
   virtual bool dissipative() const { return true; }
 
@@ -149,7 +158,8 @@ class Mechanism final : public MechanicalSystem {
   bool damped() const { return C_.size() > 0; }
   const Eigen::VectorXd& f0() const { return f0_; }
 
-  bool linear() const override { return true; }
+  /// true without nonlinear elements.
+  bool linear() const override { return elements_.empty(); }
   void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
                     bool homogeneous = false) const override;
   bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
@@ -160,8 +170,13 @@ class Mechanism final : public MechanicalSystem {
   double kinetic_energy(const double* v) const override;
   /// ½qᵀKq − f₀ᵀq (up to a constant).
   double potential_energy(const double* q) const override;
-  double damping_power(const double* v) const override;
-  bool dissipative() const override { return damped(); }
+  double damping_power(double t, const double* q, const double* v) const override;
+  bool dissipative() const override { return damped() || elements_.damps(); }
+  /// Springs' and dashpots' P + kδ + cδ̇ (springs without mass), then the nonlinear elements'.
+  std::vector<std::string> element_force_names() const override;
+  void element_forces(double t, const double* q, const double* v, double* out) const override;
+  /// The nonlinear elements (empty for a linear mechanism).
+  const ElementSet& elements() const { return elements_; }
 
  private:
   /// A rigid or elastic_bar follower: its M, C, K, f₀ and q(0) (follower_matrices.hpp),
@@ -169,7 +184,16 @@ class Mechanism final : public MechanicalSystem {
   void build_follower(const Scene& scene);
   /// After M_, K_, C_, f0_, q0_: the LDLᵀ of M and the shifted force origin.
   void factor_and_origin();
+  /// The linear part's damping power vᵀCv.
+  double damping_power(const double* v) const;
   SparseMatrix M_, K_, C_;
+  ElementSet elements_;
+  struct LinearForce {  // a spring's or dashpot's reported force
+    std::string name;
+    std::vector<std::pair<int, double>> a, b;  // its ends' rows of Lf: (reduced DOF, coefficient)
+    double k, c, P;
+  };
+  std::vector<LinearForce> linear_forces_;
   Eigen::SimplicialLDLT<SparseMatrix> Mldlt_;
   Eigen::VectorXd f0_;
   // r = f₀ − Kq − Cq̇ is evaluated as r₀ − K(q − q(0)) − Cq̇ with r₀ = f₀ − Kq(0): the same
@@ -187,7 +211,10 @@ class Mechanism final : public MechanicalSystem {
   Eigen::MatrixXd ta_q_, ta_v_;
 };
 
-/// A user's follower as the system the network methods integrate (src/mechanism/mechanism.cpp).
+/// An element's name in reports and history columns: its scene name, or "<kind>_<index>".
+std::string element_report_name(const ElementSpec& e, std::size_t index);
+
+/// A user's follower as the system the network methods integrate (src/mechanism/user_mechanism.cpp).
 /// @throws SceneError (file "<follower>") naming the offending contact field.
 std::shared_ptr<const MechanicalSystem> make_user_system(const Scene& scene,
                                                          std::shared_ptr<const FollowerSystem> follower);

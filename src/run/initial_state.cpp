@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "contact/laws/penalty_law.hpp"
+#include "contact/laws/contact_law.hpp"
 #include "run/initial_check.hpp"
 #include "mechanism/mechanism.hpp"
 #include "cam/format.hpp"  // detail::fmt
@@ -89,13 +89,6 @@ FollowerStart initial_state_on_cam(const Scene& scene, const FollowerSystem& fol
 namespace detail {
 namespace {
 
-// The penetration at which the penalty law carries force F (ŝ = 0).
-double penalty_depth(const Scene& sc, double kp, double F) {
-  if (!(F > 0.0)) return 0.0;
-  return sc.contact.penalty_law == PenaltyLaw::Linear ? F / kp
-                                                      : std::pow(F / kp, 1.0 / sc.contact.penalty_exponent);
-}
-
 // "G < bound" of the message: −contact.tol_u, or the penalty method's −(s + tol_u).
 std::string below(const Scene& sc, double gap, double depth) {
   const double tol = sc.contact.tol_u;
@@ -142,7 +135,7 @@ void check_start(const Scene& sc, const MechanicalSystem& mech, StartKeys keys) 
         have_a0 = true;
       }
       const double F = ((c.cam ? cm.Xddot : 0.0) - c.t.dot(a0)) / mech.W()(j, j);
-      depth = penalty_depth(sc, c.penalty_stiffness, F);
+      depth = c.law.penalty.depth_at(F);
       if (gap >= -(depth + sc.contact.tol_u)) continue;
     }
     // The keys that set this gap.

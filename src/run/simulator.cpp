@@ -212,7 +212,7 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
   warnings_ = scene_warnings(scene_);
   retired_keys(scene_, warnings_);
   mech_ = std::make_shared<const Mechanism>(scene_);
-  extra_columns_ = detail::ContactRun::extra_columns(*mech_);
+  extra_columns_ = detail::ContactRun::extra_columns(*mech_, scene_.run.element_forces);
   detail::check_start(scene_, *mech_, detail::StartKeys::Scene);
   add_designer_columns();
 }

@@ -58,7 +58,8 @@ inline constexpr EnumName<StackKind> kStackNames[] = {
 inline constexpr EnumName<ElementKind> kElementNames[] = {{ElementKind::Spring, "spring"},
                                                    {ElementKind::Dashpot, "dashpot"},
                                                    {ElementKind::Bar, "bar"},
-                                                   {ElementKind::Lever, "lever"}};
+                                                   {ElementKind::Lever, "lever"},
+                                                   {ElementKind::ProgressiveSpring, "progressive_spring"}};
 inline constexpr EnumName<ContactPointKind> kContactPointNames[] = {
     {ContactPointKind::Cam, "cam"}, {ContactPointKind::Lash, "lash"}, {ContactPointKind::Stop, "stop"}};
 inline constexpr EnumName<StopSide> kStopSideNames[] = {{StopSide::Below, "below"}, {StopSide::Above, "above"}};

@@ -146,6 +146,9 @@ const KeyDoc kDocs[] = {
     {"run.period_tol", "—", "Relative tolerance of the period detector (|Δu_c| ≤ tol·lift, |Δv_c| ≤ tol·lift·|ω|)."},
     {"run.designer_columns", "—", "true: history.csv gets pressure_angle_deg, radius_of_curvature, contact_stress, "
                                   "side_load, cam_torque, cam_power per row (docs/cam_laws.md)."},
+    {"run.element_forces", "—", "true: history.csv gets `force_<element>` per spring (without mass), dashpot and "
+                                "progressive_spring of a network: the element's compressive force (P + kδ + cδ̇, F(δ) + cδ̇), "
+                                "unnamed elements as `<type>_<index>`."},
     {"jump.settle_revolutions", "rev", "Speed-range map (`camdyn jump`): revolutions each trial speed runs before the "
                                       "judged ones (the start's transient)."},
     {"jump.judge_revolutions", "rev", "Speed-range map: revolutions whose events are judged at each trial speed "
@@ -159,9 +162,10 @@ const KeyDoc kDocs[] = {
     // [[elements]]
     {"elements.name", "—", "Element name, for messages.", "string", "any string", "\"<type> #<index>\""},
     {"elements.type", "—", "Element type; decides the other keys allowed.", "enum",
-     "must be one of \"spring\", \"dashpot\", \"bar\", \"lever\"", "(required)"},
-    {"elements.nodes", "—", "[lower, upper] (lever: [input, output]); \"ground\" may end a spring, dashpot or bar.",
-     "names", "exactly two different node names", "(required)"},
+     "must be one of \"spring\", \"dashpot\", \"bar\", \"lever\", \"progressive_spring\"", "(required)"},
+    {"elements.nodes", "—", "[lower, upper] (lever: [input, output], or [input, output, pivot] for a lever on a moving "
+                            "pivot); \"ground\" may end a spring, dashpot, bar or progressive_spring.",
+     "names", "two different node names (a lever: two or three)", "(required)"},
     {"elements.stiffness", "force/length", "Spring stiffness k.", "real", "must be >= 0"},
     {"elements.preload", "force", "Compressive force P at q = 0 (> 0 pushes the ends apart).", "real",
      "must be finite"},
@@ -179,8 +183,17 @@ const KeyDoc kDocs[] = {
      "must be one of \"lumped\", \"consistent\""},
     {"elements.rayleigh_alpha", "1/time", "bar: Rayleigh α (C = αM + βK).", "real", "must be >= 0"},
     {"elements.rayleigh_beta", "time", "bar: Rayleigh β.", "real", "must be >= 0"},
-    {"elements.ratio", "—", "lever: q_output = ratio · q_input (the output moves the same way as the input).", "real",
-     "finite and > 0"},
+    {"elements.ratio", "—", "lever: q_output = ratio · q_input (the output moves the same way as the input); with a "
+                            "pivot node q_output = ratio · q_input + (1 − ratio) · q_pivot, ratio = output arm / input arm "
+                            "(signed distances from the pivot along the lever: negative when the pivot lies between them).",
+     "real", "finite and > 0 (two nodes); finite, != 0 and != 1 (with a pivot node)"},
+    {"elements.deflections", "length", "progressive_spring: the table's deflections δ (compression of [lower, upper]).",
+     "array of reals", "at least 2, finite, strictly increasing"},
+    {"elements.forces", "force", "progressive_spring: the table's forces F(δ), one per deflection; F between them is "
+                                 "the monotone cubic (PCHIP) through the points, beyond them the end slope's line.",
+     "array of reals", "as many as deflections, finite, non-decreasing, last > first"},
+    {"elements.installed_deflection", "length", "progressive_spring: the deflection at q = 0; the preload is F there.",
+     "real", "must be finite"},
     // [[contacts]]
     {"contacts.name", "—", "Contact name: history columns `F_<name>`, `gap_<name>`, `in_<name>`; the `contact` column of events.csv.",
      "string", "non-empty, unique", "(required)"},
@@ -229,7 +242,8 @@ std::map<std::string, std::string> defaults() {
   });
   Scene s;
   s.network.nodes.emplace_back();
-  for (ElementKind k : {ElementKind::Spring, ElementKind::Dashpot, ElementKind::Bar, ElementKind::Lever}) {
+  for (ElementKind k : {ElementKind::Spring, ElementKind::Dashpot, ElementKind::Bar, ElementKind::Lever,
+                        ElementKind::ProgressiveSpring}) {
     ElementSpec e;
     e.kind = k;
     s.network.elements.push_back(e);

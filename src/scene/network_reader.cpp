@@ -42,7 +42,7 @@ const std::vector<std::string>& all_element_keys() {
   static const std::vector<std::string> k{"name",   "type",          "nodes",          "stiffness",     "preload",
                                           "damping", "mass",         "masses",         "youngs_modulus", "area",
                                           "length",  "elements",     "mass_matrix",    "rayleigh_alpha", "rayleigh_beta",
-                                          "ratio"};
+                                          "ratio",   "deflections",  "forces",         "installed_deflection"};
   return k;
 }
 
@@ -56,6 +56,9 @@ std::vector<std::string> element_keys(ElementKind kind) {
                          "rayleigh_beta"});
       break;
     case ElementKind::Lever: k.insert(k.end(), {"ratio"}); break;
+    case ElementKind::ProgressiveSpring:
+      k.insert(k.end(), {"deflections", "forces", "installed_deflection", "damping"});
+      break;
   }
   return k;
 }
@@ -101,6 +104,7 @@ struct EntryList {
   void integer(const char* key, long long x) { add(key, SceneEntry::Kind::Int).integer = x; }
   void str(const char* key, const std::string& x) { add(key, SceneEntry::Kind::Str).text = x; }
   void names(const char* key, const std::vector<std::string>& x) { add(key, SceneEntry::Kind::Names).names = x; }
+  void reals(const char* key, const std::vector<double>& x) { add(key, SceneEntry::Kind::Array).array = x; }
 };
 
 std::vector<SceneEntry> node_entries(const NodeSpec& n) {
@@ -137,6 +141,12 @@ std::vector<SceneEntry> element_entries(const ElementSpec& e) {
       l.real("rayleigh_beta", e.rayleigh_beta);
       break;
     case ElementKind::Lever: l.real("ratio", e.ratio); break;
+    case ElementKind::ProgressiveSpring:
+      l.reals("deflections", e.deflections);
+      l.reals("forces", e.forces);
+      l.real("installed_deflection", e.installed_deflection);
+      l.real("damping", e.damping);
+      break;
   }
   return std::move(l.v);
 }
@@ -173,6 +183,17 @@ struct NetReader {
     const long long v = toml_integer(n, file, line(n), key);
     if (v < lo || v > hi) fail(file, line(n), key, fmt_node(n), range_rule(lo, hi));
     return static_cast<int>(v);
+  }
+  std::vector<double> reals(const toml::node& n, const std::string& key) {
+    auto a = n.as_array();
+    if (!a) fail(file, line(n), key, fmt_node(n), "must be an array of numbers");
+    std::vector<double> v;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const std::string ek = key + "[" + std::to_string(i) + "]";
+      lines[ek] = line(*a->get(i));
+      v.push_back(real(*a->get(i), ek));
+    }
+    return v;
   }
   std::string str(const toml::node& n, const std::string& key) const {
     if (auto s = n.as_string()) return s->get();
@@ -276,6 +297,9 @@ void read_network_array(const std::string& array, const toml::node& node, Scene&
         else if (k == "rayleigh_alpha") e.rayleigh_alpha = r.real(*v, key);
         else if (k == "rayleigh_beta") e.rayleigh_beta = r.real(*v, key);
         else if (k == "ratio") e.ratio = r.real(*v, key);
+        else if (k == "deflections") e.deflections = r.reals(*v, key);
+        else if (k == "forces") e.forces = r.reals(*v, key);
+        else if (k == "installed_deflection") e.installed_deflection = r.real(*v, key);
       }
       s.network.elements.push_back(std::move(e));
     } else {
@@ -332,6 +356,7 @@ const std::string& entry_name(const Scene& s, const std::string& array, std::siz
 
 SceneEntry::Kind network_key_kind(const std::string& array, const std::string& key) {
   if (key == "nodes") return SceneEntry::Kind::Names;
+  if (array == "elements" && (key == "deflections" || key == "forces")) return SceneEntry::Kind::Array;
   if (key == "name" || key == "type" || key == "side" || key == "mass_matrix") return SceneEntry::Kind::Str;
   if (array == "elements" && (key == "masses" || key == "elements")) return SceneEntry::Kind::Int;
   return SceneEntry::Kind::Real;

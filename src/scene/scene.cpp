@@ -43,7 +43,8 @@ bool operator==(const ElementSpec& a, const ElementSpec& b) {
          a.preload == b.preload && a.damping == b.damping && a.mass == b.mass && a.masses == b.masses &&
          a.youngs_modulus == b.youngs_modulus && a.area == b.area && a.length == b.length &&
          a.elements == b.elements && a.mass_matrix == b.mass_matrix && a.rayleigh_alpha == b.rayleigh_alpha &&
-         a.rayleigh_beta == b.rayleigh_beta && a.ratio == b.ratio;
+         a.rayleigh_beta == b.rayleigh_beta && a.ratio == b.ratio && a.deflections == b.deflections &&
+         a.forces == b.forces && a.installed_deflection == b.installed_deflection;
 }
 bool operator==(const ContactPointSpec& a, const ContactPointSpec& b) {
   return a.name == b.name && a.kind == b.kind && a.nodes == b.nodes && a.clearance == b.clearance &&
@@ -213,6 +214,7 @@ const std::vector<Field>& fields() {
     v.push_back(F_INT(run, settle_revolutions, 0, 1000000000));
     v.push_back(ruled(F_REAL(run, period_tol), Rule::GtLe, 0, 1));
     v.push_back(F_BOOL(run, designer_columns));
+    v.push_back(F_BOOL(run, element_forces));
 
     v.push_back(F_INT(jump, settle_revolutions, 0, 10000));
     v.push_back(F_INT(jump, judge_revolutions, 1, 10000));

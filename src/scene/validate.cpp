@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -354,13 +355,20 @@ class Validator {
                    "must be unique (" + elem("elements", it->second) + " has the same name; --set elements." + e.name +
                        ".KEY would not know which one)");
       }
-      if (e.nodes.size() != 2)
-        net_fail(p + ".nodes", quoted_names(e.nodes),
-                 "must name exactly 2 nodes, has " + std::to_string(e.nodes.size()) + " (" + who + ")");
       const bool lever = e.kind == ElementKind::Lever;
-      for (std::size_t k = 0; k < 2; ++k)
+      if (e.nodes.size() != 2 && !(lever && e.nodes.size() == 3))
+        net_fail(p + ".nodes", quoted_names(e.nodes),
+                 std::string(lever ? "must name 2 nodes [input, output] or 3 [input, output, pivot]"
+                                   : "must name exactly 2 nodes") +
+                     ", has " + std::to_string(e.nodes.size()) + " (" + who + ")");
+      for (std::size_t k = 0; k < e.nodes.size(); ++k)
         node_ref(elem(p + ".nodes", k), e.nodes[k], !lever, who, "\"ground\" cannot be a node of a lever");
-      if (e.nodes[0] == e.nodes[1]) net_fail(p + ".nodes", quoted_names(e.nodes), "must name two different nodes (" + who + ")");
+      for (std::size_t k = 1; k < e.nodes.size(); ++k)
+        for (std::size_t l = 0; l < k; ++l)
+          if (e.nodes[k] == e.nodes[l])
+            net_fail(p + ".nodes", quoted_names(e.nodes),
+                     std::string(e.nodes.size() == 3 ? "must name three" : "must name two") + " different nodes (" +
+                         who + ")");
       switch (e.kind) {
         case ElementKind::Spring:
           net_ge(p + ".stiffness", e.stiffness, 0.0, who);
@@ -387,14 +395,56 @@ class Validator {
           net_ge(p + ".rayleigh_beta", e.rayleigh_beta, 0.0, who);
           break;
         case ElementKind::Lever:
-          // A lever's output moves ratio times its input, the same way: a ratio <= 0 would
-          // turn the train's motion round (the valve pushed away from its lift), which no
-          // rocker or finger does.
-          if (!(std::isfinite(e.ratio) && e.ratio > 0.0))
-            net_fail(p + ".ratio", fmt_num(e.ratio),
-                     "must be finite and > 0 (the output moves ratio times the input, in the same direction) (" +
-                         who + ")");
+          if (e.nodes.size() == 2) {
+            // A two-node lever's output moves ratio times its input, the same way: a ratio
+            // <= 0 would turn the train's motion round (the valve pushed away from its lift),
+            // which no rocker or finger does.
+            if (!(std::isfinite(e.ratio) && e.ratio > 0.0))
+              net_fail(p + ".ratio", fmt_num(e.ratio),
+                       "must be finite and > 0 (the output moves ratio times the input, in the same direction) (" +
+                           who + ")");
+          } else {
+            // With a pivot node the ratio is the signed arm ratio (negative: the pivot lies
+            // between input and output).
+            if (!(std::isfinite(e.ratio) && e.ratio != 0.0))
+              net_fail(p + ".ratio", fmt_num(e.ratio), "must be finite and != 0 on a lever with a pivot node (" + who + ")");
+            if (e.ratio == 1.0)
+              net_fail(p + ".ratio", fmt_num(e.ratio),
+                       "must be != 1 on a lever with a pivot node (ratio 1 ties the output to the input alone; "
+                       "drop the pivot) (" + who + ")");
+          }
           break;
+        case ElementKind::ProgressiveSpring: {
+          const std::vector<double>& x = e.deflections;
+          const std::vector<double>& y = e.forces;
+          if (x.size() < 2)
+            net_fail(p + ".deflections", std::to_string(x.size()) + " points",
+                     "must have at least 2 points (" + who + ")");
+          if (y.size() != x.size())
+            net_fail(p + ".forces", std::to_string(y.size()) + " points",
+                     "must have as many points as " + p + ".deflections (" + std::to_string(x.size()) + ") (" +
+                         who + ")");
+          for (std::size_t k = 0; k < x.size(); ++k) {
+            net_finite(elem(p + ".deflections", k), x[k], who);
+            net_finite(elem(p + ".forces", k), y[k], who);
+          }
+          for (std::size_t k = 1; k < x.size(); ++k) {
+            if (!(x[k] > x[k - 1]))
+              net_fail(elem(p + ".deflections", k), fmt_num(x[k]),
+                       "must be strictly increasing (> " + elem(p + ".deflections", k - 1) + " = " +
+                           fmt_num(x[k - 1]) + ") (" + who + ")");
+            if (!(y[k] >= y[k - 1]))
+              net_fail(elem(p + ".forces", k), fmt_num(y[k]),
+                       "must be non-decreasing, a monotone force-deflection curve (>= " +
+                           elem(p + ".forces", k - 1) + " = " + fmt_num(y[k - 1]) + ") (" + who + ")");
+          }
+          if (!(y.back() > y.front()))
+            net_fail(p + ".forces", fmt_num(y.back()),
+                     "must rise somewhere: the last force must be > the first (" + who + ")");
+          net_finite(p + ".installed_deflection", e.installed_deflection, who);
+          net_ge(p + ".damping", e.damping, 0.0, who);
+          break;
+        }
       }
     }
 
@@ -440,43 +490,51 @@ class Validator {
                      elem("elements", it->second) + "); a node is the output of at most one lever (" +
                      element_label(e, i) + ")");
     }
-    // The unknown each node's motion is tied to: follow lever inputs (output → input) to a
-    // node that is no lever's output. Memoised, so a chain of n levers costs O(n), and a
-    // walk that comes back to a node on its own path is a cycle.
-    std::map<std::string, std::string> chain_root;  // node → the node it is tied to
+    // A lever's output depends on its input and its pivot: no lever may depend on itself.
+    // One depth-first walk over output → {input, pivot}, each node entered once: O(levers);
+    // a node met again while on the walk's path closes a cycle (named at its first lever).
     {
-      std::map<std::string, int> state;  // 1 on the current walk, 2 done
-      std::vector<std::string> path;
+      auto deps = [&](const std::string& node) {
+        std::vector<std::string> d;
+        const auto it = lever_of_output.find(node);
+        if (it != lever_of_output.end()) {
+          const ElementSpec& e = n.elements[it->second];
+          d.push_back(e.nodes[0]);
+          if (e.nodes.size() == 3) d.push_back(e.nodes[2]);
+        }
+        return d;
+      };
+      std::map<std::string, int> state;  // 1 on the current path, 2 done
       for (const auto& [out, lever] : lever_of_output) {
         (void)lever;
-        if (state[out] == 2) continue;
-        path.clear();
-        std::string cur = out;
-        for (;;) {
-          const auto it = lever_of_output.find(cur);
-          if (it == lever_of_output.end()) {
-            chain_root[cur] = cur;
+        if (state[out] != 0) continue;
+        std::vector<std::pair<std::string, std::size_t>> path{{out, 0}};  // node, next dependency
+        state[out] = 1;
+        while (!path.empty()) {
+          const std::string cur = path.back().first;
+          const std::vector<std::string> d = deps(cur);
+          if (path.back().second >= d.size()) {
             state[cur] = 2;
-            break;
+            path.pop_back();
+            continue;
           }
-          if (state[cur] == 2) break;
-          if (state[cur] == 1) {  // the path from cur on is a cycle: name its first lever
-            std::size_t first = it->second;
-            for (auto p = std::find(path.begin(), path.end(), cur); p != path.end(); ++p)
-              first = std::min(first, lever_of_output.at(*p));
+          const std::string next = d[path.back().second++];
+          int& st = state[next];
+          if (st == 1) {  // the path from next on is a cycle: name its first lever
+            std::size_t first = lever_of_output.at(next);
+            for (auto q = path.rbegin(); q != path.rend() && q->first != next; ++q)
+              first = std::min(first, lever_of_output.at(q->first));
             const ElementSpec& e = n.elements[first];
             net_fail(elem("elements", first) + ".nodes", quoted_names(e.nodes),
                      "levers form a cycle through node '" + e.nodes[1] + "' (" + element_label(e, first) + ")");
           }
-          state[cur] = 1;
-          path.push_back(cur);
-          cur = n.elements[it->second].nodes[0];
+          if (st == 0) {
+            st = 1;
+            path.push_back({next, 0});
+          }
         }
-        const std::string r = chain_root.at(cur);
-        for (const auto& p : path) {
-          chain_root[p] = r;
-          state[p] = 2;
-        }
+      }
+    }
       }
     }
 
@@ -497,7 +555,8 @@ class Validator {
     };
     std::vector<bool> anchored(nn, false);
     for (const auto& e : n.elements) {
-      const bool stiff = (e.kind == ElementKind::Spring && e.stiffness > 0) || e.kind == ElementKind::Bar;
+      const bool stiff = (e.kind == ElementKind::Spring && e.stiffness > 0) || e.kind == ElementKind::Bar ||
+                         e.kind == ElementKind::ProgressiveSpring;
       const bool joins = stiff || e.kind == ElementKind::Lever || (e.kind == ElementKind::Spring && e.mass > 0);
       if (!joins) continue;
       const bool g0 = e.nodes[0] == "ground", g1 = e.nodes[1] == "ground";
@@ -506,6 +565,7 @@ class Validator {
         continue;
       }
       parent[root(node_index.at(e.nodes[0]))] = root(node_index.at(e.nodes[1]));
+      if (e.nodes.size() == 3) parent[root(node_index.at(e.nodes[2]))] = root(node_index.at(e.nodes[1]));
     }
     std::vector<bool> comp_anchored(nn, false);
     for (std::size_t i = 0; i < nn; ++i)
@@ -517,21 +577,36 @@ class Validator {
 
     // ---- mass: after lever elimination (a lever's output is tied to its input), every
     // remaining unknown needs positive mass from node masses, bars or springs with mass.
-    auto unknown_of = [&](const std::string& name) {
-      const auto it = chain_root.find(name);
-      return node_index.at(it == chain_root.end() ? name : it->second);
-    };
+    // (the unknowns a node moves with: itself, or its lever's input and pivot, recursively;
+    // each node handed on once, so a chain of n levers costs O(n))
     std::vector<bool> has_mass(nn, false);
+    std::set<std::string> handed_on;  // nodes whose mass already reached their unknowns
+    auto give_mass = [&](const std::string& node) {
+      std::vector<std::string> todo{node};
+      while (!todo.empty()) {
+        const std::string cur = todo.back();
+        todo.pop_back();
+        if (!handed_on.insert(cur).second) continue;
+        auto it = lever_of_output.find(cur);
+        if (it == lever_of_output.end()) {
+          has_mass[node_index.at(cur)] = true;
+          continue;
+        }
+        const ElementSpec& lv = n.elements[it->second];
+        todo.push_back(lv.nodes[0]);
+        if (lv.nodes.size() == 3) todo.push_back(lv.nodes[2]);
+      }
+    };
     for (std::size_t i = 0; i < nn; ++i)
-      if (n.nodes[i].mass > 0) has_mass[unknown_of(n.nodes[i].name)] = true;
+      if (n.nodes[i].mass > 0) give_mass(n.nodes[i].name);
     for (const auto& e : n.elements) {
       const bool massive = e.kind == ElementKind::Bar || (e.kind == ElementKind::Spring && e.mass > 0);
       if (!massive) continue;
       for (const auto& name : e.nodes)
-        if (name != "ground") has_mass[unknown_of(name)] = true;
+        if (name != "ground") give_mass(name);
     }
     for (std::size_t i = 0; i < nn; ++i)
-      if (unknown_of(n.nodes[i].name) == i && !has_mass[i])
+      if (!lever_of_output.count(n.nodes[i].name) && !has_mass[i])
         net_fail(elem("nodes", i) + ".mass", fmt_num(n.nodes[i].mass),
                  "node '" + n.nodes[i].name +
                      "' has no mass (give it mass, or connect a bar or a spring with mass to it or to a node "

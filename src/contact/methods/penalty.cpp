@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "contact/contact_run.hpp"
-#include "contact/laws/penalty_law.hpp"
+#include "contact/laws/contact_law.hpp"
 #include "contact/methods/event.hpp"
 
 namespace camdyn {
@@ -37,7 +37,7 @@ class PenaltyMethod final : public ContactRun {
             dFdgd.resize(m_);
             for (int j = 0; j < m_; ++j) {
               double dq = 0, dv = 0;
-              penalty_derivatives(params(j), -gap(j, yv_, cm), -gap_rate(j, yv_, cm), &dq, &dv);
+              params(j).derivatives(-gap(j, yv_, cm), -gap_rate(j, yv_, cm), &dq, &dv);
               dFdg[j] = -dq;
               dFdgd[j] = -dv;
             }
@@ -51,7 +51,7 @@ class PenaltyMethod final : public ContactRun {
         mk_.acceleration_jacobian(t, y, y + n_, dadq, dadv);
         for (int j = 0; j < m_; ++j) {
           double dq = 0, dv = 0;  // dF/ds, dF/dŝ
-          penalty_derivatives(params(j), -gap(j, yv_, cm), -gap_rate(j, yv_, cm), &dq, &dv);
+          params(j).derivatives(-gap(j, yv_, cm), -gap_rate(j, yv_, cm), &dq, &dv);
           // F = f(s, ŝ), s = −T_j q: ∂(M⁻¹T_jᵀF)/∂q = −dq M⁻¹T_jᵀT_j
           const Eigen::RowVectorXd& tj = mk_.contacts()[j].t;
           dadq.noalias() -= dq * mk_.MinvTt().col(j) * tj;
@@ -74,14 +74,9 @@ class PenaltyMethod final : public ContactRun {
   Eigen::VectorXd yv_;
   bool penetration_checked() const override { return false; }  // the law penetrates
 
-  // The law of contact j at penetration s and its rate ŝ; el: the elastic part.
-  PenaltyParams params(int j) const {
-    const MechanismContact& c = mk_.contacts()[j];
-    return {sc_.contact.penalty_law, c.penalty_stiffness, c.penalty_damping, sc_.contact.penalty_exponent};
-  }
-  double law(int j, double s, double sd, double* el = nullptr) const {
-    return penalty_force(params(j), s, sd, el);
-  }
+  // The penalty law of contact j; its force at penetration s and its rate ŝ (el: the elastic part).
+  const PenaltyNormalLaw& params(int j) const { return mk_.contacts()[j].law.penalty; }
+  double law(int j, double s, double sd, double* el = nullptr) const { return params(j).force(s, sd, el); }
   void forces(double t, const Eigen::VectorXd& y, Eigen::VectorXd& F) const {
     const CamMotion cm = cam_at(t);
     F.resize(m_);
@@ -93,7 +88,7 @@ class PenaltyMethod final : public ContactRun {
     for (int j = 0; j < m_; ++j) {
       const MechanismContact& c = mk_.contacts()[j];
       const double s = -(c.t.dot(Eigen::Map<const Eigen::VectorXd>(q, n_)) + c.g0 - (c.cam ? cm.X : 0.0));
-      if (s > 0.0) V += penalty_energy(params(j), s);
+      if (s > 0.0) V += params(j).energy(s);
     }
     return V;
   }
@@ -143,10 +138,7 @@ class PenaltyMethod final : public ContactRun {
       g0[i] = gap(j, y_, cm0);
       Fs[i] = F_[j];
       sd[i] = -gap_rate(j, y_, cm0);
-      const double kp = mk_.contacts()[j].penalty_stiffness;
-      s_static[i] = sc_.contact.penalty_law == PenaltyLaw::Linear
-                        ? F_[j] / kp
-                        : std::pow(F_[j] / kp, 1.0 / sc_.contact.penalty_exponent);
+      s_static[i] = params(j).depth_at(F_[j]);
       for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, set[l]);
     }
     for (int i = 0; i < k; ++i)
@@ -181,7 +173,7 @@ class PenaltyMethod final : public ContactRun {
       for (int i = 0; i < k; ++i) {
         double dq = 0, dv = 0;
         F[i] = law(set[i], s[i], sd[i]);
-        penalty_derivatives(params(set[i]), s[i], sd[i], &dq, &dv);
+        params(set[i]).derivatives(s[i], sd[i], &dq, &dv);
         dF[i] = dq;
       }
       r = b0 + Wss * F;

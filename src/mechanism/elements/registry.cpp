@@ -1,0 +1,21 @@
+// camdyn — the nonlinear element kinds of a scene (element.hpp: make_element).
+#include <stdexcept>
+
+#include "camdyn/network.hpp"
+#include "mechanism/element.hpp"
+#include "mechanism/elements/progressive_spring.hpp"
+
+namespace camdyn {
+
+std::unique_ptr<Element> make_element(const ElementSpec& spec, const std::string& name) {
+  switch (spec.kind) {
+    case ElementKind::Spring:
+    case ElementKind::Dashpot:
+    case ElementKind::Bar:
+    case ElementKind::Lever: return nullptr;  // linear: assembled into M, C, K, f₀
+    case ElementKind::ProgressiveSpring: return std::make_unique<ProgressiveSpring>(spec, name);
+  }
+  throw std::logic_error("make_element: unknown element kind");
+}
+
+}  // namespace camdyn
