@@ -1,8 +1,8 @@
 // camdyn (private) — an engine's work counters (Summary's steps, rhs_evals, lin_setups,
-// lin_analyses, engine_restarts) and the choice of its linear solver.
+// lin_analyses, engine_restarts).
 #pragma once
 
-#include "camdyn/scene.hpp"
+#include "scene/linear_solver.hpp"  // resolve_linear_solver, for the engines
 
 namespace camdyn {
 
@@ -14,12 +14,5 @@ struct EngineStats {
   long reinits = 0;       ///< restarts (CVODE history lost)
 };
 
-/// solver.linear_solver, with "auto" resolved: dense for at most 16 unknowns (2 per node,
-/// plus IDA's contact force and multiplier), KLU beyond.
-inline LinearSolverKind resolve_linear_solver(const SolverSpec& solver, int nodes) {
-  const int unknowns = 2 * nodes + (solver.integrator == Integrator::Ida ? 2 : 0);
-  if (solver.linear_solver != LinearSolverKind::Auto) return solver.linear_solver;
-  return unknowns <= 16 ? LinearSolverKind::Dense : LinearSolverKind::Klu;
-}
 
 }  // namespace camdyn

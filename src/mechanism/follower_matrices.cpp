@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "camdyn/cam.hpp"
-#include "engine/engine_stats.hpp"  // resolve_linear_solver
+#include "scene/linear_solver.hpp"  // resolve_linear_solver
 
 namespace camdyn {
 

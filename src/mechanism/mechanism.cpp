@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "cam/format.hpp"            // detail::fmt
-#include "engine/engine_stats.hpp"  // resolve_linear_solver
+#include "scene/linear_solver.hpp"  // resolve_linear_solver
 #include "mechanism/element.hpp"
 
 namespace camdyn {
