@@ -535,8 +535,6 @@ class Validator {
         }
       }
     }
-      }
-    }
 
     // ---- dangling nodes
     for (std::size_t i = 0; i < n.nodes.size(); ++i)
