@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "camdyn/model.hpp"  // SparseMatrix
+#include "mechanism/sparse_matrix.hpp"
 #include "mechanism/element.hpp"
 
 namespace camdyn {
