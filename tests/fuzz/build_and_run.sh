@@ -62,7 +62,7 @@ fi
   -DTOML_HEADER_ONLY=0 \
   "${TOML_INC[@]}" -I"$SRC/include" -I"$SRC/src" -isystem /usr/include/eigen3 \
   "$SRC/tests/fuzz/fuzz_scene.cpp" "$SRC/src/scene/scene.cpp" "$SRC/src/scene/network_reader.cpp" "$SRC/src/scene/units.cpp" "$SRC/src/cam/cam.cpp" "$SRC/src/cam/profiles.cpp" \
-  "$SRC/src/scene/format.cpp" "$SRC/src/scene/validate.cpp" "$SRC/src/scene/override.cpp" "$SRC/src/scene/write.cpp" \
+  "$SRC/src/scene/format.cpp" "$SRC/src/scene/validate.cpp" "$SRC/src/scene/validate_network.cpp" "$SRC/src/scene/override.cpp" "$SRC/src/scene/write.cpp" \
   "$SRC/src/cam/follower_geometry.cpp" "$SRC/src/cam/follower_oscillating.cpp" "$SRC/src/cam/motion_law.cpp" "$SRC/src/cam/motion_law_parse.cpp" \
   "$OUT/toml_impl.cpp" "${RUN_FLAGS[@]}" -o "$OUT/fuzz_scene"
 
