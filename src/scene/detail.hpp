@@ -27,7 +27,7 @@ struct EnumName {
 
 inline constexpr EnumName<CamProfileKind> kProfileNames[] = {
     {CamProfileKind::Points, "points"}, {CamProfileKind::Lift, "lift"}, {CamProfileKind::Circle, "circle"},
-    {CamProfileKind::Law, "law"}, {CamProfileKind::Arc, "arc"}, {CamProfileKind::Arcs, "arcs"}};
+    {CamProfileKind::Law, "law"}, {CamProfileKind::Arc, "arc"}, {CamProfileKind::Arcs, "arcs"}, {CamProfileKind::Table, "table"}};
 inline constexpr EnumName<FollowerFace> kFaceNames[] = {{FollowerFace::Flat, "flat"},
                                                         {FollowerFace::KnifeEdge, "knife_edge"},
                                                         {FollowerFace::Roller, "roller"},

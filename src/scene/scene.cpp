@@ -141,6 +141,11 @@ const std::vector<Field>& fields() {
       f.str = [](Scene& s) -> std::string& { return s.cam.law; };
       v.push_back(f);
     }
+    {
+      Field f = mk("cam", "lift_table", FK::Str);
+      f.str = [](Scene& s) -> std::string& { return s.cam.lift_table; };
+      v.push_back(f);
+    }
     v.push_back(ruled(F_REAL(cam, nose_radius), Rule::Gt, 0));
     v.push_back(ruled(F_REAL(cam, nose_distance), Rule::Gt, 0));
     v.push_back(ruled(F_REAL(cam, flank_radius), Rule::Gt, 0));
@@ -505,7 +510,20 @@ Scene load_scene_file(const std::string& path) {
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw SceneError(path, 0, "", "", std::string("cannot read scene file: ") + std::strerror(errno));
-  return parse_scene(ss.str(), path);
+  toml::table root;
+  try {
+    root = toml::parse(ss.str(), path);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(path, static_cast<int>(e.source().begin.line), "", "", std::string(e.description()));
+  }
+  // cam.lift_table: relative to the scene file's directory.
+  if (auto* cam = root["cam"].as_table())
+    if (auto* t = cam->get("lift_table"); t && t->is_string()) {
+      const std::filesystem::path p(t->value_or(std::string()));
+      if (!p.empty() && p.is_relative())
+        cam->insert_or_assign("lift_table", (std::filesystem::path(path).parent_path() / p).lexically_normal().string());
+    }
+  return from_table(root, path, true);
 }
 
 // ---------------------------------------------------------------- paper cases
