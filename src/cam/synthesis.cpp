@@ -133,6 +133,13 @@ CamSynthesis synthesise_cam_from_valve_lift(const CamSpec& cam, const MotionLaw&
            "a valve lift with lash needs exactly one lobe (one opening, one closing)");
     th_o = opens[0];
     th_c = closes[0];
+    // A law's joint within 1e-3 rad of the bisected angle is where the valve opens/closes.
+    for (const Breakpoint& b : law.breakpoints()) {
+      if (!(std::fabs(law.eval(b.theta).L) <= ztol)) continue;
+      auto near = [&](double a) { return std::fabs(std::remainder(b.theta - a, kTwoPi)) < 1e-3; };
+      if (near(th_o)) th_o = b.theta;
+      if (near(th_c)) th_c = b.theta;
+    }
     ql = follower_coordinate_for_valve(cam, t, t.lash);
     // Both ramps on the closed valve: the dwell from θ_c to θ_o must hold them.
     double dwell = th_o - th_c;
