@@ -86,8 +86,9 @@ class MotionLaw {
   /// [length/deg] and d²L/dθ² [length/deg²]. With the derivatives each interval is the
   /// quintic Hermite polynomial matching L, L′, L″ at both ends (C² across the knots; exact
   /// for any quintic); without them, the periodic C² cubic spline through the lifts.
-  /// Periodic over 360°; segments() is empty and breakpoints() lists no joint (C² at
-  /// every knot). @throws SceneError (key `key`) on fewer than 4 rows, angles not strictly
+  /// Periodic over 360°; segments() is empty; breakpoints() lists the knots where a dwell
+  /// of the table (L constant, L′ = L″ = 0) meets motion (order 2), so that steps land on
+  /// them (the interpolant is C² at every knot). @throws SceneError (key `key`) on fewer than 4 rows, angles not strictly
   /// increasing or spanning 360° or more, sizes that differ, non-finite values.
   static MotionLaw from_table(const std::vector<double>& angle_deg, const std::vector<double>& lift,
                               const std::vector<double>& dlift_ddeg, const std::vector<double>& d2lift_ddeg2,

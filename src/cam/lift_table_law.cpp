@@ -77,6 +77,24 @@ MotionLaw MotionLaw::from_table(const std::vector<double>& angle_deg, const std:
   m.tab_L_[n] = m.tab_L_[0];
   m.tab_L1_[n] = m.tab_L1_[0];
   m.tab_L2_[n] = m.tab_L2_[0];
+  // Joints: where a dwell of the table (an interval with L constant and L′ = L″ = 0 at both
+  // ends) meets motion; the jerk may jump there (order 2). Steps land on them, as on a law's.
+  auto dwell = [&](std::size_t k) {  // interval k (mod n)
+    k %= n;
+    return m.tab_L_[k] == m.tab_L_[k + 1] && m.tab_L1_[k] == 0 && m.tab_L1_[k + 1] == 0 && m.tab_L2_[k] == 0 &&
+           m.tab_L2_[k + 1] == 0;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    if (dwell(i + n - 1) == dwell(i)) continue;
+    Breakpoint b;
+    b.theta = m.tab_t_[i] - kTwoPi * std::floor(m.tab_t_[i] / kTwoPi);
+    b.order = 2;
+    const double h = 1e-9;
+    b.jump[3] = m.eval_table(m.tab_t_[i] + h).L3 - m.eval_table(m.tab_t_[i] - h).L3;
+    m.breaks_.push_back(b);
+  }
+  std::sort(m.breaks_.begin(), m.breaks_.end(),
+            [](const Breakpoint& x, const Breakpoint& y) { return x.theta < y.theta; });
   // The lift range: the knots and 16 points inside each interval.
   m.lmin_ = m.lmax_ = m.tab_L_[0];
   for (std::size_t i = 0; i < n; ++i)
