@@ -32,3 +32,5 @@
 #include "camdyn/scene_keys.hpp"
 #include "camdyn/scene_warnings.hpp"
 #include "camdyn/simulator.hpp"
+#include "camdyn/spectrum.hpp"
+#include "camdyn/synthesis.hpp"

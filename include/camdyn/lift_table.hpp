@@ -30,5 +30,8 @@ std::string lift_table_csv(const LiftTable& table);
 /// not parse or is not finite, fewer than 4 rows, angles not strictly increasing or
 /// spanning 360° or more.
 LiftTable parse_lift_table_csv(const std::string& text, const std::string& source);
+/// parse_lift_table_csv of the file at `path`. @throws SceneError (key cam.lift_table) when
+/// the file cannot be read, and parse_lift_table_csv's errors (file `path`).
+LiftTable read_lift_table_csv(const std::string& path);
 
 }  // namespace camdyn

@@ -81,6 +81,20 @@ class MotionLaw {
   /// Parses the cam.law string (grammar in docs/cam_laws.md) and builds the law.
   /// @throws SceneError (file "<cam>", the key) on a syntax error, naming the segment and token.
   static MotionLaw parse(const std::string& text, const std::string& key = "cam.law");
+  /// A law interpolating a lift table (cam.profile = "table", docs/cam_laws.md "Lift
+  /// tables"): cam angles [deg], lifts L [length] and, when given (both or neither), dL/dθ
+  /// [length/deg] and d²L/dθ² [length/deg²]. With the derivatives each interval is the
+  /// quintic Hermite polynomial matching L, L′, L″ at both ends (C² across the knots; exact
+  /// for any quintic); without them, the periodic C² cubic spline through the lifts.
+  /// Periodic over 360°; segments() is empty; breakpoints() lists the knots where a dwell
+  /// of the table (L constant, L′ = L″ = 0) meets motion (order 2), so that steps land on
+  /// them (the interpolant is C² at every knot). @throws SceneError (key `key`) on fewer than 4 rows, angles not strictly
+  /// increasing or spanning 360° or more, sizes that differ, non-finite values.
+  static MotionLaw from_table(const std::vector<double>& angle_deg, const std::vector<double>& lift,
+                              const std::vector<double>& dlift_ddeg, const std::vector<double>& d2lift_ddeg2,
+                              const std::string& key = "cam.lift_table");
+  /// True for a law built by from_table.
+  bool is_table() const { return !tab_t_.empty(); }
 
   /// L and derivatives at cam angle θ [rad] (any real θ; periodic).
   LiftDerivs eval(double theta) const;
@@ -105,6 +119,10 @@ class MotionLaw {
   std::vector<double> L0_;     // lift at segment start
   std::vector<Breakpoint> breaks_;
   double lmin_ = 0, lmax_ = 0;
+  // from_table: knots [rad] (n + 1, the last = first + 2π) with L, L′, L″ there
+  std::vector<double> tab_t_, tab_L_, tab_L1_, tab_L2_;
+  MotionLaw() = default;
+  LiftDerivs eval_table(double theta) const;
   LiftDerivs eval_segment(std::size_t i, double u) const;  // u = θ − θ_i
 };
 

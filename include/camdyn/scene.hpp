@@ -19,7 +19,7 @@ namespace camdyn {
 
 // ---- enumerations, each with a to_string / parse pair so the CLI and reports need no
 // ---- extra code. parse_enum returns false on an unknown spelling.
-enum class CamProfileKind { Points, Lift, Circle, Law, Arc, Arcs };
+enum class CamProfileKind { Points, Lift, Circle, Law, Arc, Arcs, Table };
 enum class FollowerFace { Flat, KnifeEdge, Roller, Point };
 enum class FollowerMotion { Translating, Oscillating };
 enum class FollowerKind { Rigid, ElasticBar, Network };
@@ -89,6 +89,11 @@ struct CamSpec {
   // ---- (docs/cam_laws.md). Defaults leave the three profiles above unchanged.
   /// law: the segments, "KIND DURATION_DEG [RISE] …; …" spanning 360° (MotionLaw::parse).
   std::string law;
+  /// table: the lift-table CSV file (docs/cam_laws.md "Lift tables"; a relative path is
+  /// taken relative to the scene file when the scene is loaded from a file). Its lift is
+  /// the follower coordinate's as cam.law's would be (flat/knife edge/roller: r_b + L;
+  /// oscillating: X = ℓ_v ψ).
+  std::string lift_table;
   /// arc: nose radius r_n [length], 0 < r_n < base_radius.
   double nose_radius = 0.5;
   /// arc: distance d of the nose centre from the cam centre [length], > 0.

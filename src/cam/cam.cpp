@@ -125,7 +125,7 @@ Cam::Cam(const CamSpec& spec) : impl_(std::make_unique<Impl>()) {
     refine_min_rho();
     return;
   }
-  const bool geo = spec.profile == CamProfileKind::Law || spec.profile == CamProfileKind::Arc ||
+  const bool geo = spec.profile == CamProfileKind::Law || spec.profile == CamProfileKind::Table || spec.profile == CamProfileKind::Arc ||
                    spec.profile == CamProfileKind::Arcs ||
                    spec.follower_face != FollowerFace::Flat;
   if (geo && spec.profile == CamProfileKind::Circle) impl_->build_circle(spec);  // its checks
@@ -143,6 +143,7 @@ Cam::Cam(const CamSpec& spec) : impl_(std::make_unique<Impl>()) {
     case CamProfileKind::Circle: impl_->build_circle(spec); break;
     case CamProfileKind::Lift: impl_->build_lift(spec); break;
     case CamProfileKind::Law:
+    case CamProfileKind::Table:
     case CamProfileKind::Arc:
     case CamProfileKind::Arcs: break;  // handled above
   }

@@ -119,7 +119,7 @@ std::vector<Arc> make_arcs(const CamSpec& c) {
 }
 
 TranslatingGeometry::TranslatingGeometry(const CamSpec& spec)
-    : kind_(spec.profile), face_(spec.follower_face), eps_(spec.follower_offset), rr_(spec.roller_radius),
+    : kind_(geometry_kind(spec.profile)), face_(spec.follower_face), eps_(spec.follower_offset), rr_(spec.roller_radius),
       rb_(spec.base_radius) {
   if (!std::isfinite(eps_)) fail("cam.follower_offset", fmt_num(eps_), "must be finite");
   if (face_ == FollowerFace::Roller && !(std::isfinite(rr_) && rr_ > 0))
@@ -129,7 +129,7 @@ TranslatingGeometry::TranslatingGeometry(const CamSpec& spec)
     fail("cam.follower_offset", fmt_num(eps_),
          "applies to knife_edge and roller followers only (a flat face's offset does not change its motion)");
   if (kind_ == CamProfileKind::Law) {
-    law_ = std::make_shared<MotionLaw>(MotionLaw::parse(spec.law));
+    law_ = law_of(spec);
     for (const Breakpoint& b : law_->breakpoints()) breaks_.push_back(b.theta);
     if (face_ != FollowerFace::Point) {
       if (!(std::isfinite(rb_) && rb_ > 0)) fail("cam.base_radius", fmt_num(rb_), "must be > 0");

@@ -53,6 +53,14 @@ struct Arc {
   double u0 = 0, u1 = 0;
 };
 
+/// The profile kind the geometry works with: a lift table (cam.profile = "table") is a law.
+inline CamProfileKind geometry_kind(CamProfileKind k) {
+  return k == CamProfileKind::Table ? CamProfileKind::Law : k;
+}
+/// The law of cam.profile "law" (cam.law parsed) or "table" (cam.lift_table read and
+/// interpolated, MotionLaw::from_table). @throws SceneError naming the key.
+std::shared_ptr<const MotionLaw> law_of(const CamSpec& spec);
+
 class TranslatingGeometry {
  public:
   /// @throws SceneError naming key, value and rule (undercut, concave flank under a flat

@@ -64,7 +64,7 @@ double reduce(double a, double lo) {
 }  // namespace
 
 OscillatingGeometry::OscillatingGeometry(const CamSpec& spec)
-    : kind_(spec.profile), face_(spec.follower_face), px_(spec.pivot_x), py_(spec.pivot_y),
+    : kind_(geometry_kind(spec.profile)), face_(spec.follower_face), px_(spec.pivot_x), py_(spec.pivot_y),
       arm_(spec.arm_length), pad_(spec.pad_offset), rr_(spec.roller_radius), lv_(spec.valve_arm),
       rb_(spec.base_radius) {
   const std::string why = " (cam.follower_motion = \"oscillating\")";
@@ -74,7 +74,7 @@ OscillatingGeometry::OscillatingGeometry(const CamSpec& spec)
   if (kind_ != CamProfileKind::Law && kind_ != CamProfileKind::Circle && kind_ != CamProfileKind::Arc &&
       kind_ != CamProfileKind::Arcs)
     throw SceneError("<cam>", 0, "cam.profile", std::string("\"") + to_string(kind_) + "\"",
-                     "an oscillating follower needs cam.profile \"law\", \"circle\", \"arc\" or \"arcs\"");
+                     "an oscillating follower needs cam.profile \"law\", \"table\", \"circle\", \"arc\" or \"arcs\"");
   if (spec.follower_offset != 0.0)
     fail("cam.follower_offset", spec.follower_offset, "applies to translating followers only; must be 0" + why);
   if (!std::isfinite(px_)) fail("cam.pivot_x", px_, "must be finite");
@@ -95,7 +95,7 @@ OscillatingGeometry::OscillatingGeometry(const CamSpec& spec)
   double r0 = rb_;
   if (kind_ == CamProfileKind::Law) {
     if (!(std::isfinite(rb_) && rb_ > 0)) fail("cam.base_radius", rb_, "must be > 0");
-    law_ = std::make_shared<MotionLaw>(MotionLaw::parse(spec.law));
+    law_ = law_of(spec);
     for (const Breakpoint& b : law_->breakpoints()) breaks_.push_back(b.theta);
   } else {
     arcs_ = kind_ == CamProfileKind::Arcs ? make_arc_list(spec) : make_arcs(spec);

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "camdyn/lift_table.hpp"
+#include "cam/follower_geometry.hpp"
 #include "cam/format.hpp"
 
 namespace camdyn {
@@ -121,5 +124,24 @@ LiftTable parse_lift_table_csv(const std::string& text, const std::string& sourc
                      "a lift table needs at least 4 rows");
   return t;
 }
+
+LiftTable read_lift_table_csv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError("<cam>", 0, "cam.lift_table", "\"" + path + "\"", "cannot read the lift-table file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse_lift_table_csv(ss.str(), path);
+}
+
+namespace detail {
+std::shared_ptr<const MotionLaw> law_of(const CamSpec& spec) {
+  if (spec.profile != CamProfileKind::Table) return std::make_shared<MotionLaw>(MotionLaw::parse(spec.law));
+  if (spec.lift_table.empty())
+    throw SceneError("<cam>", 0, "cam.lift_table", "\"\"", "cam.profile = \"table\" needs the lift-table CSV file");
+  const LiftTable t = read_lift_table_csv(spec.lift_table);
+  return std::make_shared<MotionLaw>(
+      MotionLaw::from_table(t.angle_deg, t.lift, t.dlift_ddeg, t.d2lift_ddeg2, "cam.lift_table"));
+}
+}  // namespace detail
 
 }  // namespace camdyn

@@ -307,6 +307,7 @@ MotionLaw::MotionLaw(std::vector<MotionSegment> segments, const std::string& key
 }
 
 LiftDerivs MotionLaw::eval(double theta) const {
+  if (!tab_t_.empty()) return eval_table(theta);
   // θ mod 2π without fmod's exact division loop (a third of the evaluation's cost): the
   // reduced angle is within an ulp of θ of fmod's, far below the joints' 1e-9 rad windows.
   double u = theta - kTwoPi * std::floor(theta * (1.0 / kTwoPi));

@@ -16,6 +16,7 @@
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/scene_keys.hpp"
+#include "camdyn/synthesis.hpp"
 
 namespace camdyn_cli {
 
@@ -27,8 +28,38 @@ int cmd_cam(const CamOpts& o) {
   Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, Scene{});
   resolve_defaults(sc);
   validate(sc);
-  Cam cam(sc.cam);  // SceneError on a bad profile → exit 2
   ensure_output_dir(o.out);
+  if (o.synthesise) {
+    if (sc.cam.profile != CamProfileKind::Law && sc.cam.profile != CamProfileKind::Table)
+      throw SceneError(o.c.scene_file, 0, "cam.profile", to_string(sc.cam.profile),
+                       "--synthesise-from-valve-lift needs the valve lift as cam.profile \"law\" or \"table\"");
+    const MotionLaw valve =
+        sc.cam.profile == CamProfileKind::Law
+            ? MotionLaw::parse(sc.cam.law)
+            : [&] {
+                const LiftTable t = read_lift_table_csv(sc.cam.lift_table);
+                return MotionLaw::from_table(t.angle_deg, t.lift, t.dlift_ddeg, t.d2lift_ddeg2);
+              }();
+    ValveTrainOptions tr;
+    tr.ratio = o.ratio;
+    tr.valve_end_angle_deg = o.valve_end_angle_deg;
+    tr.lash = o.lash;
+    tr.ramp_deg = o.ramp_deg;
+    tr.points = std::max(o.points, 16);
+    const std::string table = join_path(o.out, "cam_lift_table.csv");
+    const CamSynthesis syn = synthesise_cam_from_valve_lift(sc.cam, valve, tr, table);
+    sc.cam = syn.spec;
+    sc.cam.lift_table = "cam_lift_table.csv";  // next to synthesised.toml
+    write_file_atomic(join_path(o.out, "synthesised.toml"), to_toml(sc));
+    sc.cam.lift_table = table;
+    if (!o.quiet)
+      std::printf("synthesised the cam from the valve lift: %s (follower lift %s), %s; max pressure angle %s° at "
+                  "%s°, smallest radius of curvature %s at %s°\n",
+                  table.c_str(), fmt_g(syn.lift).c_str(), join_path(o.out, "synthesised.toml").c_str(),
+                  fmt_g(syn.max_pressure_angle_deg).c_str(), fmt_g(syn.max_pressure_angle_at_deg).c_str(),
+                  fmt_g(syn.min_radius_of_curvature).c_str(), fmt_g(syn.min_radius_of_curvature_at_deg).c_str());
+  }
+  Cam cam(sc.cam);  // SceneError on a bad profile → exit 2
   const std::string path = join_path(o.out, "cam.csv");
   try {
     write_file_atomic(path, cam_csv(cam, o.points));

@@ -124,6 +124,9 @@ struct CamOpts {
   int points = 3600;
   bool quiet = false;
   bool no_plot = false;
+  // --synthesise-from-valve-lift: cam.law (or cam.profile = "table") is the VALVE lift
+  bool synthesise = false;
+  double ratio = 1.0, valve_end_angle_deg = 0.0, lash = 0.0, ramp_deg = 0.0;
 };
 
 struct SceneOpts {

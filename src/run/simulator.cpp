@@ -85,6 +85,7 @@ double cam_scale(const CamSpec& c) {
         r = std::max(r, d + std::abs(c.arc_radius[i]));
       }
       break;
+    case CamProfileKind::Table:
     case CamProfileKind::Law:  // the base circle: the lift is of its order or smaller
       r = std::max(r, std::abs(c.base_radius));
       break;

@@ -27,7 +27,7 @@ struct EnumName {
 
 inline constexpr EnumName<CamProfileKind> kProfileNames[] = {
     {CamProfileKind::Points, "points"}, {CamProfileKind::Lift, "lift"}, {CamProfileKind::Circle, "circle"},
-    {CamProfileKind::Law, "law"}, {CamProfileKind::Arc, "arc"}, {CamProfileKind::Arcs, "arcs"}};
+    {CamProfileKind::Law, "law"}, {CamProfileKind::Arc, "arc"}, {CamProfileKind::Arcs, "arcs"}, {CamProfileKind::Table, "table"}};
 inline constexpr EnumName<FollowerFace> kFaceNames[] = {{FollowerFace::Flat, "flat"},
                                                         {FollowerFace::KnifeEdge, "knife_edge"},
                                                         {FollowerFace::Roller, "roller"},
@@ -135,6 +135,10 @@ struct DesignerUnits {
 };
 /// @throws SceneError (file, line when use_lines) naming the key, both keys when one
 /// quantity is given twice, a missing or bad cam.rpm_of, a bad number.
+/// The scene of a parsed TOML table (keys and types read, `overrides` applied as --set,
+/// every rule checked once on the result). `root` receives the overrides.
+Scene scene_from_table(toml::table& root, const std::string& source_name, const std::vector<std::string>& overrides);
+
 DesignerUnits read_designer_units(const toml::table& root, const std::string& file, bool use_lines);
 /// Set cam.speed_rev_s and run.t_end = revolutions / |cam.speed_rev_s| in `s` (its keys
 /// read): the scene in rev/s and seconds. @throws SceneError for revolutions with a speed

@@ -33,7 +33,8 @@ const KeyDoc kDocs[] = {
     {"cam.profile", "—", "Profile representation: `points` (polar spline through knots), `lift` (lift table over a "
                          "base circle, flat-faced follower), `circle` (eccentric circle; closed-form jump speed), "
                          "`law` (motion-law segments), `arc` (base, flanks and nose: four tangent arcs), `arcs` (any "
-                         "closed chain of arcs, `cam.arc_*`)."},
+                         "closed chain of arcs, `cam.arc_*`), `table` (a lift-table CSV file, `cam.lift_table`, any "
+                         "follower, as a law)."},
     {"cam.angles_deg", "deg", "points: polar angles of the spline knots; strictly increasing, span < 360, at least 4."},
     {"cam.radii", "length", "points: radii of the knots, > 0, as many as `cam.angles_deg`."},
     {"cam.base_radius", "length", "lift: base-circle radius r_b."},
@@ -56,6 +57,9 @@ const KeyDoc kDocs[] = {
     {"cam.law", "—", "law: the motion-law segments, `KIND D H [...]` separated by `;` (dwell, ramp, harmonic, "
                      "cycloidal, poly345, poly4567, poly, modtrap, modsine, polydyne); spans sum to 360 deg and the "
                      "lift closes (docs/cam_laws.md)."},
+    {"cam.lift_table", "—", "table: the lift-table CSV file (`angle_deg,lift[,dlift_ddeg,d2lift_ddeg2]`, as `camdyn cam` "
+                            "writes; relative to the scene file); quintic Hermite through the derivatives if given, "
+                            "else a periodic C² spline. The lift is what cam.law would give (docs/cam_laws.md)."},
     {"cam.nose_radius", "length", "arc: nose-circle radius r_n."},
     {"cam.nose_distance", "length", "arc: distance d of the nose-circle centre from the cam centre."},
     {"cam.flank_radius", "length", "arc: radius R_f of the two flank arcs, tangent to base and nose circles."},
@@ -71,7 +75,7 @@ const KeyDoc kDocs[] = {
     {"cam.follower_offset", "length", "Offset ε of the translating follower's axis (knife edge, roller)."},
     {"cam.roller_radius", "length", "Roller radius r_r (follower_face = roller)."},
     {"cam.follower_motion", "—", "`translating` (default) or `oscillating`: a finger follower or rocker turning about "
-                                 "a pivot, flat pad or roller; profile law, circle or arc (docs/cam_laws.md)."},
+                                 "a pivot, flat pad or roller; profile law, table, circle or arc (docs/cam_laws.md)."},
     {"cam.pivot_x", "length", "oscillating: X of the pivot relative to the cam centre (fixed frame)."},
     {"cam.pivot_y", "length", "oscillating: Y of the pivot relative to the cam centre (fixed frame)."},
     {"cam.arm_length", "length", "oscillating roller: distance from the pivot to the roller centre, > 0."},

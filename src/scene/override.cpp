@@ -146,11 +146,18 @@ Scene parse_scene(std::string_view toml_text, const std::string& source_name,
   } catch (const toml::parse_error& e) {
     throw SceneError(source_name, static_cast<int>(e.source().begin.line), "", "", std::string(e.description()));
   }
+  return scene_detail::scene_from_table(root, source_name, overrides);
+}
+
+namespace scene_detail {
+Scene scene_from_table(toml::table& root, const std::string& source_name, const std::vector<std::string>& overrides) {
+  if (overrides.empty()) return from_table(root, source_name, true);
   // The file's keys and types are read first (a wrong type is the file's error); its rules
   // are checked once, after the overrides: an override may repair the file.
   const Scene draft = from_table(root, source_name, true, false);
   return read_with_overrides(root, draft, overrides, source_name, true);
 }
+}  // namespace scene_detail
 
 void apply_override(Scene& scene, const std::string& assignment) {
   apply_overrides(scene, {assignment});

@@ -142,6 +142,11 @@ const std::vector<Field>& fields() {
       f.str = [](Scene& s) -> std::string& { return s.cam.law; };
       v.push_back(f);
     }
+    {
+      Field f = mk("cam", "lift_table", FK::Str);
+      f.str = [](Scene& s) -> std::string& { return s.cam.lift_table; };
+      v.push_back(f);
+    }
     v.push_back(ruled(F_REAL(cam, nose_radius), Rule::Gt, 0));
     v.push_back(ruled(F_REAL(cam, nose_distance), Rule::Gt, 0));
     v.push_back(ruled(F_REAL(cam, flank_radius), Rule::Gt, 0));
@@ -514,12 +519,30 @@ std::string read_scene_text(const std::string& path) {
   if (in.bad()) throw SceneError(path, 0, "", "", std::string("cannot read scene file: ") + std::strerror(errno));
   return ss.str();
 }
+
+// cam.lift_table: a relative path is the scene file's neighbour.
+void resolve_relative_paths(toml::table& root, const std::string& path) {
+  if (auto* cam = root["cam"].as_table())
+    if (auto* t = cam->get("lift_table"); t && t->is_string()) {
+      const std::filesystem::path p(t->value_or(std::string()));
+      if (!p.empty() && p.is_relative())
+        cam->insert_or_assign("lift_table", (std::filesystem::path(path).parent_path() / p).lexically_normal().string());
+    }
+}
 }  // namespace
 
-Scene load_scene_file(const std::string& path) { return parse_scene(read_scene_text(path), path); }
+Scene load_scene_file(const std::string& path) { return load_scene_file(path, {}); }
 
 Scene load_scene_file(const std::string& path, const std::vector<std::string>& overrides) {
-  return parse_scene(read_scene_text(path), path, overrides);
+  const std::string text = read_scene_text(path);
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(path, static_cast<int>(e.source().begin.line), "", "", std::string(e.description()));
+  }
+  resolve_relative_paths(root, path);
+  return scene_detail::scene_from_table(root, path, overrides);
 }
 
 // ---------------------------------------------------------------- paper cases

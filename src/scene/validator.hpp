@@ -169,7 +169,10 @@ class Validator {
     }
     // Motion laws, arc cams and the follower faces (issue 24): their rules live with the
     // geometry (cam.cpp, follower_geometry.cpp); reported here with the scene's file.
-    if (c.profile == CamProfileKind::Law || c.profile == CamProfileKind::Arc || c.profile == CamProfileKind::Arcs ||
+    if (c.profile == CamProfileKind::Table && c.lift_table.empty())
+      fail_at("cam.lift_table", "\"\"", "cam.profile = \"table\" needs the lift-table CSV file", "cam.profile");
+    if (c.profile == CamProfileKind::Law || c.profile == CamProfileKind::Table || c.profile == CamProfileKind::Arc ||
+        c.profile == CamProfileKind::Arcs ||
         c.follower_face != FollowerFace::Flat || c.follower_motion != FollowerMotion::Translating) {
       try {
         Cam check(c);

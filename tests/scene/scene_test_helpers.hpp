@@ -37,7 +37,7 @@ inline std::string override_error(Scene s, const std::string& assignment) {
 
 inline const std::string kCamKeys =
     "profile, angles_deg, radii, base_radius, lift_angles_deg, lift, radius, eccentricity, speed_rev_s, speed_rpm, rpm_of, "
-    "speed_table_t, speed_table_rev_s, theta0_deg, law, nose_radius, nose_distance, flank_radius, "
+    "speed_table_t, speed_table_rev_s, theta0_deg, law, lift_table, nose_radius, nose_distance, flank_radius, "
     "arc_centre_x, arc_centre_y, arc_centre_r, arc_centre_deg, arc_radius, arc_from_deg, arc_to_deg, "
     "follower_face, follower_offset, roller_radius, follower_motion, pivot_x, pivot_y, arm_length, pad_offset, "
     "valve_arm, land_on_breaks, width, youngs_modulus, poisson_ratio, "
