@@ -384,7 +384,7 @@ TEST(Stability, SpeedRampSeparatesPastSeparationSpeed) {
     const auto c = run_checked(load("speed_ramp.toml", {std::string("contact.model=") + model}));
     double t_sep = -1;
     for (const auto& e : c.r.summary.events) {
-      if (e.type == EventKind::Separation) {
+      if (e.type == camdyn::EventKind::Separation) {
         t_sep = e.t;
         break;
       }
