@@ -122,9 +122,13 @@ void check_against_dense(const JumpResult& r, const Scene& s, double lo, double 
 
 }  // namespace
 
-TEST(SpeedMap, FindsALiftOffBandBelowTheFloatAndSaysItIsNotMonotone) {
+TEST(SpeedMap, BandsAgreeWithADenseSweep) {
   // Map over [40, 48] rev/s (17 trials, 0.5 rev/s apart), boundaries to 1e-3; the dense
-  // sweep: 81 trials 0.1 rev/s apart. Seen: lift-off band ≈ [43.28, 43.59] rev/s.
+  // sweep: 81 trials 0.1 rev/s apart. The lift-off band once seen here (≈ [43.28, 43.59]
+  // rev/s) was Lee's: the event method at rtol 1e-11 shows no lift-off at 43.45 rev/s, and
+  // since Lee's steps take the one-sided cam at the harmonic law's joints neither does Lee.
+  // So this scene is no longer a non-monotone case; the map is checked against the dense
+  // sweep, band by band, whatever it finds.
   const Scene s = two_mass_train();
   JumpOptions o;
   o.lo_rev_s = 40;
@@ -135,19 +139,18 @@ TEST(SpeedMap, FindsALiftOffBandBelowTheFloatAndSaysItIsNotMonotone) {
   const JumpResult r = jump_speed(s, o);
   EXPECT_EQ(r.method, "simulation");
   EXPECT_EQ(r.grid_simulations, 17);
-  ASSERT_FALSE(r.bands.empty());
-  EXPECT_FALSE(r.monotone) << r.monotone_text;
-  EXPECT_EQ(r.phenomenon, "opening_liftoff") << r.phenomenon_text;
   // every boundary of a departure band is bracketed to rel_tol
   for (const SpeedBand& b : r.bands) {
     if (!std::isnan(b.from_out)) EXPECT_LE(b.from_in - b.from_out, 1e-3 * b.from_in) << b.kind;
     if (!std::isnan(b.to_out)) EXPECT_LE(b.to_out - b.to_in, 1e-3 * b.to_out) << b.kind;
   }
-  EXPECT_LE(r.hi_rev_s - r.lo_rev_s, 1e-3 * r.hi_rev_s);
   check_against_dense(r, s, 40, 48, 81);
-  // the reported bracket of the lowest separation speed: its ends judged again
-  EXPECT_TRUE(judged_departures(s, r.lo_rev_s).empty());
-  EXPECT_FALSE(judged_departures(s, r.hi_rev_s).empty());
+  if (r.phenomenon != "no_separation") {
+    // the reported bracket of the lowest separation speed: its ends judged again
+    EXPECT_LE(r.hi_rev_s - r.lo_rev_s, 1e-3 * r.hi_rev_s);
+    EXPECT_TRUE(judged_departures(s, r.lo_rev_s).empty());
+    EXPECT_FALSE(judged_departures(s, r.hi_rev_s).empty());
+  }
 }
 
 TEST(SpeedMap, RejectsBadOptions) {
