@@ -334,9 +334,9 @@ Scene load_scene_file(const std::string& path);
 /// once on the result — so an override may repair a file that breaks a rule alone. A rule
 /// broken by an overridden key names file "--set" and the key as written in the override;
 /// other errors name the file and line. The CLI (`scene`, `run`, `jump`, `sweep`) and
-/// Python load scenes this way. @throws SceneError.
+/// Python load scenes this way. @throws SceneError on a file that cannot be read or a rule broken.
 Scene load_scene_file(const std::string& path, const std::vector<std::string>& overrides);
-/// parse_scene with overrides, as load_scene_file(path, overrides). @throws SceneError.
+/// parse_scene with overrides, as load_scene_file(path, overrides). @throws SceneError as load_scene_file.
 Scene parse_scene(std::string_view toml_text, const std::string& source_name,
                   const std::vector<std::string>& overrides);
 /// Apply "dotted.key=value" (value in TOML syntax; bare words are taken as strings, so
