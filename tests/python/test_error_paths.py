@@ -70,6 +70,9 @@ def test_ctrl_c_stops_ida_at_tight_tolerance_promptly():
     # Was: seen only from the progress callback (31.8 s late, or never with a coarse output
     # grid). A SIGINT 0.5 s into a long ida run at rtol 1e-12 with one output row at the
     # end: KeyboardInterrupt within 2 s of the signal.
+    # Python's own SIGINT handler (a test runner started in the background inherits SIGINT
+    # ignored, and Python then installs none).
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     pid = os.getpid()
     sent = []
 
