@@ -28,14 +28,18 @@ class StepFailure : public std::runtime_error {
 /// A contact iteration that did not converge: recoverable, the step is retried with Δt/2.
 class IterationFailure : public StepFailure {
  public:
-  IterationFailure() : StepFailure(Termination::IterationFailure, "contact iteration did not converge") {}
+  /// why: what made it fail, if known (a non-finite residual's cause).
+  explicit IterationFailure(const std::string& why = "")
+      : StepFailure(Termination::IterationFailure, "contact iteration did not converge" + (why.empty() ? "" : " (" + why + ")")) {}
 };
 
 /// The step size fell below the floor (message "step size underflow (h = …)").
 class StepSizeUnderflow : public StepFailure {
  public:
-  explicit StepSizeUnderflow(double h)
-      : StepFailure(Termination::StepSizeUnderflow, "step size underflow (h = " + fmt(h) + ")") {}
+  /// why: what made the last steps fail, if known (a right-hand side that threw).
+  explicit StepSizeUnderflow(double h, const std::string& why = "")
+      : StepFailure(Termination::StepSizeUnderflow,
+                    "step size underflow (h = " + fmt(h) + ")" + (why.empty() ? "" : ": the last trial failed with " + why)) {}
 };
 
 /// Runs a method's loop `body` and sets how the run ended: Finished, or through

@@ -102,10 +102,12 @@ def test_resolved_scene_refuses_what_run_refuses():
     assert str(a.value) == str(b.value)
 
 
-def test_non_finite_follower_force_is_named():
-    # Was: "step size underflow at t = 0.002" without naming the force. (Event method: Lee's
-    # located step still ends in a step size underflow here, its trials failing their
-    # iteration rather than the engine.)
+@pytest.mark.parametrize("model", ["event", "lee", "penalty"])
+def test_non_finite_follower_force_is_named(model):
+    # Was: "step size underflow at t = 0.002" without naming the force. Lee's located step
+    # still halves its step toward the force's discontinuity (a trial may fail for a reason
+    # a smaller step removes) and ends in a step size underflow, which now names the last
+    # failed trial's cause.
     class NanAfter:
         size = 1
         contacts = [camdyn.FollowerContact(name="cam", row=[1.0])]
@@ -116,7 +118,7 @@ def test_non_finite_follower_force_is_named():
 
     s = {"title": "nan force", "cam": {"profile": "circle", "radius": 0.02, "eccentricity": 0.004, "theta0_deg": 180.0,
                                         "speed_rev_s": 5.0},
-         "contact": {"model": "event"}, "run": {"t_end": 0.01, "output_dt": 1e-3}}
+         "contact": {"model": model}, "run": {"t_end": 0.01, "output_dt": 1e-3}}
     r = camdyn.run(s, follower=NanAfter())
     assert not r.summary["finished"]
     msg = r.summary["message"]

@@ -158,14 +158,33 @@ ContactRun::StepEnergy EventMethod::advance_energy(double t0, double t1) {
   // no held contact on an undamped mechanism: nothing works or dissipates, and the three
   // dense states are not needed
   if (set_.empty() && !mk_.dissipative()) return StepEnergy{};
-  return step_energy(
-      t0, t1, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
-      [this](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
-        if (set_.empty())
-          F.setZero(m_);
-        else
-          held_forces_into(tau, y, c, set_, F);
-      });
+  // A step longer than kScanDeg of cam rotation (held contacts carried it across part of
+  // a lift, scan_closing): composite panels of at most kScanDeg, on the interpolant put on
+  // the held manifold (the raw one leaves the cam there: its held forces and the cam's
+  // work were 6e-5 J off on examples/ohc_roller_finger.toml with one row per revolution)
+  const double turn = std::abs(drive_.theta(t1) - drive_.theta(t0)) * (180.0 / 3.141592653589793);
+  const int P = turn > kScanDeg ? int(std::min(std::ceil(turn / kScanDeg), 4096.0)) : 1;
+  auto state = [this, P](double tau, Eigen::VectorXd& y) {
+    eng_->dense(tau, y);
+    if (P > 1 && !set_.empty()) {
+      rc_.resize(2 * n_);
+      project(tau, y.data(), rc_.data());
+      y += rc_;
+    }
+  };
+  auto forces = [this](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
+    if (set_.empty())
+      F.setZero(m_);
+    else
+      held_forces_into(tau, y, c, set_, F);
+  };
+  StepEnergy sum;
+  for (int p = 0; p < P; ++p) {
+    const StepEnergy e = step_energy(t0 + (t1 - t0) * p / P, p + 1 == P ? t1 : t0 + (t1 - t0) * (p + 1) / P, state, forces);
+    sum.work += e.work;
+    sum.dissipated += e.dissipated;
+  }
+  return sum;
 }
 
 void EventMethod::run_method() {
@@ -204,7 +223,11 @@ void EventMethod::run_method() {
     // breakpoint it lands on
     set_cam_window(on_break_ ? t_ : NAN, tout == t_brk ? tout : NAN);
     const double P_prev = dissipation_power(t_, y_);
-    const double t1 = eng_->advance(tout, y1);
+    double t1 = eng_->advance(tout, y1);
+    int scanned = -1;
+    if (unilateral_ && !eng_->hit_root()) scan_closing(t_, t1, y1, scanned);
+    const bool hit = eng_->hit_root() || scanned >= 0;
+    auto root_info = [&](int j) { return scanned >= 0 ? (j == scanned ? -1 : 0) : eng_->root_info()[j]; };
     const double h = t1 - t_;
     on_break_ = t1 == t_brk;
     stiff_metric(h);  // for the next steps' projections
@@ -215,7 +238,7 @@ void EventMethod::run_method() {
     // held. ERK's interpolant of the held step is off that manifold by its interpolation
     // error (case A7 at rtol 1e-11: the free flights started up to 6.1e-10 m off the
     // rtol-1e-12 run, 2.5e-12 m with the projection).
-    if (eng_->hit_root() && !set_.empty()) {
+    if (hit && !set_.empty()) {
       rc_.resize(2 * n_);
       project(t_, y_.data(), rc_.data());
       y_ += rc_;
@@ -229,11 +252,11 @@ void EventMethod::run_method() {
     after_advance(t_ - h, P_prev);
     const double P_end = dissipation_power(t_, y_);
     bool changed = false, released_only = false;
-    if (eng_->hit_root() && unilateral_) {
+    if (hit && unilateral_) {
       std::vector<int> closing;
       bool released = false;
       for (int j = 0; j < m_; ++j) {
-        if (eng_->root_info()[j] >= 0) continue;  // only downward crossings act
+        if (root_info(j) >= 0) continue;  // only downward crossings act
         if (active_[j]) {
           active_[j] = 0;
           ++sum_.separations;
@@ -250,7 +273,7 @@ void EventMethod::run_method() {
       // has just been released: it leaves at zero speed)
       const double v_eps = 1e-6 * v_impact_ref_;
       for (int j = 0; j < m_; ++j)
-        if (!active_[j] && eng_->root_info()[j] == 0 && gap(j, y_, cm) <= gap_thr &&
+        if (!active_[j] && root_info(j) == 0 && gap(j, y_, cm) <= gap_thr &&
             gap_rate(j, y_, cm) < -v_eps)
           closing.push_back(j);
       if (!closing.empty())
@@ -259,10 +282,10 @@ void EventMethod::run_method() {
         settle_active(cm);
       changed = !closing.empty() || released;
       released_only = closing.empty() && released;
-    } else if (eng_->hit_root()) {  // bilateral: a contact that closes stays closed
+    } else if (hit) {  // bilateral: a contact that closes stays closed
       std::vector<int> closing;
       for (int j = 0; j < m_; ++j)
-        if (!active_[j] && eng_->root_info()[j] < 0 && gap_rate(j, y_, cm) < 0.0) closing.push_back(j);
+        if (!active_[j] && root_info(j) < 0 && gap_rate(j, y_, cm) < 0.0) closing.push_back(j);
       if (!closing.empty()) {
         resolve_impact(closing, cm);
         changed = true;
@@ -279,12 +302,58 @@ void EventMethod::run_method() {
       // after its separation (the issue-28 check at 10 tol_u = 1e-7 stopped the run).
       set_ = active_list();
       set_metric();
-    } else if (changed) {
-      restart();  // projects onto the new active set
+    } else if (changed || scanned >= 0) {
+      restart();  // projects onto the new active set (a scanned root: the engine is past it)
     }
     after_step(h, dE.work, P_prev, changed ? P_end : NAN, dE.dissipated);
     if (on_break_) enter_segment();
   }
+}
+
+bool EventMethod::scan_closing(double t0, double& t1, Eigen::VectorXd& y1, int& who) {
+  const double turn = std::abs(drive_.theta(t1) - drive_.theta(t0)) * (180.0 / 3.141592653589793);
+  const int K = int(std::min(std::ceil(turn / kScanDeg), 4096.0));
+  if (K < 2) return false;
+  // the smallest open gap function at τ (on the held manifold), its contact in j
+  auto lowest = [&](double tau, int& j) {
+    eng_->dense(tau, yg_);
+    if (!set_.empty()) {
+      rc_.resize(2 * n_);
+      project(tau, yg_.data(), rc_.data());
+      yg_ += rc_;
+    }
+    const CamMotion cm = cam_at(tau);
+    double lo = INFINITY;
+    for (int i = 0; i < m_; ++i)
+      if (!active_[i]) {
+        const double g = gap(i, yg_, cm) + gap_thr_;
+        if (g < lo) lo = g, j = i;
+      }
+    return lo;
+  };
+  double a = t0;
+  for (int k = 1; k < K; ++k) {
+    double b = t0 + (t1 - t0) * double(k) / K;
+    int j = -1;
+    if (!(lowest(b, j) < 0.0)) {
+      a = b;
+      continue;
+    }
+    for (int it = 0; it < 200 && b - a > 4e-16 * std::max(1.0, std::abs(b)); ++it) {
+      const double c = 0.5 * (a + b);
+      int jc = -1;
+      if (lowest(c, jc) < 0.0)
+        b = c, j = jc;
+      else
+        a = c;
+    }
+    lowest(b, j);
+    t1 = b;
+    y1 = yg_;
+    who = j;
+    return true;
+  }
+  return false;
 }
 
 void EventMethod::enter_segment() {

@@ -125,6 +125,18 @@ class EventMethod : public ContactRun {
   // cam: its state is the projection's, exact; examples/law_roller.toml on the mechanism
   // stack took 774 steps for two revolutions with the restarts, 32 without, same rows).
   bool restart_at_breaks_ = sc_.solver.integrator == Integrator::CvodeBdf;
+  // The root functions are seen at the steps' ends only (SUNDIALS looks inside a step only
+  // where a function changes sign): an open contact that closes and opens again inside one
+  // step is unseen. A step held contacts carry across a lift (their motion comes from the
+  // projection, which the error test does not see: examples/ohc_roller_finger.toml on
+  // cvode-bdf with cam.land_on_breaks = false and one output row per revolution took one
+  // step over the whole valve event, the lash closed for 160° unseen) is therefore scanned:
+  // the open contacts' gap functions on the interpolant put on the held manifold, at
+  // samples at most kScanDeg of cam rotation apart. The first sample below zero is
+  // bisected to its root, which then acts as the engine's root would (its index in who,
+  // t1/y1 the root's time and state). Returns false when nothing closed inside the step.
+  static constexpr double kScanDeg = 1.0;
+  bool scan_closing(double t0, double& t1, Eigen::VectorXd& y1, int& who);
   Eigen::VectorXd yv_, yg_, rc_, rF_, rFh_;
   // An open contact's root is its gap at −10⁻³ tol_e, tol_e = min(tol_u, rtol·X) (X: the
   // cam's largest X_C), at least 1000 ulps of X: an impact is located to the integrator's
