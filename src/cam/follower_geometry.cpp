@@ -65,11 +65,14 @@ std::string deg1(double rad) {
   throw SceneError("<cam>", 0, key, value, rule);
 }
 
+/// The angle runs an error message lists (the rest counted: "… and 794 more").
+constexpr int kListedRuns = 6;
+
 /// "a..b, c..d" from a sampled predicate over [0, 2π).
 template <class Bad>
 std::string angle_runs(Bad bad, int n) {
   std::string out;
-  int k = 0;
+  int k = 0, runs = 0;
   while (k < n) {
     if (!bad(k)) {
       ++k;
@@ -77,9 +80,11 @@ std::string angle_runs(Bad bad, int n) {
     }
     const int k0 = k;
     while (k < n && bad(k)) ++k;
+    if (++runs > kListedRuns) continue;
     if (!out.empty()) out += ", ";
     out += deg1(kTwoPi * k0 / n) + ".." + deg1(kTwoPi * (k - 1) / n);
   }
+  if (runs > kListedRuns) out += " and " + std::to_string(runs - kListedRuns) + " more";
   return out;
 }
 

@@ -42,6 +42,8 @@ std::string bad_angles(const std::vector<char>& bad) {
   std::string out;
   const int n = int(bad.size());
   char b[64];
+  constexpr int kListed = 6;  // runs listed (the rest counted)
+  int runs = 0;
   for (int k = 0; k < n;) {
     if (!bad[k]) {
       ++k;
@@ -49,9 +51,11 @@ std::string bad_angles(const std::vector<char>& bad) {
     }
     const int k0 = k;
     while (k < n && bad[k]) ++k;
+    if (++runs > kListed) continue;
     std::snprintf(b, sizeof b, "%s%.1f°..%.1f°", out.empty() ? "" : ", ", 360.0 * k0 / n, 360.0 * (k - 1) / n);
     out += b;
   }
+  if (runs > kListed) out += " and " + std::to_string(runs - kListed) + " more";
   return out;
 }
 

@@ -122,6 +122,18 @@ TEST(FollowerGeometry, UndercutAndConvexityNameCamAngles) {
     EXPECT_NE(e.rule().find("undercut"), std::string::npos) << e.rule();
     EXPECT_NE(e.rule().find("cam angles 1"), std::string::npos) << e.rule();  // around 180°
   }
+  {  // 800 undercut runs (400 tiny lobes): six listed, the rest counted
+    std::string law;
+    for (int k = 0; k < 400; ++k) law += std::string(k ? "; " : "") + "cycloidal 0.45 1; cycloidal 0.45 -1";
+    try {
+      Cam cam(law_roller(law.c_str(), 20, 8, 0));
+      FAIL();
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.key(), "cam.roller_radius");
+      EXPECT_NE(e.rule().find(" and 794 more"), std::string::npos) << e.rule().substr(0, 300);
+      EXPECT_LT(e.rule().size(), 400u);
+    }
+  }
   c.follower_face = FollowerFace::Flat;
   c.roller_radius = 0;
   EXPECT_THROW(Cam{c}, SceneError);
