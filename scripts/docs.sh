@@ -34,7 +34,7 @@ mkdir -p "$GEN"
   echo '```text'
   "$CAMDYN" --help
   echo '```'
-  for cmd in run cam scene plot bench jump sweep; do
+  for cmd in run cam scene plot report bench jump sweep spectrum campbell; do
     echo
     echo "**camdyn $cmd**"
     echo

@@ -19,6 +19,7 @@
 
 #include "camdyn/batch.hpp"
 #include "camdyn/cam.hpp"
+#include "camdyn/campbell.hpp"
 #include "camdyn/designer.hpp"
 #include "camdyn/follower_system.hpp"
 #include "camdyn/hertz.hpp"

@@ -1,5 +1,6 @@
 // camdyn — command-line tool: `camdyn spectrum DIR --column NAME` (order analysis of a
-// history column; camdyn/spectrum.hpp).
+// history column; camdyn/spectrum.hpp) and `camdyn campbell SCENE` (its Campbell diagram over
+// a speed range; camdyn/campbell.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "camdyn/campbell.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/spectrum.hpp"
@@ -83,6 +85,59 @@ int cmd_spectrum(const SpectrumOpts& o) {
     std::printf(" %s: %s%s", fmt_g(s.order[idx[i]], 6).c_str(), fmt_g(s.amplitude[idx[i]], 4).c_str(),
                 i + 1 < std::min<std::size_t>(8, idx.size()) ? "," : "");
   std::printf("\noutput: %s\n", out.c_str());
+  return kExitOk;
+}
+
+int cmd_campbell(const CampbellOpts& o) {
+  const Scene scene = required_scene("campbell", o.c);
+  if (!(o.points >= 2)) throw SceneError("--points", 0, "points", std::to_string(o.points), "must be >= 2");
+  if (!(o.from > 0 && o.to > o.from))
+    throw SceneError("--from/--to", 0, "from", fmt_g(o.from) + " .. " + fmt_g(o.to), "needs 0 < A < B [rev/s]");
+  CampbellOptions co;
+  co.column = o.column;
+  for (long i = 0; i < o.points; ++i) co.speeds_rev_s.push_back(o.from + (o.to - o.from) * double(i) / double(o.points - 1));
+  co.settle_revolutions = o.settle;
+  co.revolutions = o.revolutions;
+  co.samples_per_revolution = o.samples;
+  co.max_order = o.max_order;
+  co.threads = o.jobs;
+  co.validate();
+  ensure_output_dir(o.out);
+  const CampbellDiagram d = campbell(scene, co);
+  const double rpm = scene.rpm_per_rev_s;
+  std::string csv = std::string("speed_rev_s,") + (rpm > 0 ? "speed_rpm," : "") + "order,amplitude\n";
+  for (std::size_t k = 0; k < d.speed_rev_s.size(); ++k)
+    for (std::size_t j = 0; j < d.order.size(); ++j)
+      csv += format_double(d.speed_rev_s[k]) + "," + (rpm > 0 ? format_double(rpm * d.speed_rev_s[k]) + "," : "") +
+             format_double(d.order[j]) + "," + format_double(d.amplitude[k][j]) + "\n";
+  write_file_atomic(join_path(o.out, "campbell.csv"), csv);
+  std::string lines = "name,frequency_hz\n";
+  for (const CampbellLine& l : d.lines) lines += l.name + "," + format_double(l.frequency_hz) + "\n";
+  write_file_atomic(join_path(o.out, "campbell_lines.csv"), lines);
+  if (!o.quiet) {
+    std::printf("campbell: %s at %zu speeds %s .. %s rev/s, %d + %d revolutions each\n", d.column.c_str(),
+                d.speed_rev_s.size(), fmt_g(d.speed_rev_s.front()).c_str(), fmt_g(d.speed_rev_s.back()).c_str(),
+                o.settle, o.revolutions);
+    for (std::size_t k = 0; k < d.speed_rev_s.size(); ++k) {
+      std::size_t best = 1;
+      for (std::size_t j = 1; j < d.order.size(); ++j)
+        if (d.amplitude[k][j] > d.amplitude[k][best]) best = j;
+      std::printf("  %s rev/s: largest order %s (amplitude %s)\n", fmt_g(d.speed_rev_s[k]).c_str(),
+                  fmt_g(d.order[best]).c_str(), fmt_g(d.amplitude[k][best], 4).c_str());
+    }
+    for (const CampbellLine& l : d.lines) std::printf("  line %s: %s Hz\n", l.name.c_str(), fmt_g(l.frequency_hz).c_str());
+    std::printf("output: %s, %s\n", join_path(o.out, "campbell.csv").c_str(),
+                join_path(o.out, "campbell_lines.csv").c_str());
+  }
+  if (o.plot) {
+    std::string why;
+    const std::string script = companion_script_path("CAMDYN_CAMPBELL_PLOT_SCRIPT", "camdyn_campbell_plot.py");
+    if (script.empty() || run_plot_script({o.out}, &why, script) != 0) {
+      std::fprintf(stderr, "camdyn: campbell.png not drawn: %s\n", script.empty() ? "script not found" : why.c_str());
+      return kExitFailed;
+    }
+    if (!o.quiet) std::printf("figure: %s\n", join_path(o.out, "campbell.png").c_str());
+  }
   return kExitOk;
 }
 

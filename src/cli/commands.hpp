@@ -179,6 +179,17 @@ struct SpectrumOpts {
   double max_order = 40;
 };
 
+struct CampbellOpts {
+  CommonOpts c;
+  std::string column = "contact_force";
+  double from = NAN, to = NAN;
+  long points = 0;
+  int settle = 2, revolutions = 2, samples = 512, jobs = 0;
+  double max_order = 32;
+  std::string out = "camdyn-campbell";
+  bool plot = false, quiet = false;
+};
+
 struct SweepCliAxis {
   std::string key;
   double from = NAN, to = NAN, step = NAN;
@@ -216,6 +227,7 @@ int cmd_report(const std::string& dir);
 int cmd_bench(const BenchOpts& o);
 int cmd_jump(const JumpOpts& o);
 int cmd_spectrum(const SpectrumOpts& o);
+int cmd_campbell(const CampbellOpts& o);
 int cmd_sweep(const SweepOpts& o);
 
 }  // namespace camdyn_cli

@@ -47,7 +47,7 @@ void add_common(CLI::App* sub, CommonOpts& c, const char* scene_help) {
       ->allow_extra_args(false);
 }
 
-const std::vector<std::string> kCommands{"run", "cam", "scene", "plot", "report", "bench", "jump", "sweep", "spectrum"};
+const std::vector<std::string> kCommands{"run", "cam", "scene", "plot", "report", "bench", "jump", "sweep", "spectrum", "campbell"};
 
 int real_main(int argc, char** argv) {
   CLI::App app{
@@ -179,6 +179,28 @@ int real_main(int argc, char** argv) {
   spectrum->add_option("--max-order", spo.max_order, "Highest order written")
       ->type_name("K")
       ->capture_default_str();
+
+  CampbellOpts cbo;
+  auto* campbell = app.add_subcommand(
+      "campbell",
+      "Campbell diagram: the scene run at --points camshaft speeds from --from to --to rev/s "
+      "(settle, then analysed revolutions each, in parallel), the order spectrum of a history "
+      "column at each speed → DIR/campbell.csv (speed_rev_s, order, amplitude), the surge "
+      "frequencies of the springs with coil masses → DIR/campbell_lines.csv; --plot draws "
+      "DIR/campbell.png (python3 + matplotlib)");
+  add_common(campbell, cbo.c, "Scene file (TOML)");
+  campbell->add_option("--column", cbo.column, "History column to analyse")->type_name("NAME")->capture_default_str();
+  campbell->add_option("--from", cbo.from, "Lowest camshaft speed [rev/s]")->type_name("A")->required();
+  campbell->add_option("--to", cbo.to, "Highest camshaft speed [rev/s]")->type_name("B")->required();
+  campbell->add_option("--points", cbo.points, "Number of speeds (>= 2)")->type_name("N")->required();
+  campbell->add_option("--settle", cbo.settle, "Revolutions run before the analysed ones")->type_name("N")->capture_default_str();
+  campbell->add_option("--revolutions", cbo.revolutions, "Revolutions analysed")->type_name("N")->capture_default_str();
+  campbell->add_option("--samples", cbo.samples, "Rows per revolution of each run")->type_name("N")->capture_default_str();
+  campbell->add_option("--max-order", cbo.max_order, "Highest order written")->type_name("K")->capture_default_str();
+  campbell->add_option("-j,--jobs", cbo.jobs, "Worker threads (0: all cores)")->type_name("N")->capture_default_str();
+  campbell->add_option("-o,--out", cbo.out, "Output directory (created if missing)")->type_name("DIR")->capture_default_str();
+  campbell->add_flag("--plot", cbo.plot, "Draw DIR/campbell.png (python3 + matplotlib)");
+  campbell->add_flag("-q,--quiet", cbo.quiet, "No report");
 
   BenchOpts bo;
   auto* bench = app.add_subcommand(
@@ -317,7 +339,7 @@ int real_main(int argc, char** argv) {
     if (!known) {
       std::fprintf(stderr,
                    "camdyn: unknown command '%s' (allowed: run, cam, scene, plot, report, "
-                   "bench, jump, sweep; see camdyn --help)\n",
+                   "bench, jump, sweep, spectrum, campbell; see camdyn --help)\n",
                    argv[1]);
       return kExitBadInput;
     }
@@ -332,7 +354,7 @@ int real_main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
     std::string what = e.what();
-    if (argc < 2) what = "no command given (allowed: run, cam, scene, plot, report, bench, jump, sweep, spectrum)";
+    if (argc < 2) what = "no command given (allowed: run, cam, scene, plot, report, bench, jump, sweep, spectrum, campbell)";
     std::fprintf(stderr, "camdyn: %s\nRun 'camdyn --help' for the commands and options.\n",
                  what.c_str());
     return kExitBadInput;
@@ -350,6 +372,7 @@ int real_main(int argc, char** argv) {
   if (bench->parsed()) return cmd_bench(bo);
   if (jump->parsed()) return cmd_jump(jo);
   if (spectrum->parsed()) return cmd_spectrum(spo);
+  if (campbell->parsed()) return cmd_campbell(cbo);
   if (sweep->parsed()) {
     // Under mpirun every rank parses the same command line: report bad input once (rank 0).
     if (camdyn_cli::launched_under_mpi() && camdyn_cli::mpi_rank_from_env() != 0) {
@@ -361,7 +384,7 @@ int real_main(int argc, char** argv) {
     }
     return cmd_sweep(swo);
   }
-  std::fprintf(stderr, "camdyn: no command given (allowed: run, cam, scene, plot, report, bench, jump, sweep, spectrum)\n");
+  std::fprintf(stderr, "camdyn: no command given (allowed: run, cam, scene, plot, report, bench, jump, sweep, spectrum, campbell)\n");
   return kExitBadInput;
 }
 
