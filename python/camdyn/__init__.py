@@ -51,6 +51,7 @@ __all__ = [
     "jump_speed",
     "cam_motion",
     "order_spectrum",
+    "campbell",
     "initial_state_on_cam",
     "run_batch",
     "sweep",
@@ -247,6 +248,29 @@ def order_spectrum(theta: Any, y: Any, revolutions: int = 0, samples_per_revolut
     """
     return _camdyn.order_spectrum([float(v) for v in theta], [float(v) for v in y], int(revolutions),
                                   int(samples_per_revolution), float(max_order))
+
+
+def campbell(scene: Any, speeds_rev_s: Any, column: str = "contact_force", settle_revolutions: int = 2,
+             revolutions: int = 2, samples_per_revolution: int = 512, max_order: float = 32.0,
+             threads: int = 0, **overrides: Any) -> Dict[str, Any]:
+    """Campbell diagram, as ``camdyn campbell`` (camdyn/campbell.hpp): ``scene`` run at each
+    camshaft speed of ``speeds_rev_s`` (settle, then analysed revolutions), the order
+    spectrum of ``column`` at each speed, and the surge frequencies of the springs with
+    coil masses.
+
+    Returns:
+        dict with ``column``, ``speed_rev_s``, ``order``, ``amplitude`` (one list per
+        speed), ``lines`` (dicts ``name``, ``frequency_hz``).
+
+    Raises:
+        SceneError: bad options (naming the option), an invalid scene, an unknown column,
+            a run that did not finish.
+    """
+    opts = {"column": column, "speeds_rev_s": [float(v) for v in speeds_rev_s],
+            "settle_revolutions": int(settle_revolutions), "revolutions": int(revolutions),
+            "samples_per_revolution": int(samples_per_revolution), "max_order": float(max_order),
+            "threads": int(threads)}
+    return _camdyn.campbell(*_scene_spec(scene, overrides), opts)
 
 
 def cam_motion(scene: Any, t: Any, lift: bool = False, **overrides: Any) -> Tuple[Any, Any, Any]:

@@ -49,6 +49,7 @@
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/simulator.hpp"
+#include "py_campbell.hpp"
 #include "py_follower.hpp"
 
 #ifndef CAMDYN_VERSION
@@ -582,6 +583,10 @@ PYBIND11_MODULE(_camdyn, m) {
       },
       py::arg("theta"), py::arg("y"), py::arg("revolutions") = 0, py::arg("samples_per_revolution") = 1024,
       py::arg("max_order") = 64.0);
+  m.def("campbell", [](const std::string& kind, const std::string& text, const std::string& source,
+                       const std::vector<std::string>& overrides, const py::dict& options) {
+    return camdyn_py::campbell_dict(build_scene(kind, text, source, overrides), options);
+  });
   m.def("cam_motion", &cam_motion, py::arg("kind"), py::arg("text"), py::arg("source"),
         py::arg("overrides"), py::arg("t"), py::arg("lift") = false);
   m.def("initial_state_on_cam", &on_cam, py::arg("kind"), py::arg("text"), py::arg("source"),
