@@ -153,6 +153,48 @@ struct RunContract {
   double energy_bound = 0;
 };
 
+/// One acceptance criterion of a run ([criteria]; Summary::criteria): its measured value,
+/// the cam angle where it is worst and whether it holds. Names: "seating_velocity",
+/// "bounce_height", "bounce_count", "force_margin_<contact>" (one per contact; "force_margin"
+/// for a single follower), "hertz_stress", "film_thickness", "lambda", "ramp_velocity",
+/// "lift_deviation".
+struct CriterionResult {
+  std::string name;
+  std::string key;          ///< the scene key of its limit ("criteria.max_seating_velocity")
+  bool is_max = true;       ///< true: value ≤ limit passes; false: value ≥ limit passes
+  double limit = NAN;
+  /// The worst value over the run (largest for a maximum, least for a minimum); NaN when
+  /// the run has nothing to judge (no seat impact, a contact never closed, …): that passes,
+  /// and `note` says why.
+  double value = NAN;
+  double theta_deg = NAN;   ///< cam angle of the worst value [deg, 0..360) (NaN: none)
+  bool pass = true;
+  std::string note;         ///< why value is NaN, else ""
+};
+
+/// One landing of a seat (a stop contact on side "below"): an impact on it after the cam
+/// lifted its node past the take-up, and the re-impacts (bounces) before the cam lifts it
+/// again. Every seat impact's approach speed is a seating velocity.
+struct SeatLanding {
+  std::string contact;
+  double t = 0, theta_deg = NAN;
+  double velocity = 0;        ///< approach speed of the landing impact
+  long bounces = 0;           ///< re-impacts after it before the cam lifts the node again
+  double bounce_height = 0;   ///< largest seat gap (output rows) between consecutive impacts
+                              ///< of this landing (0: no bounce)
+  double max_velocity = 0;    ///< largest approach speed among the landing and its bounces
+  double max_velocity_theta_deg = NAN;
+  double bounce_height_theta_deg = NAN;  ///< cam angle of the re-impact ending the highest bounce
+};
+
+/// Extremes of the valve's dynamic minus kinematic lift over one cam revolution (the
+/// revolution k counts from the run's start, k = floor(cam progress / 360°)), over the
+/// output rows.
+struct LiftDeviationRevolution {
+  long revolution = 0;
+  double min = NAN, min_theta_deg = NAN, max = NAN, max_theta_deg = NAN;
+};
+
 struct Summary {
   std::string scene;
   bool finished = false;  ///< termination == Termination::Finished
@@ -240,6 +282,23 @@ struct Summary {
   /// The run's own checks of its result (RunContract). A finished run whose contract does
   /// not hold is a result not to be trusted: the CLI exits 3.
   RunContract contract;
+  // ---- oil film, lift deviation, acceleration criteria (issue 38; NaN/empty when not asked)
+  /// [lubricant]: least EHL film thickness at the cam contact over the output rows while in
+  /// contact (the history's film_thickness) and its cam angle; λ = film / roughness there.
+  double min_film_thickness = NAN, min_film_theta_deg = NAN;
+  double min_lambda = NAN;
+  /// run.valve_node: the lift deviation's extremes per revolution (the history's
+  /// lift_deviation).
+  std::vector<LiftDeviationRevolution> lift_deviation;
+  /// Largest cam velocity |Ẋ| where the cam lift crosses a lash take-up level over the
+  /// output rows (linear between rows), and its cam angle; NaN if never crossed.
+  double max_ramp_velocity = NAN, max_ramp_theta_deg = NAN;
+  /// Network seats (stop contacts on side "below"): every landing, in time order.
+  std::vector<SeatLanding> landings;
+  /// The [criteria] of the scene judged on this run, in the key table's order.
+  std::vector<CriterionResult> criteria;
+  /// Every criterion passes (true when there is none).
+  bool criteria_pass = true;
 
   std::string BriefReport() const;
   std::string FullReport() const;
