@@ -8,6 +8,7 @@
 //   lever ratio of the path, b the cam lift at which the path's clearances are taken up.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "camdyn/designer.hpp"
+#include "camdyn/scene_warnings.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/simulator.hpp"
 
@@ -19,6 +21,8 @@ using namespace camdyn;
 namespace fs = std::filesystem;
 
 namespace {
+
+Scene parse(const std::string& text) { return parse_scene(text, "<test>"); }
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -105,7 +109,7 @@ double deg(double theta) {
 }  // namespace
 
 TEST(Criteria, SeatingVelocityAndBouncesFromTheEventsAndRows) {
-  Simulator sim(parse_scene(bouncing_valve(10.0, R"(
+  Simulator sim(parse(bouncing_valve(10.0, R"(
 [criteria]
 max_seating_velocity = 0.5
 max_bounce_height = 1e-6
@@ -177,7 +181,7 @@ TEST(Criteria, SweepJudgesEachSpeed) {
   // the closed forms at 6 and 12 rev/s (0.121 and 0.242 m/s) passes the first and fails the second.
   const double v6 = closing_speed_at(0.0002, 6.0), v12 = closing_speed_at(0.0002, 12.0);
   const double limit = 0.5 * (v6 + v12);
-  Scene sc = parse_scene(bouncing_valve(6.0, "[criteria]\nmax_seating_velocity = " + std::to_string(limit) + "\n"));
+  Scene sc = parse(bouncing_valve(6.0, "[criteria]\nmax_seating_velocity = " + std::to_string(limit) + "\n"));
   sc.run.t_end = 0.12;  // past the landing at 6 rev/s (249° at 0.115 s), before the second at 12 rev/s
   sc.run.output_dt = 1e-5;
   const fs::path dir = fs::temp_directory_path() / ("camdyn_criteria_sweep_" + std::to_string(::getpid()));
@@ -220,7 +224,7 @@ TEST(Criteria, SweepJudgesEachSpeed) {
 TEST(Criteria, BadLimitsAreSceneErrors) {
   auto err = [](const std::string& extra) {
     try {
-      Simulator sim(parse_scene(bouncing_valve(10.0, extra)));
+      Simulator sim(parse(bouncing_valve(10.0, extra)));
     } catch (const SceneError& e) {
       return std::string(e.what());
     }
@@ -232,7 +236,7 @@ TEST(Criteria, BadLimitsAreSceneErrors) {
   EXPECT_NE(err("[criteria]\nmax_lift_deviation = 1e-4\n").find("run.valve_node"), std::string::npos);
   EXPECT_NE(err("[lubricant]\nviscosity = 0.01\n").find("cam.width"), std::string::npos);
   EXPECT_NE(err("[lubricant]\nroughness = -1e-7\n").find("lubricant.roughness"), std::string::npos);
-  Scene sc = parse_scene(bouncing_valve(10.0));
+  Scene sc = parse(bouncing_valve(10.0));
   sc.run.valve_node = "stem";
   EXPECT_THROW(Simulator{sc}, SceneError);
   try {
@@ -247,7 +251,7 @@ TEST(OilFilm, RunColumnIsHamrockAtTheRowsLoadRadiusAndSpeed) {
   // face at X_C = R + e cos(θ − θ_e), so X_C″ = R − X_C and ũ = −½ω(X_C + 2X_C″) = −½ω(2R − X_C);
   // a flat face's axial force is the normal force. Hamrock's h written here in its
   // dimensional form h = 1.714 w′^−0.128 (η₀ũ)^0.694 ξ^0.568 E′^0.002 R^0.434.
-  Scene sc = parse_scene(R"(title = "flat tappet film"
+  Scene sc = parse(R"(title = "flat tappet film"
 [cam]
 profile = "circle"
 radius = 0.02
@@ -333,7 +337,7 @@ tol_u = 1e-11
 rtol = 1e-10
 atol = 1e-14
 [run]
-t_end = )" + std::to_string(1.0 / speed_rev_s) +
+t_end = )" + std::to_string(0.99 / speed_rev_s) +
          R"(
 output_dt = )" + std::to_string(0.5e-3 / speed_rev_s) +
          R"(
@@ -368,31 +372,78 @@ nodes = ["tappet"]
 }  // namespace
 
 TEST(LiftDeviation, QuasiStaticClosedFormAtLowSpeed) {
-  // At 0.5 rev/s the inertia forces are (ω/ω_n)² ≈ 1e-6 of the springs': the valve sits at
-  // the static solution k_p (X − q) = k_v q, so q − X = −k_v X/(k_p + k_v): the lift
-  // deviation. Stiff pushrod (k_p = 1e8 N/m): |deviation| ≤ 30000·8e-3/1e8 = 2.4e-6 m.
+  // At 0.5 rev/s the valve follows the quasi-static solution k_p (X − q) = k_v q + m Ẍ
+  // (its inertia to first order: (ω/ω_n)² ≈ 1e-6), so q − X = −(k_v X + m Ẍ)/(k_p + k_v): the
+  // lift deviation. Stiff pushrod (k_p = 1e8 N/m): |deviation| ≤ 30000·8e-3/1e8 = 2.4e-6 m.
+  // Measured: largest error 4e-13 m at k_p = 1e8; 1.9e-10 m at k_p = 3e6 (the deviation
+  // reaches 7.9e-5 m there; without the inertia term the error was 4e-9 m).
   for (double kp : {1e8, 3e6}) {
-    Simulator sim(parse_scene(pushrod_train(0.5, kp)));
+    Simulator sim(parse(pushrod_train(0.5, kp)));
     const int dcol = column(sim, "lift_deviation"), ut = column(sim, "u_tappet");
     ASSERT_GE(dcol, 0);
     Rows obs;
     const Summary s = sim.run(&obs);
     ASSERT_TRUE(s.finished) << s.message;
-    double lo = INFINITY, hi = -INFINITY;
+    double lo = INFINITY, hi = -INFINITY, err = 0;
     for (const HistoryRow& r : obs.rows) {
       const double X = r.extra[std::size_t(ut)];  // the tappet rides the cam: its lift is X (gap held to tol_u)
-      const double want = -30000.0 * X / (kp + 30000.0);
-      // measured: 3e-12 m (k_p = 1e9), 1.6e-10 m (k_p = 3e6, 8e-5 of the largest 2e-6... of 7.9e-5)
-      EXPECT_NEAR(r.extra[std::size_t(dcol)], want, 1e-9 + 1e-4 * std::abs(want)) << "t = " << r.t;
+      // the cycloidal law's acceleration Ẍ = ±ω²(2πL/β²) sin 2πx on the rise (100°–180°) and
+      // the fall (180°–260°); the valve's inertia m Ẍ adds to its spring's force (first order)
+      const double th = r.theta * 180.0 / kPi, beta = 80.0 * kPi / 180.0, w = 2 * kPi * 0.5;
+      double Xdd = 0;
+      if (th > 100 && th < 180) Xdd = w * w * 2 * kPi * 0.008 / (beta * beta) * std::sin(2 * kPi * (th - 100) / 80);
+      if (th > 180 && th < 260) Xdd = -w * w * 2 * kPi * 0.008 / (beta * beta) * std::sin(2 * kPi * (th - 180) / 80);
+      const double want = -(30000.0 * X + 0.05 * Xdd) / (kp + 30000.0);
+      err = std::max(err, std::abs(r.extra[std::size_t(dcol)] - want) / (5e-10 + 1e-5 * std::abs(want)));
+      EXPECT_NEAR(r.extra[std::size_t(dcol)], want, 5e-10 + 1e-5 * std::abs(want)) << "t = " << r.t;
       lo = std::min(lo, r.extra[std::size_t(dcol)]);
       hi = std::max(hi, r.extra[std::size_t(dcol)]);
     }
+    EXPECT_LT(err, 1.0);
     ASSERT_EQ(s.lift_deviation.size(), 1u);
     EXPECT_EQ(s.lift_deviation[0].min, lo);
     EXPECT_EQ(s.lift_deviation[0].max, hi);
     ASSERT_EQ(s.criteria.size(), 1u);
     EXPECT_EQ(s.criteria[0].value, std::max(std::abs(lo), std::abs(hi)));
     EXPECT_TRUE(s.criteria[0].pass);
-    if (kp == 1e8) EXPECT_LT(std::max(std::abs(lo), std::abs(hi)), 2.5e-6);
+    if (kp == 1e8) {
+      EXPECT_LT(std::max(std::abs(lo), std::abs(hi)), 2.5e-6);
+    }
   }
+}
+
+TEST(Examples, ShippedScenesRaiseNoPlausibilityWarning) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(CAMDYN_SOURCE_DIR) / "examples")) {
+    if (e.path().extension() != ".toml") continue;
+    const std::vector<std::string> w = scene_warnings(load_scene_file(e.path().string()));
+    EXPECT_TRUE(w.empty()) << e.path() << ": " << (w.empty() ? "" : w[0]);
+    ++n;
+  }
+  EXPECT_GT(n, 10);
+}
+
+TEST(TakeUpWindow, EveryLashOnThePathToTheCam) {
+  // The roller finger: the finger's lash adjuster spring holds it on the cam (8 N) while the
+  // 0.1 mm valve lash is open, the cam lifting X from 0 to 0.1 mm: the window spans the cam
+  // lifts [0 − 1 %, 0.1 mm + 1 %] of the 9 mm lift, so the cam contact's least force is
+  // the one on the lobe. Recomputed here from the rows (in_cam, F_cam, the cam lift
+  // u_c − gap of the primary cam contact) outside that window; the run also samples the
+  // step ends between rows, so its least force is at most the rows' (measured: equal to 1e-3).
+  Scene sc = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_roller_finger.toml");
+  Simulator sim(sc);
+  const int F = column(sim, "F_cam"), in = column(sim, "in_cam");
+  Rows obs;
+  const Summary s = sim.run(&obs);
+  ASSERT_TRUE(s.finished) << s.message;
+  const double d = 0.01 * 0.009, lo = 0.0 - d, hi = 1e-4 + d;
+  double fmin = INFINITY;
+  for (const HistoryRow& r : obs.rows) {
+    const double X = r.u_c - r.gap;
+    if (r.extra[std::size_t(in)] > 0.5 && !(X >= lo && X <= hi)) fmin = std::min(fmin, r.extra[std::size_t(F)]);
+  }
+  ASSERT_EQ(s.contacts[0].name, "cam");
+  EXPECT_LE(s.contacts[0].min_force, fmin * (1 + 1e-12));
+  EXPECT_NEAR(s.contacts[0].min_force, fmin, 1e-2 * fmin);
+  EXPECT_GT(s.contacts[0].min_force, 8.0 + 2000.0 * hi);  // not the adjuster spring on the base circle
 }
