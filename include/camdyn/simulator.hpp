@@ -104,9 +104,12 @@ const char* to_string(Termination v);
 /// Results of one contact of a network or user follower (summary.json
 /// "contacts", FullReport, Python). Angles: cam degrees in [0, 360); NaN (null) when the
 /// thing did not happen. The lash take-up window: the output rows where the cam's lift X
-/// lies within 1 % of the lift of some cam contact's clearance (|X − c| ≤ 0.01·lift: the
-/// load passes between the cam and the stops there, the forces fall to zero by design);
-/// min_force leaves those rows out, and a separation inside it is no loss of margin.
+/// lies between the lowest and the highest take-up level on the path from the cam, each
+/// widened by 1 % of the lift (the levels: every cam contact's clearance and the cam lift at
+/// which each lash contact reached from a cam contact closes, through levers and rigid
+/// links; docs/contacts.md): the load passes between the cam, the lashes and the stops
+/// there, the forces fall to zero by design; min_force leaves those rows out, and a
+/// separation inside it is no loss of margin.
 struct ContactResult {
   std::string name;
   /// Smallest force while closed over the output rows outside the lash take-up window (0
