@@ -33,7 +33,7 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
                        const std::atomic<bool>* stop)
     : sc_(sc), mech_(std::move(mech)), mk_(*mech_), cam_(sc.cam), drive_(sc.cam), obs_(obs),
       stop_(stop), n_(mk_.n()), m_(mk_.m()), designer_(sc, cam_),
-      analysis_(sc, contact_names(*mech_), mech_->node_names(), cam_.lift()) {
+      analysis_(sc, contact_names(*mech_), mech_->node_names(), cam_.lift(), &cam_) {
   sum_.scene = sc.title;
   sum_.integrator = to_string(sc.solver.integrator);
   sum_.contact_model = to_string(sc.contact.model);

@@ -32,8 +32,8 @@ std::vector<std::string> RunAnalysis::columns(const Scene& sc) {
 }
 
 RunAnalysis::RunAnalysis(const Scene& sc, const std::vector<std::string>& contacts,
-                         const std::vector<std::string>& nodes, double lift)
-    : sc_(sc), path_(sc) {
+                         const std::vector<std::string>& nodes, double lift, const Cam* cam)
+    : sc_(sc), cam_(cam), path_(sc) {
   const CamSpec& c = sc.cam;
   band_ = kTakeUpBand * (lift > 0 ? lift : 0.0);
   if (sc.lubricant.viscosity > 0) {
@@ -77,9 +77,18 @@ double RunAnalysis::film(const CamPoint& p, double omega, double Fc) const {
   const double curv = 1.0 / p.rho + (roller_ ? 1.0 / rr_ : 0.0);
   if (!(curv > 0)) return NAN;
   const double Rx = 1.0 / curv;
-  const double u = roller_ ? std::abs(omega) * std::hypot(p.X_C, p.dX_dtheta) * p.rho / (p.rho + rr_)
-                           : flat_face_entrainment(omega, p.X_C, 0.0, p.d2X_dtheta2);
-  return line_contact_min_film(N / width_, Rx, u, oil_, Ep_);
+  return line_contact_min_film(N / width_, Rx, entrainment(p, omega), oil_, Ep_);
+}
+
+double RunAnalysis::entrainment(const CamPoint& p, double omega) const {
+  if (!roller_ || !cam_) return std::abs(flat_face_entrainment(omega, p.X_C, 0.0, p.d2X_dtheta2));
+  // the contact point in the cam's frame, c(θ) = r (cos(β − θ), sin(β − θ)): its speed
+  // over the cam's surface is the roller's rolling speed
+  const double d = 1e-6;
+  const CamPoint a = cam_->evaluate(p.theta - d), b = cam_->evaluate(p.theta + d);
+  const double dx = b.r * std::cos(b.beta - b.theta) - a.r * std::cos(a.beta - a.theta);
+  const double dy = b.r * std::sin(b.beta - b.theta) - a.r * std::sin(a.beta - a.theta);
+  return std::abs(omega) * std::hypot(dx, dy) / (2 * d);
 }
 
 void RunAnalysis::row(double t, double theta, const CamPoint& p, double X, double Xdot, double omega, double Fc,

@@ -3,7 +3,8 @@
 //   oil film     [lubricant]: Hamrock's line-contact film at the cam contact per row
 //                (results/oil_film.hpp) from the cam's force per width, the reduced radius
 //                (cam curvature with the roller or the flat face) and the entrainment speed
-//                (flat face: ũ = −½ω(X_C + 2X_C″); roller, rolling: ũ = |ω|·|(X_C, X_C′)|·ρ/(ρ + r_r));
+//                (flat face: ũ = −½ω(X_C + 2X_C″); roller, rolling: the contact point's speed
+//                over the cam's surface, entrainment());
 //                history columns film_thickness (and lambda), the least with its cam angle;
 //   lift deviation  run.valve_node: the valve's displacement minus its kinematic lift
 //                (results/kinematic_path.hpp); history column lift_deviation, extremes per revolution;
@@ -36,7 +37,7 @@ class RunAnalysis {
   /// `contacts`, `nodes`: the mechanism's contact names and named nodes (the order of the
   /// gaps and displacements row() is given); `lift`: the cam's lift (the 1 % take-up band).
   RunAnalysis(const Scene& scene, const std::vector<std::string>& contacts, const std::vector<std::string>& nodes,
-              double lift);
+              double lift, const Cam* cam = nullptr);
 
   /// The cam lifts where a clearance on a path from the cam is taken up (KinematicPath).
   const std::vector<double>& take_up_levels() const { return path_.take_up_levels(); }
@@ -54,9 +55,17 @@ class RunAnalysis {
 
   /// The film at one state (exposed for tests): h_min, NaN when apart or no conjunction.
   double film(const CamPoint& p, double omega, double Fc) const;
+  /// The entrainment speed |ũ| at the cam point p (exposed for tests). Flat face
+  /// (translating): |½ω(X_C + 2X_C″)|. Roller, rolling: the speed at which the contact point
+  /// travels over the cam's surface, |ω|·|dc/dθ| with c(θ) = r(θ)(cos(β − θ), sin(β − θ)) the
+  /// contact point in the cam's frame (the cam turns counter-clockwise), by central
+  /// differences (δθ = 1e-6) on the cam: any roller follower, translating with an offset or
+  /// oscillating.
+  double entrainment(const CamPoint& p, double omega) const;
 
  private:
   const Scene& sc_;
+  const Cam* cam_ = nullptr;
   KinematicPath path_;
   bool film_ = false, lambda_ = false, per_row_ = false;
   Lubricant oil_;

@@ -266,15 +266,11 @@ class Validator {
       if (c.follower_face != FollowerFace::Flat && c.follower_face != FollowerFace::Roller)
         fail_at("lubricant.viscosity", fmt_num(l.viscosity),
                 "the oil film needs cam.follower_face = \"flat\" or \"roller\" (a line contact)", "cam.follower_face");
-      if (c.follower_motion != FollowerMotion::Translating)
+      if (c.follower_motion != FollowerMotion::Translating && c.follower_face == FollowerFace::Flat)
         fail_at("lubricant.viscosity", fmt_num(l.viscosity),
-                "the oil film's entrainment velocity is modelled for a translating follower only "
-                "(cam.follower_motion = \"translating\")",
+                "the oil film's sliding entrainment velocity is modelled for a translating flat face and for "
+                "rollers (a flat pad on an oscillating follower is not)",
                 "cam.follower_motion");
-      if (c.follower_face == FollowerFace::Roller && c.follower_offset != 0.0)
-        fail_at("lubricant.viscosity", fmt_num(l.viscosity),
-                "the oil film's rolling speed is modelled for an in-line roller only (cam.follower_offset = 0)",
-                "cam.follower_offset");
     }
     if (k.min_film_thickness > 0 && !(l.viscosity > 0))
       fail_at("criteria.min_film_thickness", fmt_num(k.min_film_thickness),
