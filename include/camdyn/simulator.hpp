@@ -190,9 +190,9 @@ struct SeatLanding {
   double bounce_height_theta_deg = NAN;  ///< cam angle of the re-impact ending the highest bounce
 };
 
-/// Extremes of the valve's dynamic minus kinematic lift over one cam revolution (the
-/// revolution k counts from the run's start, k = floor(cam progress / 360°)), over the
-/// output rows.
+/// Extremes of the valve's dynamic minus kinematic lift over one cam revolution (revolution
+/// k = 0, 1, … holds the cam progress from the run's start in (360°k, 360°(k + 1)], the first
+/// also the start), over the output rows.
 struct LiftDeviationRevolution {
   long revolution = 0;
   double min = NAN, min_theta_deg = NAN, max = NAN, max_theta_deg = NAN;

@@ -108,7 +108,9 @@ void RunAnalysis::row(double t, double theta, const CamPoint& p, double X, doubl
   if (valve_ >= 0) {
     const double d = u[std::size_t(valve_)] - valve_path_.lift(X);
     out.push_back(d);
-    const long k = long(std::floor(std::abs(theta - theta0_) / kTwoPi + 1e-12));
+    // revolution k holds the progress (2πk, 2π(k + 1)] (the first also its start): a row at a
+    // whole revolution closes the one it ends
+    const long k = std::max(0L, long(std::ceil(std::abs(theta - theta0_) / kTwoPi - 1e-9)) - 1);
     if (dev_.empty() || dev_.back().revolution != k) dev_.push_back({k, d, th_deg, d, th_deg});
     LiftDeviationRevolution& r = dev_.back();
     if (d < r.min) r.min = d, r.min_theta_deg = th_deg;
