@@ -137,8 +137,8 @@ def contact_sentence(r, si):
     if "max_force" in r:
         parts.append("peak force %s%s at %s" % (fmt(r["max_force"]), F, angle(r["max_force_theta_deg"])))
     if "min_force_closed" in r:
-        parts.append("least force while closed %s%s at %s" % (fmt(r["min_force_closed"]), F,
-                                                             angle(r["min_force_theta_deg"])))
+        parts.append("least force while closed%s %s%s at %s" % (r.get("min_force_note", ""), fmt(r["min_force_closed"]),
+                                                               F, angle(r["min_force_theta_deg"])))
     return "<b>%s</b>: %s." % (html.escape(n), "; ".join(parts))
 
 
@@ -186,6 +186,64 @@ def table_of(rows):
     return "<table>%s%s</table>" % (head, body)
 
 
+LIGHT = {True: ("#2a2", "pass"), False: ("#c22", "FAIL"), None: ("#bbb", "—")}
+
+
+def light(ok):
+    colour, word = LIGHT[ok]
+    return "<td style='background:%s;color:#fff;font-weight:bold'>%s</td>" % (colour, word)
+
+
+def designer_html(s):
+    """Hertz stress, cam torque, oil film, ramp velocity, lift deviation, seat landings."""
+    rows = []
+    if math.isfinite(num(s.get("max_hertz_stress"))):
+        rows.append(("largest Hertz stress", "%s at %s" % (fmt(s["max_hertz_stress"]), angle(s.get("max_hertz_theta_deg")))))
+    if math.isfinite(num(s.get("cam_torque_peak"))):
+        rows.append(("cam torque", "peak %s, mean %s; power peak %s, mean %s" % (
+            fmt(s.get("cam_torque_peak")), fmt(s.get("cam_torque_mean")), fmt(s.get("cam_power_peak")),
+            fmt(s.get("cam_power_mean")))))
+    if math.isfinite(num(s.get("min_film_thickness"))):
+        lam = num(s.get("min_lambda"))
+        rows.append(("least oil film at the cam", "%s at %s%s" % (
+            fmt(s["min_film_thickness"]), angle(s.get("min_film_theta_deg")),
+            ", λ = %s" % fmt(lam) if math.isfinite(lam) else "")))
+    if math.isfinite(num(s.get("max_ramp_velocity"))):
+        rows.append(("ramp velocity at the lash take-up", "%s at %s" % (
+            fmt(s["max_ramp_velocity"]), angle(s.get("max_ramp_theta_deg")))))
+    dev = s.get("lift_deviation")
+    if isinstance(dev, list) and dev:
+        lo = min(dev, key=lambda r: num(r.get("min")))
+        hi = max(dev, key=lambda r: num(r.get("max")))
+        rows.append(("valve lift − kinematic lift", "from %s (%s, revolution %d) to %s (%s, revolution %d)" % (
+            fmt(lo.get("min")), angle(lo.get("min_theta_deg")), int(num(lo.get("revolution"))) + 1,
+            fmt(hi.get("max")), angle(hi.get("max_theta_deg")), int(num(hi.get("revolution"))) + 1)))
+    land = s.get("landings")
+    if isinstance(land, list) and land:
+        v = max(land, key=lambda r: num(r.get("max_velocity")))
+        b = max(land, key=lambda r: num(r.get("bounce_height")))
+        n = max(int(num(r.get("bounces"))) for r in land)
+        rows.append(("seat landings", "%d; hardest %s at %s; most bounces after one landing %d; highest bounce %s" % (
+            len(land), fmt(v.get("max_velocity")), angle(v.get("max_velocity_theta_deg")), n,
+            fmt(b.get("bounce_height")))))
+    if not rows:
+        return ""
+    return "<h2>Designer results</h2><table>%s</table>" % "".join(
+        "<tr><th>%s</th><td>%s</td></tr>" % (html.escape(k), html.escape(v)) for k, v in rows)
+
+
+def criteria_html(crit):
+    """The acceptance criteria of a run as a traffic-light table."""
+    if not isinstance(crit, list) or not crit:
+        return ""
+    body = "".join("<tr><td>%s</td><td>%s %s</td><td>%s</td><td>%s</td>%s<td>%s</td></tr>" % (
+        html.escape(str(c.get("name"))), "≤" if c.get("kind") == "max" else "≥", fmt(c.get("limit"), 6),
+        fmt(c.get("value"), 6), angle(c.get("theta_deg")), light(bool(c.get("pass"))),
+        html.escape(str(c.get("note") or ""))) for c in crit)
+    return ("<h2>Acceptance criteria</h2><table><tr><th>criterion</th><th>limit</th><th>value</th>"
+            "<th>worst at</th><th></th><th>note</th></tr>%s</table>" % body)
+
+
 def run_report(d, reuse):
     import camdyn_plot as cp
 
@@ -221,6 +279,22 @@ def run_report(d, reuse):
         # In words from the files always; the run's own per-contact results (summary.json,
         # lash take-up window excluded: docs/contacts.md) as a table beside them when present.
         res = contact_results_from_files(c, events, contacts)
+        if per is not None:
+            # the numbers summary.json also shows are its own (the least force leaves out the
+            # lash take-up window, docs/contacts.md), so the page and the file agree
+            by_name = dict(per)
+            for r in res:
+                sr = by_name.get(r["contact"])
+                if not isinstance(sr, dict):
+                    continue
+                r.pop("min_force_closed", None)
+                if math.isfinite(num(sr.get("min_force"))):
+                    r["min_force_closed"] = num(sr.get("min_force"))
+                    r["min_force_theta_deg"] = num(sr.get("min_force_theta_deg"))
+                    r["min_force_note"] = " (outside the lash take-up)"
+                for k in ("max_impact_velocity", "max_impact_theta_deg", "first_separation_theta_deg"):
+                    if k in sr:
+                        r[k] = num(sr[k])
         words.append("<h2>Results per contact</h2><ul>%s</ul>" % "".join(
             "<li>%s</li>" % contact_sentence(r, True) for r in res))
         words.append("<p class='note'>From history.csv (forces at the output times) and events.csv. "
@@ -254,6 +328,8 @@ def run_report(d, reuse):
                              imp, "s" if imp != 1 else "", fmt(s.get("max_impact_velocity"), 3),
                              angle(s.get("max_impact_theta_deg")), fmt(s.get("max_contact_force")),
                              fmt(s.get("min_contact_force")), angle(s.get("min_force_theta_deg"))))
+    words.append(designer_html(s))
+    words.append(criteria_html(s.get("criteria")))
     stats = [("steps", s.get("steps")), ("rejected steps", s.get("rejected_steps")),
              ("events", s.get("events")), ("CPU seconds", s.get("cpu_seconds")),
              ("largest penetration", s.get("max_penetration")), ("energy residual", s.get("energy_residual"))]
@@ -312,7 +388,37 @@ def sweep_report(d, reuse):
     if "verdict" in header:
         items += ["%s = %s: %s" % (html.escape(key), fmt(r[key], 8), html.escape(r["verdict"])) for r in ok]
     words.append("<ul>%s</ul>" % "".join("<li>%s</li>" % x for x in items))
+    words.append(sweep_criteria_html(header, rows, key))
     return title, "".join(words), embed(d, figs)
+
+
+def sweep_criteria_html(header, rows, key):
+    """The criteria columns of sweep.csv (criterion_<name>_pass) as a traffic-light table over
+    the first key, with each criterion's first failing value."""
+    names = [h[len("criterion_"):-len("_pass")] for h in header
+             if h.startswith("criterion_") and h.endswith("_pass")]
+    if not names:
+        return ""
+    rows = sorted(rows, key=lambda r: num(r.get(key)))
+    first = {}
+    for n in names:
+        fails = [num(r[key]) for r in rows if r.get("criterion_%s_pass" % n) == "0"]
+        first[n] = min(fails) if fails else None
+    head = "<tr><th>%s</th>%s</tr>" % (html.escape(key), "".join("<th>%s</th>" % html.escape(n) for n in names))
+    body = ""
+    for r in rows:
+        cells = ""
+        for n in names:
+            p = r.get("criterion_%s_pass" % n, "")
+            ok = True if p == "1" else False if p == "0" else None
+            colour, word = LIGHT[ok]
+            cells += "<td style='background:%s;color:#fff' title='%s'>%s %s</td>" % (
+                colour, word, word, html.escape(fmt(r.get("criterion_%s_value" % n))))
+        body += "<tr><td>%s</td>%s</tr>" % (html.escape(fmt(r.get(key), 8)), cells)
+    firsts = "".join("<li>%s: %s</li>" % (html.escape(n), "first fails at %s = %s" % (html.escape(key), fmt(first[n], 8))
+                                         if first[n] is not None else "passes at every judged point")
+                     for n in names)
+    return ("<h2>Acceptance criteria over the sweep</h2><ul>%s</ul><table>%s%s</table>" % (firsts, head, body))
 
 
 # ---- the page -----------------------------------------------------------------------------

@@ -90,6 +90,9 @@ struct SpeedTrial {
   std::vector<std::string> kinds;
   /// The judged revolutions' verdict in words, or the failure's message.
   std::string text;
+  /// The scene's acceptance criteria ([criteria]) judged on the whole trial run (settling
+  /// revolutions included); empty when the scene sets none or the trial failed.
+  std::vector<CriterionResult> criteria;
 };
 
 struct JumpResult {
@@ -220,6 +223,10 @@ struct SweepPlan {
   std::string header;              ///< sweep.csv header line (with '\n')
   std::string fingerprint;         ///< hash of the resolved scene TOML, keys and values
   FollowerFactory follower;        ///< SweepOptions::follower (empty: the scene's follower)
+  /// The acceptance criteria the base scene sets ([criteria]): sweep.csv has the columns
+  /// criterion_<name>_value and criterion_<name>_pass (1/0; empty when the point failed or
+  /// has nothing to judge) for each, before `message`.
+  std::vector<std::string> criteria;
   /// The key values of point i (grid: first axis slowest).
   std::vector<double> values(long index) const;
 };
@@ -272,7 +279,21 @@ struct SweepResult {
 /// @throws SceneError on bad input; std::runtime_error on I/O errors.
 SweepResult run_sweep(const Scene& base, const SweepOptions& options);
 
-/// The sweep.csv columns after the keys.
+/// The sweep.csv columns after the keys (then the criterion columns, SweepPlan::criteria,
+/// then `message`).
 const std::vector<std::string>& sweep_result_columns();
+
+/// One acceptance criterion over a finished sweep (sweep_criteria_table()).
+struct SweepCriterion {
+  std::string name;
+  long points = 0, judged = 0, failed = 0;  ///< points in sweep.csv, with a pass value, failing
+  /// The smallest value of the first key at which the criterion fails (NaN: none fails).
+  double first_failure = NAN;
+};
+/// The criteria of a sweep from its sweep.csv (columns criterion_<name>_pass): per criterion
+/// the points judged and failed and the first failing value of the first key (the speed
+/// in a speed sweep). Empty when the sweep has no criterion columns.
+/// @throws std::runtime_error when the file cannot be read.
+std::vector<SweepCriterion> sweep_criteria_table(const std::string& csv_path);
 
 }  // namespace camdyn

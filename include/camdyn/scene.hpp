@@ -265,6 +265,13 @@ struct RunSpec {
   /// and nonlinear element (progressive_spring), unnamed ones as <type>_<index>; the
   /// compressive force of the element along [lower, upper]. Networks only.
   bool element_forces = false;
+  /// The network node that is "the valve" of the designer results (docs/interface.md
+  /// "[criteria]"): history column `lift_deviation` = q_valve − kinematic valve lift (the
+  /// cam lift through the levers with every clearance on the path taken up), its extremes per
+  /// revolution in Summary::lift_deviation. "" (the default): no such results. Networks only;
+  /// must name a node reached from a cam contact through lash contacts, levers, bars and
+  /// springs between nodes.
+  std::string valve_node;
 };
 
 /// How the speed-range map (`camdyn jump`, jump_speed(); docs/guide/sweeps.md) judges one
@@ -278,6 +285,32 @@ struct JumpSpec {
   long judge_revolutions = 2;
 };
 
+/// Acceptance criteria ([criteria]; docs/interface.md "[criteria]"): every run judges each
+/// limit that is set (Summary::criteria: value, cam angle where worst, pass/fail). A real
+/// limit of 0 and max_bounce_count = -1 (the defaults) set no criterion; a limit set must be
+/// > 0 (max_bounce_count ≥ 0).
+struct CriteriaSpec {
+  double max_seating_velocity = 0;   ///< largest approach speed at a seat (stop) impact [length/time]
+  double max_bounce_height = 0;      ///< largest seat gap between a landing and its re-impact [length]
+  long max_bounce_count = -1;        ///< most re-impacts on a seat after one landing (per cycle) [1]
+  double min_force_margin = 0;       ///< least force of each contact while closed, outside the
+                                     ///< lash take-up window [force]; one criterion per contact
+  double max_hertz_stress = 0;       ///< largest Hertz p₀ at the cam (needs cam.width > 0) [force/length²]
+  double min_film_thickness = 0;     ///< least EHL film at the cam (needs [lubricant]) [length]
+  double min_lambda = 0;             ///< least film / roughness (needs lubricant.roughness > 0) [1]
+  double max_ramp_velocity = 0;      ///< largest cam velocity |Ẋ| where the cam lift crosses a
+                                     ///< lash take-up level (the ramp's closing speed) [length/time]
+  double max_lift_deviation = 0;     ///< largest |valve lift − kinematic lift| (needs run.valve_node) [length]
+};
+
+/// The lubricant of the cam contact's oil film ([lubricant]; docs/interface.md). viscosity
+/// = 0 (the default): no film is computed (no history column, no cost).
+struct LubricantSpec {
+  double viscosity = 0;           ///< dynamic viscosity η₀ at the inlet [force·time/length²], ≥ 0
+  double pressure_viscosity = 0;  ///< pressure–viscosity coefficient ξ [length²/force], ≥ 0
+  double roughness = 0;           ///< composite roughness √(R_q,cam² + R_q,follower²) [length], ≥ 0 (0: no λ)
+};
+
 struct Scene {
   std::string title = "camdyn scene";
   CamSpec cam;
@@ -287,6 +320,8 @@ struct Scene {
   SolverSpec solver;
   RunSpec run;
   JumpSpec jump;
+  CriteriaSpec criteria;
+  LubricantSpec lubricant;
   /// follower.kind = "network": the nodes, elements and contacts ([[nodes]], [[elements]],
   /// [[contacts]]); empty for the other kinds (follower.* bar keys and [spring] are then
   /// unused, [contact] gives the method and the contacts' default restitution and penalty).
@@ -426,6 +461,8 @@ bool operator==(const ContactSpec& a, const ContactSpec& b);
 bool operator==(const SolverSpec& a, const SolverSpec& b);
 bool operator==(const RunSpec& a, const RunSpec& b);
 bool operator==(const JumpSpec& a, const JumpSpec& b);
+bool operator==(const CriteriaSpec& a, const CriteriaSpec& b);
+bool operator==(const LubricantSpec& a, const LubricantSpec& b);
 bool operator==(const Scene& a, const Scene& b);
 bool operator!=(const Scene& a, const Scene& b);
 

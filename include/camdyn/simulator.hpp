@@ -104,9 +104,12 @@ const char* to_string(Termination v);
 /// Results of one contact of a network or user follower (summary.json
 /// "contacts", FullReport, Python). Angles: cam degrees in [0, 360); NaN (null) when the
 /// thing did not happen. The lash take-up window: the output rows where the cam's lift X
-/// lies within 1 % of the lift of some cam contact's clearance (|X − c| ≤ 0.01·lift: the
-/// load passes between the cam and the stops there, the forces fall to zero by design);
-/// min_force leaves those rows out, and a separation inside it is no loss of margin.
+/// lies between the lowest and the highest take-up level on the path from the cam, each
+/// widened by 1 % of the lift (the levels: every cam contact's clearance and the cam lift at
+/// which each lash contact reached from a cam contact closes, through levers and rigid
+/// links; docs/contacts.md): the load passes between the cam, the lashes and the stops
+/// there, the forces fall to zero by design; min_force leaves those rows out, and a
+/// separation inside it is no loss of margin.
 struct ContactResult {
   std::string name;
   /// Smallest force while closed over the output rows outside the lash take-up window (0
@@ -151,6 +154,48 @@ struct RunContract {
   double energy_scale = 0;
   /// The energy residual the contract allows: min(max(100·rtol, 1e-5), 0.01)·energy_scale.
   double energy_bound = 0;
+};
+
+/// One acceptance criterion of a run ([criteria]; Summary::criteria): its measured value,
+/// the cam angle where it is worst and whether it holds. Names: "seating_velocity",
+/// "bounce_height", "bounce_count", "force_margin_<contact>" (one per contact; "force_margin"
+/// for a single follower), "hertz_stress", "film_thickness", "lambda", "ramp_velocity",
+/// "lift_deviation".
+struct CriterionResult {
+  std::string name;
+  std::string key;          ///< the scene key of its limit ("criteria.max_seating_velocity")
+  bool is_max = true;       ///< true: value ≤ limit passes; false: value ≥ limit passes
+  double limit = NAN;
+  /// The worst value over the run (largest for a maximum, least for a minimum); NaN when
+  /// the run has nothing to judge (no seat impact, a contact never closed, …): that passes,
+  /// and `note` says why.
+  double value = NAN;
+  double theta_deg = NAN;   ///< cam angle of the worst value [deg, 0..360) (NaN: none)
+  bool pass = true;
+  std::string note;         ///< why value is NaN, else ""
+};
+
+/// One landing of a seat (a stop contact on side "below"): an impact on it after the cam
+/// lifted its node past the take-up, and the re-impacts (bounces) before the cam lifts it
+/// again. Every seat impact's approach speed is a seating velocity.
+struct SeatLanding {
+  std::string contact;
+  double t = 0, theta_deg = NAN;
+  double velocity = 0;        ///< approach speed of the landing impact
+  long bounces = 0;           ///< re-impacts after it before the cam lifts the node again
+  double bounce_height = 0;   ///< largest seat gap (output rows) between consecutive impacts
+                              ///< of this landing (0: no bounce)
+  double max_velocity = 0;    ///< largest approach speed among the landing and its bounces
+  double max_velocity_theta_deg = NAN;
+  double bounce_height_theta_deg = NAN;  ///< cam angle of the re-impact ending the highest bounce
+};
+
+/// Extremes of the valve's dynamic minus kinematic lift over one cam revolution (revolution
+/// k = 0, 1, … holds the cam progress from the run's start in (360°k, 360°(k + 1)], the first
+/// also the start), over the output rows.
+struct LiftDeviationRevolution {
+  long revolution = 0;
+  double min = NAN, min_theta_deg = NAN, max = NAN, max_theta_deg = NAN;
 };
 
 struct Summary {
@@ -240,6 +285,23 @@ struct Summary {
   /// The run's own checks of its result (RunContract). A finished run whose contract does
   /// not hold is a result not to be trusted: the CLI exits 3.
   RunContract contract;
+  // ---- oil film, lift deviation, acceleration criteria (issue 38; NaN/empty when not asked)
+  /// [lubricant]: least EHL film thickness at the cam contact over the output rows while in
+  /// contact (the history's film_thickness) and its cam angle; λ = film / roughness there.
+  double min_film_thickness = NAN, min_film_theta_deg = NAN;
+  double min_lambda = NAN;
+  /// run.valve_node: the lift deviation's extremes per revolution (the history's
+  /// lift_deviation).
+  std::vector<LiftDeviationRevolution> lift_deviation;
+  /// Largest cam velocity |Ẋ| where the cam lift crosses a lash take-up level over the
+  /// output rows (linear between rows), and its cam angle; NaN if never crossed.
+  double max_ramp_velocity = NAN, max_ramp_theta_deg = NAN;
+  /// Network seats (stop contacts on side "below"): every landing, in time order.
+  std::vector<SeatLanding> landings;
+  /// The [criteria] of the scene judged on this run, in the key table's order.
+  std::vector<CriterionResult> criteria;
+  /// Every criterion passes (true when there is none).
+  bool criteria_pass = true;
 
   std::string BriefReport() const;
   std::string FullReport() const;

@@ -361,8 +361,9 @@ def sweep(scene: Any, key: str, values: Iterable[float], threads: int = 0,
 
     Returns:
         dict: ``key`` → the values (float64 array), each name of :data:`SWEEP_COLUMNS` →
-        a float64 array (``finished`` as 0/1, null as NaN), and ``"summaries"`` → the list
-        of summary dicts.
+        a float64 array (``finished`` as 0/1, null as NaN), for each acceptance criterion
+        of the scene ``criterion_<name>_value`` and ``criterion_<name>_pass`` (1/0, NaN when
+        not judged), and ``"summaries"`` → the list of summary dicts.
     """
     if isinstance(follower, Mapping):
         overrides = {**overrides, "follower": follower}
@@ -376,5 +377,20 @@ def sweep(scene: Any, key: str, values: Iterable[float], threads: int = 0,
     for c in SWEEP_COLUMNS:
         out[c] = np.array([np.nan if s.get(c) is None else float(s[c]) for s in sums],
                           dtype=np.float64)
+    # the scene's acceptance criteria ([criteria]), as sweep.csv's criterion columns
+    names = []
+    for s in sums:
+        for c in s.get("criteria") or []:
+            if c["name"] not in names:
+                names.append(c["name"])
+    for n in names:
+        val, ok = [], []
+        for s in sums:
+            c = next((x for x in s.get("criteria") or [] if x["name"] == n), None)
+            judged = c is not None and c.get("value") is not None
+            val.append(float(c["value"]) if judged else np.nan)
+            ok.append((1.0 if c["pass"] else 0.0) if judged else np.nan)
+        out["criterion_%s_value" % n] = np.array(val, dtype=np.float64)
+        out["criterion_%s_pass" % n] = np.array(ok, dtype=np.float64)
     out["summaries"] = sums
     return out

@@ -32,8 +32,13 @@ std::string band_json(const SpeedBand& b) {
 std::string trial_json(const SpeedTrial& t) {
   std::string k;
   for (const std::string& x : t.kinds) k += (k.empty() ? "" : ", ") + json_string(x);
+  std::string c;
+  for (const CriterionResult& x : t.criteria)
+    c += (c.empty() ? "" : ", ") + std::string("{\"name\": ") + json_string(x.name) + ", \"value\": " +
+         json_number(x.value) + ", \"limit\": " + json_number(x.limit) + ", \"theta_deg\": " +
+         json_number(x.theta_deg) + ", \"pass\": " + (x.pass ? "true" : "false") + "}";
   return "{\"speed_rev_s\": " + json_number(t.speed_rev_s) + ", \"finished\": " + (t.finished ? "true" : "false") +
-         ", \"kinds\": [" + k + "], \"text\": " + json_string(t.text) + "}";
+         ", \"kinds\": [" + k + "], \"text\": " + json_string(t.text) + ", \"criteria\": [" + c + "]}";
 }
 
 }  // namespace
@@ -216,6 +221,15 @@ int cmd_sweep(const SweepOpts& o) {
     std::printf("sweep: %ld points (%ld computed, %ld from the journal), %ld failed%s\n", res.total,
                 res.computed, res.skipped, res.failed, tail.c_str());
     std::printf("output: %s, %s\n", res.csv_path.c_str(), res.poincare_path.c_str());
+    try {
+      for (const SweepCriterion& c : sweep_criteria_table(res.csv_path))
+        std::printf("criterion %s: %ld of %ld judged points fail%s\n", c.name.c_str(), c.failed, c.judged,
+                    std::isnan(c.first_failure)
+                        ? ""
+                        : (", first at " + o.a1.key + " = " + fmt_g(c.first_failure, 10)).c_str());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "camdyn: warning: %s\n", e.what());
+    }
     std::fflush(stdout);
   }
   if (o.plot) {

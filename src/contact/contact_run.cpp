@@ -20,6 +20,11 @@ namespace camdyn {
 namespace detail {
 
 namespace {
+std::vector<std::string> contact_names(const MechanicalSystem& m) {
+  std::vector<std::string> n;
+  for (const MechanismContact& c : m.contacts()) n.push_back(c.name);
+  return n;
+}
 constexpr double kFloatLift = 0.01;  // a float: the cam above clearance + 1 % of its lift
 constexpr double kCheckGaps = 10.0;  // the step check's gap tolerance in tol_u
 }  // namespace
@@ -27,7 +32,8 @@ constexpr double kCheckGaps = 10.0;  // the step check's gap tolerance in tol_u
 ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                        const std::atomic<bool>* stop)
     : sc_(sc), mech_(std::move(mech)), mk_(*mech_), cam_(sc.cam), drive_(sc.cam), obs_(obs),
-      stop_(stop), n_(mk_.n()), m_(mk_.m()), designer_(sc, cam_) {
+      stop_(stop), n_(mk_.n()), m_(mk_.m()), designer_(sc, cam_),
+      analysis_(sc, contact_names(*mech_), mech_->node_names(), cam_.lift(), &cam_) {
   sum_.scene = sc.title;
   sum_.integrator = to_string(sc.solver.integrator);
   sum_.contact_model = to_string(sc.contact.model);
@@ -46,6 +52,17 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
   // A single follower's gap sees the cam's X_C itself (u_c = q₀).
   if (!mk_.single_follower() && (sc.cam.profile == CamProfileKind::Lift || mk_.cam_contacts() > 0))
     x_base_ = cam_lift_base(cam_, sc.cam);
+  // The lash take-up window: the cam lifts from the lowest to the highest level where a
+  // clearance on the path is taken up (each cam contact's own, each lash contact's reached
+  // from a cam contact), widened by kFloatLift of the lift on both sides.
+  std::vector<double> levels = analysis_.take_up_levels();
+  for (const MechanismContact& c : mk_.contacts())
+    if (c.cam) levels.push_back(c.g0);
+  if (!levels.empty()) {
+    const double d = kFloatLift * cam_.lift();
+    take_up_lo_ = *std::min_element(levels.begin(), levels.end()) - d;
+    take_up_hi_ = *std::max_element(levels.begin(), levels.end()) + d;
+  }
 }
 
 std::vector<std::string> ContactRun::extra_columns(const MechanicalSystem& mech, bool element_forces) {
@@ -296,6 +313,16 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
       if (mk_.contacts()[j].cam) Fc += F[j];
     design_cols_.append(cam_.evaluate(r.theta), Fc, drive_.omega(t), r.extra);
   }
+  if (analysis_.per_row()) {
+    double Fc = 0.0;
+    for (int j = 0; j < m_; ++j)
+      if (mk_.contacts()[j].cam) Fc += F[j];
+    row_gaps_.resize(std::size_t(m_));
+    for (int j = 0; j < m_; ++j) row_gaps_[std::size_t(j)] = gap(j, y, cm);
+    row_u_.assign(u.data(), u.data() + u.size());
+    const CamPoint pt = sc_.lubricant.viscosity > 0 ? cam_.evaluate(r.theta) : CamPoint{};
+    analysis_.row(t, r.theta, pt, cm.X, cm.Xdot, drive_.omega(t), Fc, row_gaps_, row_u_, r.extra);
+  }
   if (!in_take_up(t))
     for (int j = 0; j < m_; ++j)
       if (active[j]) sample_contact(j, F[j], angle_deg_mod360(r.theta));
@@ -317,6 +344,7 @@ void ContactRun::record_event(EventKind type, int contact, double v, double impu
     if (e.type != EventKind::Separation || on_lift) designer_.event(e);
   }
   sum_.events.push_back(e);
+  analysis_.event(e, contact);
   ContactResult& cr = sum_.contacts[contact];
   const double th = angle_deg_mod360(e.theta);
   if (type == EventKind::Separation) {
@@ -351,10 +379,9 @@ void ContactRun::sample_side_loads(double theta) {
 }
 
 bool ContactRun::in_take_up(double t) const {
-  const double X = cam_at(t).X, d = kFloatLift * cam_.lift();
-  for (const MechanismContact& c : mk_.contacts())
-    if (c.cam && std::abs(X - c.g0) <= d) return true;
-  return false;
+  if (std::isnan(take_up_lo_)) return false;
+  const double X = cam_at(t).X;
+  return X >= take_up_lo_ && X <= take_up_hi_;
 }
 
 void ContactRun::sample_held_force(int j, double t, double F) {
@@ -542,6 +569,7 @@ Summary ContactRun::run() {
   const double E = mk_.kinetic_energy(y_.data() + n_) + potential(t_, y_);
   sum_.energy_residual = std::abs(work_ - (E - E0_) - dissipated_);
   designer_.finish(sum_);
+  analysis_.finish(sum_);
   return sum_;
 }
 

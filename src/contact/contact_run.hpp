@@ -28,6 +28,7 @@
 #include "cam/stops.hpp"
 #include "camdyn/simulator.hpp"
 #include "results/designer_stats.hpp"
+#include "results/run_analysis.hpp"
 #include "mechanism/mechanism.hpp"
 #include "engine/ode_engine.hpp"
 #include "contact/run_failure.hpp"
@@ -201,6 +202,9 @@ class ContactRun {
   int n_, m_;
   DesignerStats designer_;
   DesignerColumns design_cols_{sc_};  // run.designer_columns
+  RunAnalysis analysis_;              // film, lift deviation, landings, ramp velocity
+  double take_up_lo_ = NAN, take_up_hi_ = NAN;  // the lash take-up window of the cam's lift
+  std::vector<double> row_gaps_, row_u_;        // emit_row_at's buffers for analysis_
   std::size_t element_force_count_ = 0;  // run.element_forces: the mechanism's reported forces
   Summary sum_;
   double t_ = 0, work_ = 0, dissipated_ = 0, E0_ = 0, V0_ = 0, last_row_t_ = -1;

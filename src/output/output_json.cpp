@@ -421,6 +421,71 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
     t += "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
     o.raw("contacts", t);
   }
+  // oil film, lift deviation, ramp velocity, seat landings, acceptance criteria (issue 38)
+  o.num("min_film_thickness", s.min_film_thickness);
+  o.num("min_film_theta_deg", s.min_film_theta_deg);
+  o.num("min_lambda", s.min_lambda);
+  o.num("max_ramp_velocity", s.max_ramp_velocity);
+  o.num("max_ramp_theta_deg", s.max_ramp_theta_deg);
+  {
+    std::string t = "[";
+    for (size_t i = 0; i < s.lift_deviation.size(); ++i) {
+      const LiftDeviationRevolution& r = s.lift_deviation[i];
+      std::string u;
+      JsonObject k(u, o.child_indent() + 2);
+      k.integer("revolution", r.revolution);
+      k.num("min", r.min);
+      k.num("min_theta_deg", r.min_theta_deg);
+      k.num("max", r.max);
+      k.num("max_theta_deg", r.max_theta_deg);
+      k.close();
+      t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
+    }
+    t += s.lift_deviation.empty() ? "]" : "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
+    o.raw("lift_deviation", t);
+  }
+  {
+    std::string t = "[";
+    for (size_t i = 0; i < s.landings.size(); ++i) {
+      const SeatLanding& L = s.landings[i];
+      std::string u;
+      JsonObject k(u, o.child_indent() + 2);
+      k.str("contact", L.contact);
+      k.num("t", L.t);
+      k.num("theta_deg", L.theta_deg);
+      k.num("velocity", L.velocity);
+      k.integer("bounces", L.bounces);
+      k.num("bounce_height", L.bounce_height);
+      k.num("bounce_height_theta_deg", L.bounce_height_theta_deg);
+      k.num("max_velocity", L.max_velocity);
+      k.num("max_velocity_theta_deg", L.max_velocity_theta_deg);
+      k.close();
+      t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
+    }
+    t += s.landings.empty() ? "]" : "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
+    o.raw("landings", t);
+  }
+  {
+    std::string t = "[";
+    for (size_t i = 0; i < s.criteria.size(); ++i) {
+      const CriterionResult& c = s.criteria[i];
+      std::string u;
+      JsonObject k(u, o.child_indent() + 2);
+      k.str("name", c.name);
+      k.str("key", c.key);
+      k.str("kind", c.is_max ? "max" : "min");
+      k.num("limit", c.limit);
+      k.num("value", c.value);
+      k.num("theta_deg", c.theta_deg);
+      k.boolean("pass", c.pass);
+      k.str("note", c.note);
+      k.close();
+      t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
+    }
+    t += s.criteria.empty() ? "]" : "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
+    o.raw("criteria", t);
+    o.boolean("criteria_pass", s.criteria_pass);
+  }
   if (!s.verdict.empty()) {
     o.raw("verdict", detail::verdict_json(s.verdict, o.child_indent()));
     o.str("verdict_text", s.verdict_text);

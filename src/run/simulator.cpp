@@ -14,7 +14,9 @@
 #include <sstream>
 
 #include "contact/contact_run.hpp"
+#include "results/criteria.hpp"
 #include "results/designer_columns.hpp"
+#include "results/run_analysis.hpp"
 #include "results/verdict.hpp"
 #include "run/initial_check.hpp"
 #include "mechanism/mechanism.hpp"
@@ -219,9 +221,12 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
 }
 
 void Simulator::add_designer_columns() {
-  if (!scene_.run.designer_columns) return;
-  const auto& d = detail::DesignerColumns::names();
-  extra_columns_.insert(extra_columns_.end(), d.begin(), d.end());
+  if (scene_.run.designer_columns) {
+    const auto& d = detail::DesignerColumns::names();
+    extra_columns_.insert(extra_columns_.end(), d.begin(), d.end());
+  }
+  const std::vector<std::string> a = detail::RunAnalysis::columns(scene_);
+  extra_columns_.insert(extra_columns_.end(), a.begin(), a.end());
 }
 
 Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower) : scene_(std::move(scene)) {
@@ -255,6 +260,7 @@ Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
   sum.warnings = warnings_;
   sum.verdict = detail::make_verdict(scene_, mech_->single_follower() ? nullptr : mech_.get(), sum.events);
   sum.verdict_text = detail::verdict_one_line(sum.verdict);
+  detail::judge_criteria(scene_, sum);
   return sum;
 }
 
@@ -282,6 +288,15 @@ std::string Summary::BriefReport() const {
     << separations << " separations, " << impacts << " impacts, max force "
     << fmt(max_contact_force) << ", cpu " << fmt(cpu_seconds) << " s";
   if (!verdict_text.empty()) o << " — " << verdict_text;
+  if (!criteria.empty()) {
+    long failed = 0;
+    for (const CriterionResult& c : criteria) failed += c.pass ? 0 : 1;
+    o << " — criteria: " << (criteria.size() - std::size_t(failed)) << " of " << criteria.size() << " pass";
+    for (const CriterionResult& c : criteria)
+      if (!c.pass)
+        o << "; " << c.name << " FAILS (" << fmt(c.value) << (c.is_max ? " > " : " < ") << fmt(c.limit) << " at "
+          << fmt(c.theta_deg) << " deg)";
+  }
   if (!finished) o << " — " << message << " [" << to_string(termination) << "]";
   if (contract.checked && !contract.held) {
     o << "\ncamdyn: CONTRACT NOT HELD — the result is not to be trusted:";
@@ -341,6 +356,33 @@ std::string Summary::FullReport() const {
       << ang(c.first_impact_theta_deg) << "), " << c.separations << " separations (first at "
       << ang(c.first_separation_theta_deg) << ")\n";
   }
+  if (std::isfinite(min_film_thickness))
+    o << "  oil film:           min " << fmt(min_film_thickness) << " at " << fmt(min_film_theta_deg) << " deg"
+      << (std::isfinite(min_lambda) ? ", lambda " + fmt(min_lambda) : std::string()) << "\n";
+  if (std::isfinite(max_ramp_velocity))
+    o << "  ramp velocity:      " << fmt(max_ramp_velocity) << " at the lash take-up, " << fmt(max_ramp_theta_deg)
+      << " deg\n";
+  for (const LiftDeviationRevolution& r : lift_deviation)
+    o << "  lift deviation:     revolution " << r.revolution << ": min " << fmt(r.min) << " at " << fmt(r.min_theta_deg)
+      << " deg, max " << fmt(r.max) << " at " << fmt(r.max_theta_deg) << " deg\n";
+  if (!landings.empty()) {
+    const SeatLanding* hard = &landings[0];
+    long most = 0;
+    double high = 0;
+    for (const SeatLanding& L : landings) {
+      if (L.max_velocity > hard->max_velocity) hard = &L;
+      most = std::max(most, L.bounces);
+      high = std::max(high, L.bounce_height);
+    }
+    o << "  seat landings:      " << landings.size() << ", hardest " << fmt(hard->max_velocity) << " at "
+      << fmt(hard->max_velocity_theta_deg) << " deg ('" << hard->contact << "'), most bounces " << most
+      << ", highest bounce " << fmt(high) << "\n";
+  }
+  for (const CriterionResult& c : criteria)
+    o << "  criterion:          " << c.name << " " << (c.pass ? "pass" : "FAIL") << ": "
+      << (std::isnan(c.value) ? std::string("-") : fmt(c.value)) << (c.is_max ? " <= " : " >= ") << fmt(c.limit)
+      << " (worst at " << (std::isnan(c.theta_deg) ? std::string("-") : fmt(c.theta_deg) + " deg") << ")"
+      << (c.note.empty() ? std::string() : ": " + c.note) << "\n";
   if (!verdict_text.empty()) o << "  verdict:            " << verdict_text << "\n";
   o << "  energy residual:    " << fmt(energy_residual) << "\n"
     << "  cpu / wall:         " << fmt(cpu_seconds) << " s / " << fmt(wall_seconds) << " s\n";

@@ -153,10 +153,36 @@ const KeyDoc kDocs[] = {
     {"run.element_forces", "—", "true: history.csv gets `force_<element>` per spring (without mass), dashpot and "
                                 "progressive_spring of a network: the element's compressive force (P + kδ + cδ̇, F(δ) + cδ̇), "
                                 "unnamed elements as `<type>_<index>`."},
+    {"run.valve_node", "—", "Network node that is the valve: history column `lift_deviation` (valve lift minus the "
+                            "kinematic lift, the cam lift through the levers with the clearances on the path taken up) "
+                            "and its extremes per revolution in summary.json; \"\" = none."},
     {"jump.settle_revolutions", "rev", "Speed-range map (`camdyn jump`): revolutions each trial speed runs before the "
                                       "judged ones (the start's transient)."},
     {"jump.judge_revolutions", "rev", "Speed-range map: revolutions whose events are judged at each trial speed "
                                      "(t_end = (settle + judge) / |speed|, run.t_end is not used)."},
+    {"criteria.max_seating_velocity", "length/time", "Acceptance criterion: largest approach speed at a seat (stop "
+                                                    "contact) impact, per landing. 0 = not judged."},
+    {"criteria.max_bounce_height", "length", "Acceptance criterion: largest seat gap between a landing and its "
+                                             "re-impact (a bounce: no cam lift past the take-up in between). 0 = not judged."},
+    {"criteria.max_bounce_count", "—", "Acceptance criterion: most seat re-impacts after one landing (per cycle). "
+                                       "-1 = not judged."},
+    {"criteria.min_force_margin", "force", "Acceptance criterion: least force of each contact while closed, outside "
+                                           "the lash take-up window (one criterion per contact). 0 = not judged."},
+    {"criteria.max_hertz_stress", "force/length²", "Acceptance criterion: largest Hertz pressure at the cam (needs "
+                                                   "cam.width > 0). 0 = not judged."},
+    {"criteria.min_film_thickness", "length", "Acceptance criterion: least EHL film thickness at the cam (needs "
+                                              "[lubricant]). 0 = not judged."},
+    {"criteria.min_lambda", "—", "Acceptance criterion: least λ = film / lubricant.roughness at the cam. 0 = not judged."},
+    {"criteria.max_ramp_velocity", "length/time", "Acceptance criterion: largest cam velocity |Ẋ| where the cam lift "
+                                                  "crosses a lash take-up level (opening and closing ramps). 0 = not judged."},
+    {"criteria.max_lift_deviation", "length", "Acceptance criterion: largest |valve lift − kinematic lift| (needs "
+                                              "run.valve_node). 0 = not judged."},
+    {"lubricant.viscosity", "force·time/length²", "Dynamic viscosity η₀ of the oil at the cam contact's inlet (Pa·s in "
+                                                  "SI); > 0 adds the history columns film_thickness (and lambda); 0 = "
+                                                  "no oil film."},
+    {"lubricant.pressure_viscosity", "length²/force", "Pressure–viscosity coefficient ξ (1/Pa in SI; mineral oil ≈ 2e-8)."},
+    {"lubricant.roughness", "length", "Composite surface roughness √(R_q,cam² + R_q,follower²): λ = film / roughness; "
+                                      "0 = no λ."},
     // [[nodes]]
     {"nodes.name", "—", "Node name: history columns `u_<name>`, `v_<name>`.", "string",
      "non-empty, unique, not \"ground\", letters, digits, '_' and '-' only", "(required)"},

@@ -103,7 +103,7 @@ Field mk(const char* t, const char* k, FK kind) {
     return f;                                                                          \
   }()
 
-const char* const kTables[] = {"cam", "follower", "spring", "contact", "solver", "run", "jump"};
+const char* const kTables[] = {"cam", "follower", "spring", "contact", "solver", "run", "jump", "criteria", "lubricant"};
 
 Field ruled(Field f, Rule r, double lo, double hi = 0, const char* note = "") {
   f.rule = r;
@@ -220,9 +220,30 @@ const std::vector<Field>& fields() {
     v.push_back(ruled(F_REAL(run, period_tol), Rule::GtLe, 0, 1));
     v.push_back(F_BOOL(run, designer_columns));
     v.push_back(F_BOOL(run, element_forces));
+    {
+      Field f = mk("run", "valve_node", FK::Str);
+      f.str = [](Scene& s) -> std::string& { return s.run.valve_node; };
+      v.push_back(f);
+    }
 
     v.push_back(F_INT(jump, settle_revolutions, 0, 10000));
     v.push_back(F_INT(jump, judge_revolutions, 1, 10000));
+    {
+      const char* note = "must be > 0 (or 0: no criterion)";
+      v.push_back(ruled(F_REAL(criteria, max_seating_velocity), Rule::ZeroOrIn, 1e-50, 1e50, note));
+      v.push_back(ruled(F_REAL(criteria, max_bounce_height), Rule::ZeroOrIn, 1e-50, 1e50, note));
+      v.push_back(F_INT(criteria, max_bounce_count, -1, 1000000));
+      v.push_back(ruled(F_REAL(criteria, min_force_margin), Rule::ZeroOrIn, 1e-50, 1e50, note));
+      v.push_back(ruled(F_REAL(criteria, max_hertz_stress), Rule::ZeroOrIn, 1e-50, 1e50, note));
+      v.push_back(ruled(F_REAL(criteria, min_film_thickness), Rule::ZeroOrIn, 1e-50, 1e50, note));
+      v.push_back(ruled(F_REAL(criteria, min_lambda), Rule::ZeroOrIn, 1e-50, 1e50, note));
+      v.push_back(ruled(F_REAL(criteria, max_ramp_velocity), Rule::ZeroOrIn, 1e-50, 1e50, note));
+      v.push_back(ruled(F_REAL(criteria, max_lift_deviation), Rule::ZeroOrIn, 1e-50, 1e50, note));
+    }
+    v.push_back(ruled(F_REAL(lubricant, viscosity), Rule::ZeroOrIn, 1e-50, 1e50,
+                      "must be > 0 (or 0: no oil film computed)"));
+    v.push_back(ruled(F_REAL(lubricant, pressure_viscosity), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(lubricant, roughness), Rule::Ge, 0));
     return v;
   }();
   return kFields;
@@ -485,6 +506,12 @@ bool operator==(const ContactSpec& a, const ContactSpec& b) {
 bool operator==(const SolverSpec& a, const SolverSpec& b) { return same_table(a, b, &Scene::solver, "solver"); }
 bool operator==(const RunSpec& a, const RunSpec& b) { return same_table(a, b, &Scene::run, "run"); }
 bool operator==(const JumpSpec& a, const JumpSpec& b) { return same_table(a, b, &Scene::jump, "jump"); }
+bool operator==(const CriteriaSpec& a, const CriteriaSpec& b) {
+  return same_table(a, b, &Scene::criteria, "criteria");
+}
+bool operator==(const LubricantSpec& a, const LubricantSpec& b) {
+  return same_table(a, b, &Scene::lubricant, "lubricant");
+}
 bool operator==(const Scene& a, const Scene& b) { return same_keys(a, b, nullptr) && a.network == b.network; }
 bool operator!=(const Scene& a, const Scene& b) { return !(a == b); }
 

@@ -242,6 +242,49 @@ class Validator {
       fail_at("run.output_dt", fmt_num(s.run.output_dt), "must be <= run.t_end = " + fmt_num(s.run.t_end));
 
     network();
+    criteria();
+  }
+
+  // ---- [criteria], [lubricant], run.valve_node (rules between keys)
+  void criteria() const {
+    const Scene& s = s_;
+    const CamSpec& c = s.cam;
+    const CriteriaSpec& k = s.criteria;
+    const LubricantSpec& l = s.lubricant;
+    if (!s.run.valve_node.empty()) {
+      if (s.follower.kind != FollowerKind::Network)
+        fail_at("run.valve_node", quote(s.run.valve_node), "needs follower.kind = \"network\" (the valve is a node)",
+                "follower.kind");
+      bool found = false;
+      for (const NodeSpec& n : s.network.nodes) found = found || n.name == s.run.valve_node;
+      if (!found) fail_at("run.valve_node", quote(s.run.valve_node), "must name a node of [[nodes]]");
+    }
+    if (l.viscosity > 0) {
+      if (!(c.width > 0))
+        fail_at("lubricant.viscosity", fmt_num(l.viscosity),
+                "the oil film needs the cam's width (cam.width > 0: the load per unit width)", "cam.width");
+      if (c.follower_face != FollowerFace::Flat && c.follower_face != FollowerFace::Roller)
+        fail_at("lubricant.viscosity", fmt_num(l.viscosity),
+                "the oil film needs cam.follower_face = \"flat\" or \"roller\" (a line contact)", "cam.follower_face");
+      if (c.follower_motion != FollowerMotion::Translating && c.follower_face == FollowerFace::Flat)
+        fail_at("lubricant.viscosity", fmt_num(l.viscosity),
+                "the oil film's sliding entrainment velocity is modelled for a translating flat face and for "
+                "rollers (a flat pad on an oscillating follower is not)",
+                "cam.follower_motion");
+    }
+    if (k.min_film_thickness > 0 && !(l.viscosity > 0))
+      fail_at("criteria.min_film_thickness", fmt_num(k.min_film_thickness),
+              "needs the oil film: lubricant.viscosity > 0", "lubricant.viscosity");
+    if (k.min_lambda > 0 && !(l.viscosity > 0 && l.roughness > 0))
+      fail_at("criteria.min_lambda", fmt_num(k.min_lambda),
+              "needs the oil film and the roughness: lubricant.viscosity > 0 and lubricant.roughness > 0",
+              "lubricant.roughness");
+    if (k.max_hertz_stress > 0 && !(c.width > 0))
+      fail_at("criteria.max_hertz_stress", fmt_num(k.max_hertz_stress), "needs the cam's width (cam.width > 0)",
+              "cam.width");
+    if (k.max_lift_deviation > 0 && s.run.valve_node.empty())
+      fail_at("criteria.max_lift_deviation", fmt_num(k.max_lift_deviation),
+              "needs the valve: run.valve_node naming a network node", "run.valve_node");
   }
 
   // ---- network (follower.kind = "network")

@@ -54,6 +54,7 @@ Trial trial(const Scene& scene, double v, const std::shared_ptr<const FollowerSy
     const double t_judge = double(scene.jump.settle_revolutions) / std::abs(v);
     const Summary r = follower ? Simulator(s, follower).run() : Simulator(s).run();
     out.t.finished = r.finished;
+    if (r.finished) out.t.criteria = r.criteria;
     if (!r.finished) {
       out.t.text = r.message;
       return out;
@@ -294,6 +295,26 @@ std::string speed_map_text(const JumpResult& r, double rpm) {
     s += "\n";
   }
   if (r.bands.empty()) s += "  no phenomenon in the range\n";
+  // the acceptance criteria over the trials: the lowest failing speed of each
+  std::vector<std::string> names;
+  for (const SpeedTrial& t : r.trials)
+    for (const CriterionResult& c : t.criteria)
+      if (std::find(names.begin(), names.end(), c.name) == names.end()) names.push_back(c.name);
+  for (const std::string& n : names) {
+    long judged = 0, failed = 0;
+    double first = NAN;
+    for (const SpeedTrial& t : r.trials)
+      for (const CriterionResult& c : t.criteria)
+        if (c.name == n && !std::isnan(c.value)) {
+          ++judged;
+          if (!c.pass) {
+            ++failed;
+            if (std::isnan(first) || std::abs(t.speed_rev_s) < std::abs(first)) first = t.speed_rev_s;
+          }
+        }
+    s += "  criterion " + n + ": " + std::to_string(failed) + " of " + std::to_string(judged) + " judged trials fail" +
+         (std::isnan(first) ? std::string() : ", first at " + speed_text(first, rpm)) + "\n";
+  }
   if (!r.monotone) s += "WARNING: " + r.monotone_text + "\n";
   if (r.failed_simulations > 0) s += "WARNING: " + std::to_string(r.failed_simulations) + " trial(s) failed (left out)\n";
   return s;

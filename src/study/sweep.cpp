@@ -27,6 +27,7 @@
 #include "camdyn/follower_system.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/scene_keys.hpp"
+#include "results/criteria.hpp"
 #include "study/thread_pool.hpp"
 
 namespace camdyn {
@@ -231,7 +232,10 @@ SweepPlan plan_sweep(const Scene& base, const SweepOptions& o) {
     for (double v : a.values) fp += " " + num(v);
   }
   const auto& cols = sweep_result_columns();
-  for (std::size_t i = 0; i < cols.size(); ++i) h += cols[i] + (i + 1 < cols.size() ? "," : "\n");
+  p.criteria = detail::criterion_names(p.base);
+  for (std::size_t i = 0; i + 1 < cols.size(); ++i) h += cols[i] + ",";
+  for (const std::string& c : p.criteria) h += "criterion_" + c + "_value,criterion_" + c + "_pass,";
+  h += cols.back() + "\n";
   p.header = h;
   if (o.follower) {
     // The user follower replaces follower.*, [spring] and the network: those keys would
@@ -316,6 +320,13 @@ std::string run_sweep_point(const SweepPlan& plan, long index, bool timing, doub
   std::string kinds;
   for (const VerdictItem& v : s.verdict) kinds += (kinds.empty() ? "" : "+") + v.kind;
   add(kinds);
+  for (const std::string& name : plan.criteria) {
+    const CriterionResult* c = nullptr;
+    for (const CriterionResult& x : s.criteria)
+      if (x.name == name) c = &x;
+    add(c ? num(c->value) : "");
+    add(c && !std::isnan(c->value) ? (c->pass ? "1" : "0") : "");
+  }
   row += csv_quote(s.message);
   std::string out = "R\t" + I + "\t" + row + "\n";
   for (const auto& p : s.poincare)

@@ -86,9 +86,9 @@ TEST(OscillatingTrains, OhcRollerFingerExampleRunsAndLiftsTheValveByTheLaw) {
   EXPECT_LT(v.base_max_abs_u, 1e-9);  // on the seat
   EXPECT_LT(v.base_max_abs_v, 1e-9);
   // Quasi-static cam force on X (the valve end) at the peak: the valve spring and the
-  // finger's lash-adjuster spring, F = (230 + 35000 y) + (8 + 500·lift); the normal force
+  // finger's lash-adjuster spring, F = (230 + 35000 y) + (8 + 2000·lift); the normal force
   // at the roller is F·ℓ_v/a (a: the moment arm there).
-  EXPECT_NEAR(sum.max_contact_force, 230.0 + 35000.0 * (lift - lash) + 8.0 + 500.0 * lift, 1e-3);
+  EXPECT_NEAR(sum.max_contact_force, 230.0 + 35000.0 * (lift - lash) + 8.0 + 2000.0 * lift, 1e-3);
   // The roller's lift at the cam: the arm ratio maps it. Roller-centre displacement along
   // its arc ℓ ψ = (ℓ/ℓ_v) X: peak ψ = lift/ℓ_v.
   const Cam cam(s.cam);

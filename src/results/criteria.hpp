@@ -1,0 +1,25 @@
+// camdyn (private) — the acceptance criteria of a run ([criteria], issue 38): each limit the
+// scene sets judged on the run's results (Summary::criteria).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "camdyn/scene.hpp"
+#include "camdyn/simulator.hpp"
+
+namespace camdyn {
+namespace detail {
+
+/// Fills s.criteria and s.criteria_pass from the results already in `s` (landings, contacts,
+/// Hertz stress, film, ramp velocity, lift deviation), in the key table's order.
+void judge_criteria(const Scene& scene, Summary& s);
+
+/// The names judge_criteria gives the criteria `scene` sets, in its order, known before a run
+/// (a sweep's columns): the force margins per contact of a network, "force_margin" for a
+/// rigid or elastic_bar follower; a user follower's force margins are not listed (its
+/// contacts are known only once built).
+std::vector<std::string> criterion_names(const Scene& scene);
+
+}  // namespace detail
+}  // namespace camdyn

@@ -1,0 +1,196 @@
+// camdyn — results of a run that an acceptance criterion judges (run_analysis.hpp).
+#include "results/run_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "camdyn/hertz.hpp"
+#include "results/designer_stats.hpp"  // angle_deg_mod360
+
+namespace camdyn {
+namespace detail {
+
+namespace {
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+constexpr double kTakeUpBand = 0.01;  // the take-up band: 1 % of the cam's lift (contact_run.cpp)
+}  // namespace
+
+std::vector<std::string> RunAnalysis::columns(const Scene& sc) {
+  std::vector<std::string> c;
+  if (sc.lubricant.viscosity > 0) {
+    c.push_back("film_thickness");
+    if (sc.lubricant.roughness > 0) c.push_back("lambda");
+  }
+  if (!sc.run.valve_node.empty()) {
+    if (!KinematicPath(sc).node(sc.run.valve_node).reached)
+      throw SceneError(sc.source, 0, "run.valve_node", "\"" + sc.run.valve_node + "\"",
+                       "is not reached from a cam contact through lash contacts, levers, bars and springs between "
+                       "nodes (no kinematic lift)");
+    c.push_back("lift_deviation");
+  }
+  return c;
+}
+
+RunAnalysis::RunAnalysis(const Scene& sc, const std::vector<std::string>& contacts,
+                         const std::vector<std::string>& nodes, double lift, const Cam* cam)
+    : sc_(sc), cam_(cam), path_(sc) {
+  const CamSpec& c = sc.cam;
+  band_ = kTakeUpBand * (lift > 0 ? lift : 0.0);
+  if (sc.lubricant.viscosity > 0) {
+    film_ = true;
+    lambda_ = sc.lubricant.roughness > 0;
+    oil_.viscosity = sc.lubricant.viscosity;
+    oil_.pressure_viscosity = sc.lubricant.pressure_viscosity;
+    oil_.composite_roughness = sc.lubricant.roughness;
+    // E′ = 2 E* (Hamrock's effective modulus; hertz.hpp's contact_modulus is E*)
+    Ep_ = effective_modulus(c.youngs_modulus, c.poisson_ratio, c.follower_youngs_modulus, c.follower_poisson_ratio);
+    width_ = c.width;
+    roller_ = c.follower_face == FollowerFace::Roller;
+    rr_ = c.roller_radius;
+  }
+  if (!sc.run.valve_node.empty()) {
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (nodes[i] == sc.run.valve_node) valve_ = int(i);
+    valve_path_ = path_.node(sc.run.valve_node);
+  }
+  const double top = path_.take_up_levels().empty() ? 0.0 : path_.take_up_levels().back();
+  if (sc.follower.kind == FollowerKind::Network)
+    for (const ContactPointSpec& cp : sc.network.contacts) {
+      if (cp.kind != ContactPointKind::Stop || cp.side != StopSide::Below || cp.nodes.empty()) continue;
+      Seat s;
+      s.name = cp.name;
+      for (std::size_t j = 0; j < contacts.size(); ++j)
+        if (contacts[j] == cp.name) s.contact = int(j);
+      if (s.contact < 0) continue;
+      const KinematicNode k = path_.node(cp.nodes[0]);
+      s.opened_at = (k.reached ? k.take_up : top) + band_;
+      seats_.push_back(std::move(s));
+    }
+  bool levels = false;
+  for (double x : path_.take_up_levels()) levels = levels || x > 0;
+  per_row_ = film_ || valve_ >= 0 || !seats_.empty() || levels;
+}
+
+double RunAnalysis::film(const CamPoint& p, double omega, double Fc) const {
+  if (!(Fc > 0) || !std::isfinite(p.rho)) return NAN;
+  const double N = Fc * p.normal_force_ratio;
+  const double curv = 1.0 / p.rho + (roller_ ? 1.0 / rr_ : 0.0);
+  if (!(curv > 0)) return NAN;
+  const double Rx = 1.0 / curv;
+  return line_contact_min_film(N / width_, Rx, entrainment(p, omega), oil_, Ep_);
+}
+
+double RunAnalysis::entrainment(const CamPoint& p, double omega) const {
+  if (!roller_ || !cam_) return std::abs(flat_face_entrainment(omega, p.X_C, 0.0, p.d2X_dtheta2));
+  // the contact point in the cam's frame, c(θ) = r (cos(β − θ), sin(β − θ)): its speed
+  // over the cam's surface is the roller's rolling speed
+  const double d = 1e-6;
+  const CamPoint a = cam_->evaluate(p.theta - d), b = cam_->evaluate(p.theta + d);
+  const double dx = b.r * std::cos(b.beta - b.theta) - a.r * std::cos(a.beta - a.theta);
+  const double dy = b.r * std::sin(b.beta - b.theta) - a.r * std::sin(a.beta - a.theta);
+  return std::abs(omega) * std::hypot(dx, dy) / (2 * d);
+}
+
+void RunAnalysis::row(double t, double theta, const CamPoint& p, double X, double Xdot, double omega, double Fc,
+                      const std::vector<double>& gaps, const std::vector<double>& u, std::vector<double>& out) {
+  if (std::isnan(theta0_)) theta0_ = theta;
+  const double th_deg = angle_deg_mod360(theta);
+  if (film_) {
+    const double h = film(p, omega, Fc);
+    out.push_back(h);
+    if (lambda_) out.push_back(h / oil_.composite_roughness);
+    if (!std::isnan(h) && (std::isnan(min_h_) || h < min_h_)) {
+      min_h_ = h;
+      min_h_theta_ = th_deg;
+      min_lambda_ = lambda_ ? h / oil_.composite_roughness : NAN;
+    }
+  }
+  if (valve_ >= 0) {
+    const double d = u[std::size_t(valve_)] - valve_path_.lift(X);
+    out.push_back(d);
+    // revolution k holds the progress (2πk, 2π(k + 1)] (the first also its start): a row at a
+    // whole revolution closes the one it ends
+    const long k = std::max(0L, long(std::ceil(std::abs(theta - theta0_) / kTwoPi - 1e-9)) - 1);
+    if (dev_.empty() || dev_.back().revolution != k) dev_.push_back({k, d, th_deg, d, th_deg});
+    LiftDeviationRevolution& r = dev_.back();
+    if (d < r.min) r.min = d, r.min_theta_deg = th_deg;
+    if (d > r.max) r.max = d, r.max_theta_deg = th_deg;
+  }
+  if (!std::isnan(prev_X_))
+    for (double L : path_.take_up_levels()) {
+      if (!(L > 0) || (prev_X_ - L) * (X - L) > 0 || prev_X_ == X) continue;
+      const double w = (L - prev_X_) / (X - prev_X_);
+      const double v = std::abs(prev_Xdot_ + w * (Xdot - prev_Xdot_));
+      if (std::isnan(ramp_) || v > ramp_) {
+        ramp_ = v;
+        // the angle between the rows' angles (linear like the velocity)
+        ramp_theta_ = angle_deg_mod360(prev_theta_ + w * (theta - prev_theta_));
+      }
+    }
+  prev_X_ = X;
+  prev_Xdot_ = Xdot;
+  prev_theta_ = theta;
+  for (Seat& s : seats_) {
+    s.t.push_back(t);
+    s.gap.push_back(gaps[std::size_t(s.contact)]);
+    s.X.push_back(X);
+  }
+}
+
+void RunAnalysis::event(const ContactEvent& e, int j) {
+  if (e.type != EventKind::Impact) return;
+  for (Seat& s : seats_)
+    if (s.contact == j) s.impacts.push_back(e);
+}
+
+void RunAnalysis::finish(Summary& s) const {
+  s.min_film_thickness = min_h_;
+  s.min_film_theta_deg = min_h_theta_;
+  s.min_lambda = min_lambda_;
+  s.lift_deviation = dev_;
+  s.max_ramp_velocity = ramp_;
+  s.max_ramp_theta_deg = ramp_theta_;
+  for (const Seat& seat : seats_) {
+    std::size_t r = 0;  // rows before the current impact: [.. r)
+    double prev_t = -INFINITY;
+    for (const ContactEvent& e : seat.impacts) {
+      // rows strictly between the previous impact and this one
+      double max_gap = 0.0, max_X = -INFINITY;
+      while (r < seat.t.size() && seat.t[r] <= prev_t) ++r;
+      for (std::size_t i = r; i < seat.t.size() && seat.t[i] < e.t; ++i) {
+        max_gap = std::max(max_gap, seat.gap[i]);
+        max_X = std::max(max_X, seat.X[i]);
+      }
+      const double th = angle_deg_mod360(e.theta);
+      const bool bounce = std::isfinite(prev_t) && !(max_X > seat.opened_at) && !s.landings.empty() &&
+                          s.landings.back().contact == seat.name;
+      if (bounce) {
+        SeatLanding& L = s.landings.back();
+        ++L.bounces;
+        if (max_gap > L.bounce_height) {
+          L.bounce_height = max_gap;
+          L.bounce_height_theta_deg = th;
+        }
+        if (e.impact_velocity > L.max_velocity) {
+          L.max_velocity = e.impact_velocity;
+          L.max_velocity_theta_deg = th;
+        }
+      } else {
+        SeatLanding L;
+        L.contact = seat.name;
+        L.t = e.t;
+        L.theta_deg = th;
+        L.velocity = e.impact_velocity;
+        L.max_velocity = e.impact_velocity;
+        L.max_velocity_theta_deg = th;
+        s.landings.push_back(L);
+      }
+      prev_t = e.t;
+    }
+  }
+  std::stable_sort(s.landings.begin(), s.landings.end(),
+                   [](const SeatLanding& a, const SeatLanding& b) { return a.t < b.t; });
+}
+
+}  // namespace detail
+}  // namespace camdyn
