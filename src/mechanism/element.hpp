@@ -89,7 +89,10 @@ class Element {
 /// lever), which assembles into M, C, K, f₀. The one place an element kind is registered
 /// (src/mechanism/elements/registry.cpp).
 /// @param name the element's report name (its scene name, or "<kind>_<index>").
+/// @param scene the element's scene (a gas_load reads its cam drive θ(t); may be null for
+/// the other kinds).
 /// @pre validate(scene) passed.
-std::unique_ptr<Element> make_element(const ElementSpec& spec, const std::string& name);
+std::unique_ptr<Element> make_element(const ElementSpec& spec, const std::string& name,
+                                      const Scene* scene = nullptr);
 
 }  // namespace camdyn

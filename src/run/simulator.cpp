@@ -219,9 +219,14 @@ Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
 }
 
 void Simulator::add_designer_columns() {
-  if (!scene_.run.designer_columns) return;
-  const auto& d = detail::DesignerColumns::names();
-  extra_columns_.insert(extra_columns_.end(), d.begin(), d.end());
+  if (scene_.run.designer_columns) {
+    const auto& d = detail::DesignerColumns::names();
+    extra_columns_.insert(extra_columns_.end(), d.begin(), d.end());
+  }
+  if (scene_.cam.friction_coefficient > 0 || scene_.cam.friction_static_coefficient > 0) {
+    const auto& f = detail::DesignerColumns::friction_names();
+    extra_columns_.insert(extra_columns_.end(), f.begin(), f.end());
+  }
 }
 
 Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower) : scene_(std::move(scene)) {
@@ -325,6 +330,10 @@ std::string Summary::FullReport() const {
   if (std::isfinite(cam_torque_peak))
     o << "  cam torque:         peak " << fmt(cam_torque_peak) << ", mean " << fmt(cam_torque_mean)
       << "; power peak " << fmt(cam_power_peak) << ", mean " << fmt(cam_power_mean) << "\n";
+  if (!std::isnan(cam_friction_force_max))
+    o << "  cam friction:       force max " << fmt(cam_friction_force_max) << ", torque mean "
+      << fmt(cam_friction_torque_mean) << "; power peak " << fmt(cam_friction_power_peak) << ", mean "
+      << fmt(cam_friction_power_mean) << ", energy " << fmt(cam_friction_work) << "\n";
   if (std::isfinite(max_pressure_angle_deg) && max_pressure_angle_deg > 0)
     o << "  pressure angle:     max " << fmt(max_pressure_angle_deg) << " deg, side load max "
       << fmt(max_side_load) << "\n";
@@ -341,6 +350,10 @@ std::string Summary::FullReport() const {
       << ang(c.first_impact_theta_deg) << "), " << c.separations << " separations (first at "
       << ang(c.first_separation_theta_deg) << ")\n";
   }
+  for (const CoilClashResult& c : coil_clash)
+    o << "  coil clash '" << c.spring << "': " << c.impacts << " coil impacts on " << c.coils_closed
+      << " coils (first at " << (std::isnan(c.first_impact_theta_deg) ? std::string("-") : fmt(c.first_impact_theta_deg) + " deg")
+      << ", max closing speed " << fmt(c.max_impact_velocity) << ")\n";
   if (!verdict_text.empty()) o << "  verdict:            " << verdict_text << "\n";
   o << "  energy residual:    " << fmt(energy_residual) << "\n"
     << "  cpu / wall:         " << fmt(cpu_seconds) << " s / " << fmt(wall_seconds) << " s\n";
