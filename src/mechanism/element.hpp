@@ -72,7 +72,8 @@ class Element {
 
   /// Stored energy V(x, s), zero at the installed position x = 0.
   virtual double stored_energy(const ElementState& e) const = 0;
-  /// Dissipated power P ≥ 0.
+  /// Dissipated power P ≥ 0 (signed for an element that is an external force, e.g. a gas
+  /// load: minus the power it puts in, so that the energy ledger closes).
   virtual double dissipated_power(const ElementState& e) const = 0;
 
   /// The element's reported forces: names (history columns force_<name>) and values.

@@ -508,7 +508,7 @@ double Mechanism::damping_power(const double* v) const {
 }
 double Mechanism::damping_power(double t, const double* q, const double* v) const {
   double P = damping_power(v);
-  if (elements_.damps()) P += elements_.dissipated_power(t, q, v);
+  if (!elements_.empty()) P += elements_.dissipated_power(t, q, v);
   return P;
 }
 

@@ -43,6 +43,7 @@ CamFriction DesignerColumns::friction_at(const CamPoint& p, double F, double ome
   CamFriction f;
   if (!friction() || !(F > 0)) return f;
   const double N = F * p.normal_force_ratio;
+  if (roller_ && slip_ == 0) return f;  // a rolling roller: no sliding friction
   if (roller_) {
     const double Vc = std::abs(omega) * std::hypot(p.X_C, p.dX_dtheta);
     f.sliding_speed = slip_ * (std::isfinite(p.rho) && p.rho + rr_ != 0 ? Vc * p.rho / (p.rho + rr_) : Vc);

@@ -178,7 +178,8 @@ const KeyDoc kDocs[] = {
      "must be one of \"spring\", \"dashpot\", \"bar\", \"lever\", \"progressive_spring\", \"guide_friction\", "
      "\"gas_load\"", "(required)"},
     {"elements.nodes", "—", "[lower, upper] (lever: [input, output], or [input, output, pivot] for a lever on a moving "
-                            "pivot); \"ground\" may end a spring, dashpot, bar or progressive_spring.",
+                            "pivot); \"ground\" may end a spring, dashpot, bar, progressive_spring, guide_friction "
+                            "([node, guide]) or gas_load ([valve, body]).",
      "names", "two different node names (a lever: two or three)", "(required)"},
     {"elements.stiffness", "force/length", "Spring stiffness k.", "real", "must be >= 0"},
     {"elements.preload", "force", "Compressive force P at q = 0 (> 0 pushes the ends apart).", "real",
