@@ -17,6 +17,13 @@
 //                   progressive_spring  nodes = [lower, upper], a force–deflection table
 //                            (deflections, forces; monotone cubic), installed_deflection,
 //                            damping c: a nonlinear element
+//                   guide_friction  nodes = [node, guide]: Coulomb friction μN, regularised
+//                            −μN tanh(v_rel / v_s) (friction_coefficient, normal_load,
+//                            velocity_scale)
+//                   gas_load  nodes = [valve, body]: −p(crank angle)·A on the valve
+//                            (crank_angles_deg, pressures, area, crank_ratio, crank_offset_deg)
+//   A spring with coil_gaps / free_length + solid_length gets one unilateral coil contact per
+//   segment of its coil chain (its coils close at their solid heights: coil clash).
 //     [[contacts]]  cam      nodes = [node]          gap g = q + clearance − X_C(t)
 //                   lash     nodes = [lower, upper]  gap g = q_upper − q_lower + clearance
 //                   stop     nodes = [node], side = "below": g = q + clearance (a valve seat)
@@ -35,12 +42,13 @@
 
 namespace camdyn {
 
-enum class ElementKind { Spring, Dashpot, Bar, Lever, ProgressiveSpring };
+enum class ElementKind { Spring, Dashpot, Bar, Lever, ProgressiveSpring, GuideFriction, GasLoad };
 enum class ContactPointKind { Cam, Lash, Stop };
 enum class StopSide { Below, Above };
 enum class BarMass { Consistent, Lumped };
 
 const char* to_string(ElementKind v);       // "spring" | "dashpot" | "bar" | "lever" | "progressive_spring"
+                                            // | "guide_friction" | "gas_load"
 const char* to_string(ContactPointKind v);  // "cam" | "lash" | "stop"
 const char* to_string(StopSide v);          // "below" | "above"
 const char* to_string(BarMass v);           // "lumped" | "consistent"
@@ -102,6 +110,30 @@ struct ElementSpec {
   std::vector<double> forces;
   /// progressive_spring: the deflection at q = 0 [length], finite; the preload is F there.
   double installed_deflection = 0.0;
+  /// spring, coil clash (on when solid_length > 0): the spring's free length and solid
+  /// length [length] (solid_length > 0, free_length > solid_length + preload/stiffness), the
+  /// installed gaps between neighbouring coil masses [length] (masses + 1 entries, one per
+  /// segment of the coil chain lower → upper, each ≥ 0, adding up to the travel to solid
+  /// free_length − preload/stiffness − solid_length; empty: equal gaps, uniform pitch), and
+  /// the restitution of the coil-to-coil impacts (unset: [contact] restitution).
+  std::vector<double> coil_gaps;
+  double free_length = 0.0;
+  double solid_length = 0.0;
+  std::optional<double> coil_restitution;
+  /// guide_friction: Coulomb coefficient μ (≥ 0), constant normal load N [force] (≥ 0),
+  /// regularisation speed v_s [length/time] (> 0): f = −μN tanh(v_rel/v_s).
+  double friction_coefficient = 0.0;
+  double normal_load = 0.0;
+  double velocity_scale = 1e-3;
+  /// gas_load: cylinder pressure table p(φ) over the crank angle φ [deg] (strictly
+  /// increasing, within one cycle [0, 360·crank_ratio)) and pressures [force/length²]
+  /// (finite), linear between the points and periodic over the cycle; the valve-head area
+  /// is `area`; φ = crank_ratio·θ + crank_offset_deg (θ the cam angle in degrees;
+  /// crank_ratio 2 for a four-stroke engine).
+  std::vector<double> crank_angles_deg;
+  std::vector<double> pressures;
+  double crank_ratio = 2.0;
+  double crank_offset_deg = 0.0;
 };
 
 /// A unilateral contact (any number per network).

@@ -144,6 +144,16 @@ struct CamSpec {
   double poisson_ratio = 0.3;
   double follower_youngs_modulus = 2.1e5;
   double follower_poisson_ratio = 0.3;
+  /// Friction at the cam contact (results only: history columns sliding_speed,
+  /// cam_friction_force, cam_friction_torque, cam_friction_power and summary fields; a
+  /// translating follower): Coulomb coefficient μ ≥ 0 (0: off), with a Stribeck rise to
+  /// friction_static_coefficient μ_s ≥ μ at low sliding speed when friction_stribeck_speed
+  /// v_st > 0: μ(v) = μ + (μ_s − μ)·exp(−(v/v_st)²). roller_slip ∈ [0, 1]: a roller's sliding
+  /// speed as a fraction of its rolling speed (0: pure rolling, no sliding friction).
+  double friction_coefficient = 0.0;
+  double friction_static_coefficient = 0.0;
+  double friction_stribeck_speed = 0.0;
+  double roller_slip = 0.0;
 };
 
 /// The follower: rigid mass or elastic bar.

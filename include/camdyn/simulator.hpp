@@ -126,6 +126,18 @@ struct ContactResult {
   /// 0 for a flat face) and its cam angle; NaN for the other contacts and if never closed.
   double max_side_load = NAN;
   double max_side_load_theta_deg = NAN;
+  /// A coil-to-coil contact of a spring whose coils clash: the spring's name ("" otherwise).
+  std::string coil_spring;
+};
+
+/// The coil clash of one spring whose coils clash (summary.json "coil_clash"): its coil
+/// contacts' impacts together.
+struct CoilClashResult {
+  std::string spring;
+  long impacts = 0;                    ///< coil-to-coil impacts, all coils
+  double first_impact_theta_deg = NAN; ///< cam angle of the first one [deg, 0..360)
+  double max_impact_velocity = 0;      ///< largest closing speed of two coils at an impact
+  long coils_closed = 0;               ///< coil contacts that closed at least once
 };
 
 /// One phenomenon of the verdict (docs/contacts.md "The verdict"), the first
@@ -268,6 +280,13 @@ struct Summary {
   /// in contact, and time averages over the run (step ends, trapezoid; 0 while apart).
   double cam_torque_peak = NAN, cam_torque_mean = NAN;
   double cam_power_peak = NAN, cam_power_mean = NAN;
+  /// Friction at the cam contact (cam.friction_coefficient > 0; NaN otherwise): largest
+  /// friction force, mean friction torque and power over the run (whole revolutions: their
+  /// means over a revolution), peak power, and the energy it dissipated ∫P_f dt.
+  double cam_friction_force_max = NAN, cam_friction_torque_mean = NAN;
+  double cam_friction_power_mean = NAN, cam_friction_power_peak = NAN, cam_friction_work = NAN;
+  /// Springs whose coils clash (empty when the scene has none).
+  std::vector<CoilClashResult> coil_clash;
   /// Motion law (cam.profile = "law"): continuity order at each joint, "C2 at 0°, …".
   std::string cam_continuity;
   double cpu_seconds = 0, wall_seconds = 0;

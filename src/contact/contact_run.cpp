@@ -42,6 +42,7 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
   for (const MechanismContact& c : mk_.contacts()) {
     sum_.contacts.emplace_back();
     sum_.contacts.back().name = c.name;
+    sum_.contacts.back().coil_spring = c.coil_spring;
   }
   unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
   element_force_count_ = mk_.element_force_names().size();
@@ -322,6 +323,11 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
     row_u_.assign(u.data(), u.data() + u.size());
     const CamPoint pt = sc_.lubricant.viscosity > 0 ? cam_.evaluate(r.theta) : CamPoint{};
     analysis_.row(t, r.theta, pt, cm.X, cm.Xdot, drive_.omega(t), Fc, row_gaps_, row_u_, r.extra);
+  if (design_cols_.friction()) {
+    double Fc = 0.0;
+    for (int j = 0; j < m_; ++j)
+      if (mk_.contacts()[j].cam) Fc += F[j];
+    design_cols_.append_friction(cam_.evaluate(r.theta), Fc, drive_.omega(t), r.extra);
   }
   if (!in_take_up(t))
     for (int j = 0; j < m_; ++j)
@@ -360,6 +366,29 @@ void ContactRun::record_event(EventKind type, int contact, double v, double impu
     }
   }
   if (obs_) obs_->on_event(e);
+}
+
+void collect_coil_clash(Summary& s) {
+  std::vector<CoilClashResult>& out = s.coil_clash;
+  out.clear();
+  for (const ContactResult& c : s.contacts) {
+    if (c.coil_spring.empty()) continue;
+    auto it = std::find_if(out.begin(), out.end(), [&](const CoilClashResult& r) { return r.spring == c.coil_spring; });
+    if (it == out.end()) {
+      out.emplace_back();
+      it = out.end() - 1;
+      it->spring = c.coil_spring;
+    }
+    it->impacts += c.impacts;
+    it->coils_closed += c.impacts > 0;
+    it->max_impact_velocity = std::max(it->max_impact_velocity, c.max_impact_velocity);
+  }
+  for (const ContactEvent& e : s.events) {  // the first impact in time (angles wrap)
+    if (e.type != EventKind::Impact) continue;
+    for (CoilClashResult& r : out)
+      if (std::isnan(r.first_impact_theta_deg) && e.contact.rfind(r.spring + "_coil", 0) == 0)
+        r.first_impact_theta_deg = angle_deg_mod360(e.theta);
+  }
 }
 
 void ContactRun::sample_side_loads(double theta) {
@@ -570,6 +599,7 @@ Summary ContactRun::run() {
   sum_.energy_residual = std::abs(work_ - (E - E0_) - dissipated_);
   designer_.finish(sum_);
   analysis_.finish(sum_);
+  collect_coil_clash(sum_);
   return sum_;
 }
 

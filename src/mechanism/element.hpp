@@ -72,7 +72,8 @@ class Element {
 
   /// Stored energy V(x, s), zero at the installed position x = 0.
   virtual double stored_energy(const ElementState& e) const = 0;
-  /// Dissipated power P ≥ 0.
+  /// Dissipated power P ≥ 0 (signed for an element that is an external force, e.g. a gas
+  /// load: minus the power it puts in, so that the energy ledger closes).
   virtual double dissipated_power(const ElementState& e) const = 0;
 
   /// The element's reported forces: names (history columns force_<name>) and values.
@@ -89,7 +90,10 @@ class Element {
 /// lever), which assembles into M, C, K, f₀. The one place an element kind is registered
 /// (src/mechanism/elements/registry.cpp).
 /// @param name the element's report name (its scene name, or "<kind>_<index>").
+/// @param scene the element's scene (a gas_load reads its cam drive θ(t); may be null for
+/// the other kinds).
 /// @pre validate(scene) passed.
-std::unique_ptr<Element> make_element(const ElementSpec& spec, const std::string& name);
+std::unique_ptr<Element> make_element(const ElementSpec& spec, const std::string& name,
+                                      const Scene* scene = nullptr);
 
 }  // namespace camdyn

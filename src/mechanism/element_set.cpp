@@ -146,7 +146,7 @@ double ElementSet::stored_energy(const double* q) const {
 double ElementSet::dissipated_power(double t, const double* q, const double* v) const {
   double P = 0.0;
   for (const Placed& p : placed_)
-    if (p.element->damps()) P += p.element->dissipated_power(gather(p, t, q, v));
+    P += p.element->dissipated_power(gather(p, t, q, v));  // also without ẋ: an external force's work
   return P;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -60,6 +61,9 @@ Mechanism::Mechanism(const Scene& scene) {
   std::vector<Nonlinear> nonlinear;
   struct TwoNodeForce { std::string name; int a, b; double k, c, P; };  // a reported linear force
   std::vector<TwoNodeForce> two_node;
+  // a coil-to-coil contact of a spring whose coils clash: segment lower → upper closes at gap
+  struct CoilContact { std::string spring, name; int lower, upper; double gap; std::optional<double> e; };
+  std::vector<CoilContact> coils;
   for (size_t ei = 0; ei < net.elements.size(); ++ei) {
     const ElementSpec& e = net.elements[ei];
     const int a = dof(e.nodes.at(0)), b = dof(e.nodes.at(1));
@@ -84,9 +88,11 @@ Mechanism::Mechanism(const Scene& scene) {
         const double P = e.kind == ElementKind::Spring ? e.preload : 0.0;
         any_damping |= e.damping != 0.0;
         any_preload |= P != 0.0;
+        std::vector<int> ends{a, b};  // the coil chain's DOFs (a spring without masses: its two ends)
         if (e.kind == ElementKind::Spring && e.masses > 0) {
           const int parts = e.masses + 1;
           const std::vector<int> c = chain(parts);
+          ends = c;
           const double ms = e.mass / parts;
           for (int s = 0; s < parts; ++s) {
             links.push_back({c[s], c[s + 1], k * parts, e.damping * parts, P});
@@ -100,6 +106,16 @@ Mechanism::Mechanism(const Scene& scene) {
           if (e.kind == ElementKind::Spring) d << " k " << fmt(k) << ", preload " << fmt(P);
         }
         if (e.damping != 0.0) d << ", c " << fmt(e.damping);
+        if (e.kind == ElementKind::Spring && e.solid_length > 0) {
+          const int parts = int(ends.size()) - 1;
+          const double travel = e.free_length - e.preload / e.stiffness - e.solid_length;
+          const std::string sn = element_report_name(e, ei);
+          for (int s = 0; s < parts; ++s)
+            coils.push_back({sn, sn + "_coil" + std::to_string(s), ends[s], ends[s + 1],
+                             e.coil_gaps.empty() ? travel / parts : e.coil_gaps[s], e.coil_restitution});
+          d << ", coils clash: " << parts << " gaps adding up to " << fmt(travel) << " (solid length "
+            << fmt(e.solid_length) << ")";
+        }
         break;
       }
       case ElementKind::Bar: {
@@ -132,8 +148,10 @@ Mechanism::Mechanism(const Scene& scene) {
         d << " ratio " << fmt(e.ratio);
         if (e.nodes.size() == 3) d << ", pivot " << e.nodes[2] << " (moving)";
         break;
-      case ElementKind::ProgressiveSpring: {
-        std::unique_ptr<Element> el = make_element(e, element_report_name(e, ei));
+      case ElementKind::ProgressiveSpring:
+      case ElementKind::GuideFriction:
+      case ElementKind::GasLoad: {
+        std::unique_ptr<Element> el = make_element(e, element_report_name(e, ei), &scene);
         any_damping |= el->damps();
         d.str(el->describe());
         nonlinear.push_back({std::move(el), {a, b}});
@@ -275,6 +293,21 @@ Mechanism::Mechanism(const Scene& scene) {
     c.law = ContactLaw::of(scene.contact, cs.restitution, cs.penalty_stiffness, cs.penalty_damping);
     d << ", clearance " << fmt(c.g0) << ", e " << fmt(c.law.impact.restitution) << ")";
     desc_.network.push_back(d.str());
+    contacts_.push_back(std::move(c));
+  }
+  // ---- coil-to-coil contacts of springs whose coils clash: a lash contact per segment,
+  //      g = q_upper − q_lower + gap (the segment's compression reaches its gap: coil clash)
+  for (const CoilContact& cc : coils) {
+    MechanismContact c;
+    c.name = cc.name;
+    c.kind = ContactPointKind::Lash;
+    c.coil_spring = cc.spring;
+    Eigen::RowVectorXd tr = Eigen::RowVectorXd::Zero(n_);
+    for (const auto& e : row(cc.upper)) tr[e.first] += e.second;
+    for (const auto& e : row(cc.lower)) tr[e.first] -= e.second;
+    c.t = tr;
+    c.g0 = cc.gap;
+    c.law = ContactLaw::of(scene.contact, cc.e, std::nullopt, std::nullopt);
     contacts_.push_back(std::move(c));
   }
   finish_contacts([&](const double* b, double* x) {
@@ -475,7 +508,7 @@ double Mechanism::damping_power(const double* v) const {
 }
 double Mechanism::damping_power(double t, const double* q, const double* v) const {
   double P = damping_power(v);
-  if (elements_.damps()) P += elements_.dissipated_power(t, q, v);
+  if (!elements_.empty()) P += elements_.dissipated_power(t, q, v);
   return P;
 }
 

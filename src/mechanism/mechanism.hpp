@@ -47,6 +47,9 @@ struct MechanismContact {
   double g0 = 0.0;       ///< gap at q = 0 (and X_C = 0)
   bool cam = false;      ///< the cam's lift X_C(t) enters the gap
   ContactLaw law;        ///< its impact and penalty laws (scene values, [contact] as defaults)
+  /// A coil-to-coil contact of a spring whose coils clash: the spring's report name ("" for
+  /// the scene's own contacts).
+  std::string coil_spring;
 };
 
 /// What the network methods integrate: M q̈ = r(t, q, q̇) + TᵀF with constant M and contact

@@ -383,6 +383,13 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
   o.num("cam_torque_mean", s.cam_torque_mean);
   o.num("cam_power_peak", s.cam_power_peak);
   o.num("cam_power_mean", s.cam_power_mean);
+  if (!std::isnan(s.cam_friction_force_max)) {
+    o.num("cam_friction_force_max", s.cam_friction_force_max);
+    o.num("cam_friction_torque_mean", s.cam_friction_torque_mean);
+    o.num("cam_friction_power_mean", s.cam_friction_power_mean);
+    o.num("cam_friction_power_peak", s.cam_friction_power_peak);
+    o.num("cam_friction_work", s.cam_friction_work);
+  }
   o.str("cam_continuity", s.cam_continuity);
   o.integer("period", s.period);
   o.str("period_kind", s.period_kind);
@@ -415,6 +422,7 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
       k.integer("separations", c.separations);
       k.num("max_side_load", c.max_side_load);
       k.num("max_side_load_theta_deg", c.max_side_load_theta_deg);
+      if (!c.coil_spring.empty()) k.str("coil_spring", c.coil_spring);
       k.close();
       t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
     }
@@ -485,6 +493,23 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
     t += s.criteria.empty() ? "]" : "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
     o.raw("criteria", t);
     o.boolean("criteria_pass", s.criteria_pass);
+  if (!s.coil_clash.empty()) {
+    // springs whose coils clash (include/camdyn/simulator.hpp CoilClashResult)
+    std::string t = "[";
+    for (size_t i = 0; i < s.coil_clash.size(); ++i) {
+      const CoilClashResult& c = s.coil_clash[i];
+      std::string u;
+      JsonObject k(u, o.child_indent() + 2);
+      k.str("spring", c.spring);
+      k.integer("impacts", c.impacts);
+      k.integer("coils_closed", c.coils_closed);
+      k.num("first_impact_theta_deg", c.first_impact_theta_deg);
+      k.num("max_impact_velocity", c.max_impact_velocity);
+      k.close();
+      t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
+    }
+    t += "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
+    o.raw("coil_clash", t);
   }
   if (!s.verdict.empty()) {
     o.raw("verdict", detail::verdict_json(s.verdict, o.child_indent()));

@@ -19,14 +19,57 @@ const std::vector<std::string>& DesignerColumns::names() {
   return n;
 }
 
+const std::vector<std::string>& DesignerColumns::friction_names() {
+  static const std::vector<std::string> n{"sliding_speed", "cam_friction_force", "cam_friction_torque",
+                                          "cam_friction_power"};
+  return n;
+}
+
 bool DesignerColumns::has_network_columns(const std::vector<std::string>& extra) {
   const std::vector<std::string>& d = names();
-  return std::any_of(extra.begin(), extra.end(),
-                     [&](const std::string& c) { return std::find(d.begin(), d.end(), c) == d.end(); });
+  const std::vector<std::string>& f = friction_names();
+  return std::any_of(extra.begin(), extra.end(), [&](const std::string& c) {
+    return std::find(d.begin(), d.end(), c) == d.end() && std::find(f.begin(), f.end(), c) == f.end();
+  });
+}
+
+double DesignerColumns::friction_coefficient(double v) const {
+  if (!(v_st_ > 0)) return mu_;
+  const double x = v / v_st_;
+  return mu_ + (mu_s_ - mu_) * std::exp(-x * x);
+}
+
+CamFriction DesignerColumns::friction_at(const CamPoint& p, double F, double omega) const {
+  CamFriction f;
+  if (!friction() || !(F > 0)) return f;
+  const double N = F * p.normal_force_ratio;
+  if (roller_ && slip_ == 0) return f;  // a rolling roller: no sliding friction
+  if (roller_) {
+    const double Vc = std::abs(omega) * std::hypot(p.X_C, p.dX_dtheta);
+    f.sliding_speed = slip_ * (std::isfinite(p.rho) && p.rho + rr_ != 0 ? Vc * p.rho / (p.rho + rr_) : Vc);
+    f.sliding_speed = std::abs(f.sliding_speed);
+  } else {
+    f.sliding_speed = std::abs(omega * p.X_C);
+  }
+  f.force = friction_coefficient(f.sliding_speed) * N;
+  f.power = f.force * f.sliding_speed;
+  f.torque = omega != 0 ? f.power / omega : 0.0;
+  return f;
+}
+
+void DesignerColumns::append_friction(const CamPoint& p, double F, double omega, std::vector<double>& out) const {
+  const CamFriction f = friction_at(p, F, omega);
+  out.insert(out.end(), {f.sliding_speed, f.force, f.torque, f.power});
 }
 
 DesignerColumns::DesignerColumns(const Scene& scene) {
   const CamSpec& c = scene.cam;
+  mu_ = c.friction_coefficient;
+  mu_s_ = c.friction_static_coefficient;
+  v_st_ = c.friction_stribeck_speed;
+  slip_ = c.roller_slip;
+  roller_ = c.follower_face == FollowerFace::Roller;
+  rr_ = c.roller_radius;
   const bool face_ok = c.follower_face == FollowerFace::Flat || c.follower_face == FollowerFace::Roller;
   if (c.width > 0 && face_ok) {
     width_ = c.width;

@@ -31,8 +31,33 @@ struct ContactDesign {
   double power = 0;               ///< T ω
 };
 
+/// Friction at the cam contact (cam.friction_coefficient > 0; a translating follower). The
+/// sliding speed v: a flat face slides at v = |ω|·X_C (the cam's surface past the face, X_C
+/// the face's distance from the cam centre); a roller rolls, and slides at roller_slip times
+/// its rolling speed V_c ρ/(ρ + r_r) (V_c = |ω|·√(X_C² + X′²), X_C the roller centre's
+/// distance). Friction force μ(v)·N along the contact tangent (N the normal force), power
+/// P_f = μ(v)·N·v ≥ 0, torque T_f = P_f/ω (the drive torque it takes; a flat face: μN·X_C,
+/// the force's moment about the cam centre). Results only: a translating follower takes the
+/// flat face's friction force as a side load across its axis, not along its motion.
+struct CamFriction {
+  double sliding_speed = 0;  ///< v [length/time]
+  double force = 0;          ///< μ(v)·N [force]
+  double torque = 0;         ///< T_f [force·length]
+  double power = 0;          ///< P_f [force·length/time]
+};
+
 class DesignerColumns {
  public:
+  /// The friction columns (cam.friction_coefficient > 0): sliding_speed,
+  /// cam_friction_force, cam_friction_torque, cam_friction_power.
+  static const std::vector<std::string>& friction_names();
+  bool friction() const { return mu_ > 0 || mu_s_ > 0; }
+  /// μ(v) of the scene's cam friction (constant or Stribeck).
+  double friction_coefficient(double sliding_speed) const;
+  /// The cam friction at a contact state (zeros when friction() is false or F ≤ 0).
+  CamFriction friction_at(const CamPoint& p, double F, double omega) const;
+  /// Appends the four columns of friction_at() to `out`.
+  void append_friction(const CamPoint& p, double F, double omega, std::vector<double>& out) const;
   /// The history columns, in order: pressure_angle_deg, radius_of_curvature,
   /// contact_stress, side_load, cam_torque, cam_power.
   static const std::vector<std::string>& names();
@@ -50,6 +75,8 @@ class DesignerColumns {
 
  private:
   double E_star_ = 0, width_ = 0, Rf_ = 0;  // Rf_: follower face radius (inf: flat)
+  double mu_ = 0, mu_s_ = 0, v_st_ = 0, slip_ = 0, rr_ = 0;  // cam friction
+  bool roller_ = false;
 };
 
 }  // namespace detail

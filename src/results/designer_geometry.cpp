@@ -24,8 +24,19 @@ void DesignerStats::geometry_init(const Scene& scene, const Cam& cam) {
 
 void DesignerStats::geometry_sample(double t, double theta, double F) {
   if (!(F > 0.0)) F = 0.0;
-  const ContactDesign d = cols_->eval(cam_->evaluate(theta), F, drive_.omega(t));
+  const CamPoint cp = cam_->evaluate(theta);
+  const double omega = drive_.omega(t);
+  const ContactDesign d = cols_->eval(cp, F, omega);
   const double T = d.torque, P = d.power, side = std::fabs(d.side);
+  if (cols_->friction()) {
+    const CamFriction f = cols_->friction_at(cp, F, omega);
+    if (std::isnan(Ff_max_) || f.force > Ff_max_) Ff_max_ = f.force;
+    if (std::isnan(Pf_peak_) || f.power > Pf_peak_) Pf_peak_ = f.power;
+    if (t == pend_t1_) {
+      pend_Tf1_ = f.torque;
+      pend_Pf1_ = f.power;
+    }
+  }
   if (!std::isnan(side) && (std::isnan(max_side_) || side > max_side_)) max_side_ = side;
   if (std::isnan(T_peak_) || std::fabs(T) > std::fabs(T_peak_)) T_peak_ = T;
   if (std::isnan(P_peak_) || std::fabs(P) > std::fabs(P_peak_)) P_peak_ = P;
@@ -46,13 +57,17 @@ void DesignerStats::geometry_step(double t) {
       const double h = pend_t1_ - pend_t0_;
       T_int_ += 0.5 * h * (pend_T0_ + pend_T1_);
       P_int_ += 0.5 * h * (pend_P0_ + pend_P1_);
+      Tf_int_ += 0.5 * h * (pend_Tf0_ + pend_Tf1_);
+      Pf_int_ += 0.5 * h * (pend_Pf0_ + pend_Pf1_);
     }
     pend_t0_ = pend_t1_;
     pend_T0_ = pend_T1_;
     pend_P0_ = pend_P1_;
+    pend_Tf0_ = pend_Tf1_;
+    pend_Pf0_ = pend_Pf1_;
   }
   pend_t1_ = t;
-  pend_T1_ = pend_P1_ = 0.0;  // apart unless sample_force(t, …) follows
+  pend_T1_ = pend_P1_ = pend_Tf1_ = pend_Pf1_ = 0.0;  // apart unless sample_force(t, …) follows
 }
 
 void DesignerStats::geometry_finish(Summary& s) const {
@@ -64,16 +79,27 @@ void DesignerStats::geometry_finish(Summary& s) const {
   s.max_hertz_theta_deg = max_hertz_theta_;
   s.cam_torque_peak = T_peak_;
   s.cam_power_peak = P_peak_;
-  double Ti = T_int_, Pi = P_int_;
+  double Ti = T_int_, Pi = P_int_, Tfi = Tf_int_, Pfi = Pf_int_;
   if (!std::isnan(pend_t0_) && !std::isnan(pend_t1_)) {
     const double h = pend_t1_ - pend_t0_;
     Ti += 0.5 * h * (pend_T0_ + pend_T1_);
     Pi += 0.5 * h * (pend_P0_ + pend_P1_);
+    Tfi += 0.5 * h * (pend_Tf0_ + pend_Tf1_);
+    Pfi += 0.5 * h * (pend_Pf0_ + pend_Pf1_);
   }
   const double span = std::isnan(pend_t1_) ? 0.0 : pend_t1_ - t_first_;
   if (span > 0) {
     s.cam_torque_mean = Ti / span;
     s.cam_power_mean = Pi / span;
+  }
+  if (cols_->friction()) {
+    s.cam_friction_force_max = std::isnan(Ff_max_) ? 0.0 : Ff_max_;
+    s.cam_friction_power_peak = std::isnan(Pf_peak_) ? 0.0 : Pf_peak_;
+    s.cam_friction_work = Pfi;
+    if (span > 0) {
+      s.cam_friction_torque_mean = Tfi / span;
+      s.cam_friction_power_mean = Pfi / span;
+    }
   }
 }
 

@@ -70,6 +70,9 @@ class DesignerStats {
   double max_side_ = NAN, max_hertz_ = NAN, max_hertz_theta_ = NAN;
   double T_peak_ = NAN, P_peak_ = NAN, T_int_ = 0, P_int_ = 0, t_first_ = NAN;
   double pend_t0_ = NAN, pend_T0_ = 0, pend_P0_ = 0, pend_t1_ = NAN, pend_T1_ = 0, pend_P1_ = 0;
+  // cam friction (cols_->friction()): torque and power integrals as T, P above
+  double Tf_int_ = 0, Pf_int_ = 0, pend_Tf0_ = 0, pend_Pf0_ = 0, pend_Tf1_ = 0, pend_Pf1_ = 0;
+  double Ff_max_ = NAN, Pf_peak_ = NAN;
   void geometry_init(const Scene& scene, const Cam& cam);
   void geometry_sample(double t, double theta, double F);
   void geometry_step(double t);

@@ -117,6 +117,7 @@ std::vector<VerdictItem> make_verdict(const Scene& sc, const MechanicalSystem* m
   std::vector<C> cs;
   if (mech) {
     for (const MechanismContact& c : mech->contacts()) {
+      if (!c.coil_spring.empty()) continue;  // coil clash is reported on its own (summary coil_clash)
       Role r = RLash;
       if (c.cam) r = RCam;
       else if (c.kind == ContactPointKind::Stop) r = RStop;

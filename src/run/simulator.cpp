@@ -227,6 +227,10 @@ void Simulator::add_designer_columns() {
   }
   const std::vector<std::string> a = detail::RunAnalysis::columns(scene_);
   extra_columns_.insert(extra_columns_.end(), a.begin(), a.end());
+  if (scene_.cam.friction_coefficient > 0 || scene_.cam.friction_static_coefficient > 0) {
+    const auto& f = detail::DesignerColumns::friction_names();
+    extra_columns_.insert(extra_columns_.end(), f.begin(), f.end());
+  }
 }
 
 Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower) : scene_(std::move(scene)) {
@@ -340,6 +344,10 @@ std::string Summary::FullReport() const {
   if (std::isfinite(cam_torque_peak))
     o << "  cam torque:         peak " << fmt(cam_torque_peak) << ", mean " << fmt(cam_torque_mean)
       << "; power peak " << fmt(cam_power_peak) << ", mean " << fmt(cam_power_mean) << "\n";
+  if (!std::isnan(cam_friction_force_max))
+    o << "  cam friction:       force max " << fmt(cam_friction_force_max) << ", torque mean "
+      << fmt(cam_friction_torque_mean) << "; power peak " << fmt(cam_friction_power_peak) << ", mean "
+      << fmt(cam_friction_power_mean) << ", energy " << fmt(cam_friction_work) << "\n";
   if (std::isfinite(max_pressure_angle_deg) && max_pressure_angle_deg > 0)
     o << "  pressure angle:     max " << fmt(max_pressure_angle_deg) << " deg, side load max "
       << fmt(max_side_load) << "\n";
@@ -383,6 +391,10 @@ std::string Summary::FullReport() const {
       << (std::isnan(c.value) ? std::string("-") : fmt(c.value)) << (c.is_max ? " <= " : " >= ") << fmt(c.limit)
       << " (worst at " << (std::isnan(c.theta_deg) ? std::string("-") : fmt(c.theta_deg) + " deg") << ")"
       << (c.note.empty() ? std::string() : ": " + c.note) << "\n";
+  for (const CoilClashResult& c : coil_clash)
+    o << "  coil clash '" << c.spring << "': " << c.impacts << " coil impacts on " << c.coils_closed
+      << " coils (first at " << (std::isnan(c.first_impact_theta_deg) ? std::string("-") : fmt(c.first_impact_theta_deg) + " deg")
+      << ", max closing speed " << fmt(c.max_impact_velocity) << ")\n";
   if (!verdict_text.empty()) o << "  verdict:            " << verdict_text << "\n";
   o << "  energy residual:    " << fmt(energy_residual) << "\n"
     << "  cpu / wall:         " << fmt(cpu_seconds) << " s / " << fmt(wall_seconds) << " s\n";

@@ -88,6 +88,14 @@ const KeyDoc kDocs[] = {
     {"cam.poisson_ratio", "—", "Cam material's Poisson ratio ν₁ (Hertz stress)."},
     {"cam.follower_youngs_modulus", "force/length²", "Follower face's (or roller's) Young's modulus E₂ (Hertz stress)."},
     {"cam.follower_poisson_ratio", "—", "Follower face's (or roller's) Poisson ratio ν₂ (Hertz stress)."},
+    {"cam.friction_coefficient", "—", "Friction coefficient μ at the cam contact (0: off); > 0 adds the history "
+                                      "columns sliding_speed, cam_friction_force, cam_friction_torque, "
+                                      "cam_friction_power and their summary results (docs/guide/elements.md)."},
+    {"cam.friction_static_coefficient", "—", "Stribeck curve: the coefficient μ_s at zero sliding speed, "
+                                             "μ(v) = μ + (μ_s − μ)·exp(−(v/v_st)²); used when "
+                                             "friction_stribeck_speed > 0, then >= friction_coefficient."},
+    {"cam.friction_stribeck_speed", "length/time", "Stribeck speed v_st of the cam friction (0: constant μ)."},
+    {"cam.roller_slip", "—", "Roller follower: sliding speed as a fraction of the rolling speed (0: pure rolling)."},
     // [follower]
     {"follower.kind", "—", "`rigid` (one mass), `elastic_bar` (axial bar of N linear elements) or `network` "
                            "(nodes, elements and contacts of [[nodes]], [[elements]], [[contacts]])."},
@@ -151,7 +159,8 @@ const KeyDoc kDocs[] = {
     {"run.designer_columns", "—", "true: history.csv gets pressure_angle_deg, radius_of_curvature, contact_stress, "
                                   "side_load, cam_torque, cam_power per row (docs/cam_laws.md)."},
     {"run.element_forces", "—", "true: history.csv gets `force_<element>` per spring (without mass), dashpot and "
-                                "progressive_spring of a network: the element's compressive force (P + kδ + cδ̇, F(δ) + cδ̇), "
+                                "progressive_spring of a network: the element's compressive force (P + kδ + cδ̇, F(δ) + cδ̇); "
+                                "guide_friction: the friction force on the node; gas_load: p·A toward the seat; "
                                 "unnamed elements as `<type>_<index>`."},
     {"run.valve_node", "—", "Network node that is the valve: history column `lift_deviation` (valve lift minus the "
                             "kinematic lift, the cam lift through the levers with the clearances on the path taken up) "
@@ -192,9 +201,11 @@ const KeyDoc kDocs[] = {
     // [[elements]]
     {"elements.name", "—", "Element name, for messages.", "string", "any string", "\"<type> #<index>\""},
     {"elements.type", "—", "Element type; decides the other keys allowed.", "enum",
-     "must be one of \"spring\", \"dashpot\", \"bar\", \"lever\", \"progressive_spring\"", "(required)"},
+     "must be one of \"spring\", \"dashpot\", \"bar\", \"lever\", \"progressive_spring\", \"guide_friction\", "
+     "\"gas_load\"", "(required)"},
     {"elements.nodes", "—", "[lower, upper] (lever: [input, output], or [input, output, pivot] for a lever on a moving "
-                            "pivot); \"ground\" may end a spring, dashpot, bar or progressive_spring.",
+                            "pivot); \"ground\" may end a spring, dashpot, bar, progressive_spring, guide_friction "
+                            "([node, guide]) or gas_load ([valve, body]).",
      "names", "two different node names (a lever: two or three)", "(required)"},
     {"elements.stiffness", "force/length", "Spring stiffness k.", "real", "must be >= 0"},
     {"elements.preload", "force", "Compressive force P at q = 0 (> 0 pushes the ends apart).", "real",
@@ -206,7 +217,7 @@ const KeyDoc kDocs[] = {
     {"elements.masses", "—", "spring: internal surge masses N (N ≥ 1 exactly when mass > 0).", "integer",
      "must be >= 0 and <= 100000"},
     {"elements.youngs_modulus", "force/length²", "bar: Young's modulus E.", "real", "must be > 0"},
-    {"elements.area", "length²", "bar: cross-section area A.", "real", "must be > 0"},
+    {"elements.area", "length²", "bar: cross-section area A; gas_load: the valve head's area.", "real", "must be > 0"},
     {"elements.length", "length", "bar: length L.", "real", "must be > 0"},
     {"elements.elements", "—", "bar: number of two-node elements.", "integer", "must be >= 1 and <= 100000"},
     {"elements.mass_matrix", "—", "bar: `lumped` or `consistent`.", "enum",
@@ -224,6 +235,34 @@ const KeyDoc kDocs[] = {
      "array of reals", "as many as deflections, finite, non-decreasing, last > first"},
     {"elements.installed_deflection", "length", "progressive_spring: the deflection at q = 0; the preload is F there.",
      "real", "must be finite"},
+    {"elements.free_length", "length", "spring whose coils clash: free length (the installed length is "
+                                       "free_length − preload/stiffness).",
+     "real", "finite, > solid_length + preload/stiffness", "(none)"},
+    {"elements.solid_length", "length", "spring: solid length; > 0 turns on coil clash: one unilateral coil-to-coil "
+                                        "contact per segment of the coil chain (contacts `<spring>_coil<k>`).",
+     "real", "> 0 when any coil-clash key is set", "0 (no coil clash)"},
+    {"elements.coil_gaps", "length", "spring whose coils clash: installed gap of each segment of the coil chain, "
+                                     "lower → upper (variable pitch).",
+     "array of reals", "masses + 1 entries, each >= 0, adding up to free_length − preload/stiffness − solid_length",
+     "equal gaps (uniform pitch)"},
+    {"elements.coil_restitution", "—", "spring whose coils clash: restitution of the coil-to-coil impacts.", "real",
+     "must be >= 0 and <= 1", "contact.restitution"},
+    {"elements.friction_coefficient", "—", "guide_friction: Coulomb coefficient μ.", "real", "must be >= 0", "0"},
+    {"elements.normal_load", "force", "guide_friction: constant normal load N on the guide.", "real", "must be >= 0",
+     "0"},
+    {"elements.velocity_scale", "length/time", "guide_friction: regularisation speed v_s of −μN tanh(v/v_s) (the stick "
+                                               "phase is regularised: a steep damper μN/v_s below v_s).",
+     "real", "must be > 0", "0.001"},
+    {"elements.crank_angles_deg", "deg", "gas_load: the pressure table's crank angles φ (periodic over one engine "
+                                         "cycle, 360·crank_ratio deg).",
+     "array of reals", "at least 1, strictly increasing, in [0, 360·crank_ratio)"},
+    {"elements.pressures", "force/length²", "gas_load: cylinder pressure p(φ) at each crank angle (gauge: minus the "
+                                            "port's pressure), linear between the points.",
+     "array of reals", "as many as crank_angles_deg, finite"},
+    {"elements.crank_ratio", "—", "gas_load: crank angle per cam angle (2: four-stroke); φ = crank_ratio·θ + "
+                                  "crank_offset_deg.",
+     "real", "must be > 0", "2"},
+    {"elements.crank_offset_deg", "deg", "gas_load: crank angle at cam angle 0.", "real", "must be finite", "0"},
     // [[contacts]]
     {"contacts.name", "—", "Contact name: history columns `F_<name>`, `gap_<name>`, `in_<name>`; the `contact` column of events.csv.",
      "string", "non-empty, unique", "(required)"},
@@ -273,7 +312,7 @@ std::map<std::string, std::string> defaults() {
   Scene s;
   s.network.nodes.emplace_back();
   for (ElementKind k : {ElementKind::Spring, ElementKind::Dashpot, ElementKind::Bar, ElementKind::Lever,
-                        ElementKind::ProgressiveSpring}) {
+                        ElementKind::ProgressiveSpring, ElementKind::GuideFriction, ElementKind::GasLoad}) {
     ElementSpec e;
     e.kind = k;
     s.network.elements.push_back(e);

@@ -42,14 +42,20 @@ const std::vector<std::string>& all_element_keys() {
   static const std::vector<std::string> k{"name",   "type",          "nodes",          "stiffness",     "preload",
                                           "damping", "mass",         "masses",         "youngs_modulus", "area",
                                           "length",  "elements",     "mass_matrix",    "rayleigh_alpha", "rayleigh_beta",
-                                          "ratio",   "deflections",  "forces",         "installed_deflection"};
+                                          "ratio",   "deflections",  "forces",         "installed_deflection",
+                                          "free_length", "solid_length", "coil_gaps", "coil_restitution",
+                                          "friction_coefficient", "normal_load", "velocity_scale",
+                                          "crank_angles_deg", "pressures", "crank_ratio", "crank_offset_deg"};
   return k;
 }
 
 std::vector<std::string> element_keys(ElementKind kind) {
   std::vector<std::string> k{"name", "type", "nodes"};
   switch (kind) {
-    case ElementKind::Spring: k.insert(k.end(), {"stiffness", "preload", "damping", "mass", "masses"}); break;
+    case ElementKind::Spring:
+      k.insert(k.end(), {"stiffness", "preload", "damping", "mass", "masses", "free_length", "solid_length",
+                         "coil_gaps", "coil_restitution"});
+      break;
     case ElementKind::Dashpot: k.insert(k.end(), {"damping"}); break;
     case ElementKind::Bar:
       k.insert(k.end(), {"mass", "youngs_modulus", "area", "length", "elements", "mass_matrix", "rayleigh_alpha",
@@ -58,6 +64,12 @@ std::vector<std::string> element_keys(ElementKind kind) {
     case ElementKind::Lever: k.insert(k.end(), {"ratio"}); break;
     case ElementKind::ProgressiveSpring:
       k.insert(k.end(), {"deflections", "forces", "installed_deflection", "damping"});
+      break;
+    case ElementKind::GuideFriction:
+      k.insert(k.end(), {"friction_coefficient", "normal_load", "velocity_scale"});
+      break;
+    case ElementKind::GasLoad:
+      k.insert(k.end(), {"crank_angles_deg", "pressures", "area", "crank_ratio", "crank_offset_deg"});
       break;
   }
   return k;
@@ -128,6 +140,12 @@ std::vector<SceneEntry> element_entries(const ElementSpec& e) {
       l.real("damping", e.damping);
       l.real("mass", e.mass);
       l.integer("masses", e.masses);
+      if (e.solid_length > 0) {  // coil clash: written only when on
+        l.real("free_length", e.free_length);
+        l.real("solid_length", e.solid_length);
+        if (!e.coil_gaps.empty()) l.reals("coil_gaps", e.coil_gaps);
+        if (e.coil_restitution) l.real("coil_restitution", *e.coil_restitution);
+      }
       break;
     case ElementKind::Dashpot: l.real("damping", e.damping); break;
     case ElementKind::Bar:
@@ -146,6 +164,18 @@ std::vector<SceneEntry> element_entries(const ElementSpec& e) {
       l.reals("forces", e.forces);
       l.real("installed_deflection", e.installed_deflection);
       l.real("damping", e.damping);
+      break;
+    case ElementKind::GuideFriction:
+      l.real("friction_coefficient", e.friction_coefficient);
+      l.real("normal_load", e.normal_load);
+      l.real("velocity_scale", e.velocity_scale);
+      break;
+    case ElementKind::GasLoad:
+      l.reals("crank_angles_deg", e.crank_angles_deg);
+      l.reals("pressures", e.pressures);
+      l.real("area", e.area);
+      l.real("crank_ratio", e.crank_ratio);
+      l.real("crank_offset_deg", e.crank_offset_deg);
       break;
   }
   return std::move(l.v);
@@ -300,6 +330,17 @@ void read_network_array(const std::string& array, const toml::node& node, Scene&
         else if (k == "deflections") e.deflections = r.reals(*v, key);
         else if (k == "forces") e.forces = r.reals(*v, key);
         else if (k == "installed_deflection") e.installed_deflection = r.real(*v, key);
+        else if (k == "free_length") e.free_length = r.real(*v, key);
+        else if (k == "solid_length") e.solid_length = r.real(*v, key);
+        else if (k == "coil_gaps") e.coil_gaps = r.reals(*v, key);
+        else if (k == "coil_restitution") e.coil_restitution = r.real(*v, key);
+        else if (k == "friction_coefficient") e.friction_coefficient = r.real(*v, key);
+        else if (k == "normal_load") e.normal_load = r.real(*v, key);
+        else if (k == "velocity_scale") e.velocity_scale = r.real(*v, key);
+        else if (k == "crank_angles_deg") e.crank_angles_deg = r.reals(*v, key);
+        else if (k == "pressures") e.pressures = r.reals(*v, key);
+        else if (k == "crank_ratio") e.crank_ratio = r.real(*v, key);
+        else if (k == "crank_offset_deg") e.crank_offset_deg = r.real(*v, key);
       }
       s.network.elements.push_back(std::move(e));
     } else {
@@ -356,7 +397,9 @@ const std::string& entry_name(const Scene& s, const std::string& array, std::siz
 
 SceneEntry::Kind network_key_kind(const std::string& array, const std::string& key) {
   if (key == "nodes") return SceneEntry::Kind::Names;
-  if (array == "elements" && (key == "deflections" || key == "forces")) return SceneEntry::Kind::Array;
+  if (array == "elements" && (key == "deflections" || key == "forces" || key == "coil_gaps" ||
+                              key == "crank_angles_deg" || key == "pressures"))
+    return SceneEntry::Kind::Array;
   if (key == "name" || key == "type" || key == "side" || key == "mass_matrix") return SceneEntry::Kind::Str;
   if (array == "elements" && (key == "masses" || key == "elements")) return SceneEntry::Kind::Int;
   return SceneEntry::Kind::Real;

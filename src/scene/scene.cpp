@@ -44,7 +44,12 @@ bool operator==(const ElementSpec& a, const ElementSpec& b) {
          a.youngs_modulus == b.youngs_modulus && a.area == b.area && a.length == b.length &&
          a.elements == b.elements && a.mass_matrix == b.mass_matrix && a.rayleigh_alpha == b.rayleigh_alpha &&
          a.rayleigh_beta == b.rayleigh_beta && a.ratio == b.ratio && a.deflections == b.deflections &&
-         a.forces == b.forces && a.installed_deflection == b.installed_deflection;
+         a.forces == b.forces && a.installed_deflection == b.installed_deflection &&
+         a.coil_gaps == b.coil_gaps && a.free_length == b.free_length && a.solid_length == b.solid_length &&
+         a.coil_restitution == b.coil_restitution && a.friction_coefficient == b.friction_coefficient &&
+         a.normal_load == b.normal_load && a.velocity_scale == b.velocity_scale &&
+         a.crank_angles_deg == b.crank_angles_deg && a.pressures == b.pressures &&
+         a.crank_ratio == b.crank_ratio && a.crank_offset_deg == b.crank_offset_deg;
 }
 bool operator==(const ContactPointSpec& a, const ContactPointSpec& b) {
   return a.name == b.name && a.kind == b.kind && a.nodes == b.nodes && a.clearance == b.clearance &&
@@ -172,6 +177,10 @@ const std::vector<Field>& fields() {
     v.push_back(ruled(F_REAL(cam, poisson_ratio), Rule::In, 0, 0.4999));
     v.push_back(ruled(F_REAL(cam, follower_youngs_modulus), Rule::Gt, 0));
     v.push_back(ruled(F_REAL(cam, follower_poisson_ratio), Rule::In, 0, 0.4999));
+    v.push_back(ruled(F_REAL(cam, friction_coefficient), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(cam, friction_static_coefficient), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(cam, friction_stribeck_speed), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(cam, roller_slip), Rule::In, 0, 1));
 
     v.push_back(F_ENUM(follower, kind, kFollowerNames));
     v.push_back(ruled(F_REAL(follower, mass), Rule::Gt, 0));

@@ -98,6 +98,7 @@ void Validator::network() const {
                    "must be >= 1 for a spring with mass (" + p + ".mass = " + fmt_num(e.mass) + ") (" + who + ")");
         if (e.masses >= 1 && !(e.mass > 0))
           net_fail(p + ".masses", std::to_string(e.masses), "needs " + p + ".mass > 0 (" + who + ")");
+        coil_clash(e, p, who);
         break;
       case ElementKind::Dashpot: net_gt(p + ".damping", e.damping, 0.0, who); break;
       case ElementKind::Bar:
@@ -161,6 +162,12 @@ void Validator::network() const {
         net_ge(p + ".damping", e.damping, 0.0, who);
         break;
       }
+      case ElementKind::GuideFriction:
+        net_ge(p + ".friction_coefficient", e.friction_coefficient, 0.0, who);
+        net_ge(p + ".normal_load", e.normal_load, 0.0, who);
+        net_gt(p + ".velocity_scale", e.velocity_scale, 0.0, who);
+        break;
+      case ElementKind::GasLoad: gas_load(e, p, who); break;
     }
   }
 
@@ -269,8 +276,10 @@ void Validator::network() const {
   };
   std::vector<bool> anchored(nn, false);
   for (const auto& e : n.elements) {
+    // a guide with Coulomb friction holds its node too (against forces below μN)
     const bool stiff = (e.kind == ElementKind::Spring && e.stiffness > 0) || e.kind == ElementKind::Bar ||
-                       e.kind == ElementKind::ProgressiveSpring;
+                       e.kind == ElementKind::ProgressiveSpring ||
+                       (e.kind == ElementKind::GuideFriction && e.friction_coefficient * e.normal_load > 0);
     const bool joins = stiff || e.kind == ElementKind::Lever || (e.kind == ElementKind::Spring && e.mass > 0);
     if (!joins) continue;
     const bool g0 = e.nodes[0] == "ground", g1 = e.nodes[1] == "ground";
@@ -325,6 +334,65 @@ void Validator::network() const {
                "node '" + n.nodes[i].name +
                    "' has no mass (give it mass, or connect a bar or a spring with mass to it or to a node "
                    "tied to it by a lever)");
+}
+
+void Validator::coil_clash(const ElementSpec& e, const std::string& p, const std::string& who) const {
+  const bool any = e.solid_length != 0.0 || e.free_length != 0.0 || !e.coil_gaps.empty() || e.coil_restitution;
+  if (!any) return;
+  if (!(e.solid_length > 0))
+    net_fail(p + ".solid_length", fmt_num(e.solid_length),
+             "must be > 0 for coil clash (free_length, coil_gaps or coil_restitution is set) (" + who + ")");
+  net_gt(p + ".stiffness", e.stiffness, 0.0, who + ", a spring whose coils clash");
+  net_finite(p + ".free_length", e.free_length, who);
+  const double installed = e.free_length - e.preload / e.stiffness, travel = installed - e.solid_length;
+  if (!(travel > 0))
+    net_fail(p + ".free_length", fmt_num(e.free_length),
+             "must exceed solid_length + preload/stiffness = " + fmt_num(e.solid_length + e.preload / e.stiffness) +
+                 " (the installed length free_length − preload/stiffness must be above solid) (" + who + ")");
+  if (e.coil_restitution) {
+    net_finite(p + ".coil_restitution", *e.coil_restitution, who);
+    if (!(*e.coil_restitution >= 0.0 && *e.coil_restitution <= 1.0))
+      net_fail(p + ".coil_restitution", fmt_num(*e.coil_restitution), "must be >= 0 and <= 1 (" + who + ")");
+  }
+  if (e.coil_gaps.empty()) return;
+  const std::size_t want = std::size_t(e.masses) + 1;
+  if (e.coil_gaps.size() != want)
+    net_fail(p + ".coil_gaps", std::to_string(e.coil_gaps.size()) + " gaps",
+             "must have masses + 1 = " + std::to_string(want) + " entries, one per segment of the coil chain (" + who +
+                 ")");
+  double sum = 0;
+  for (std::size_t k = 0; k < want; ++k) {
+    net_ge(elem(p + ".coil_gaps", k), e.coil_gaps[k], 0.0, who);
+    sum += e.coil_gaps[k];
+  }
+  if (!(std::abs(sum - travel) <= 1e-6 * travel))
+    net_fail(p + ".coil_gaps", "sum " + fmt_num(sum),
+             "must add up to the travel to solid free_length − preload/stiffness − solid_length = " + fmt_num(travel) +
+                 " (to 1e-6 of it) (" + who + ")");
+}
+
+void Validator::gas_load(const ElementSpec& e, const std::string& p, const std::string& who) const {
+  net_gt(p + ".crank_ratio", e.crank_ratio, 0.0, who);
+  net_finite(p + ".crank_offset_deg", e.crank_offset_deg, who);
+  net_gt(p + ".area", e.area, 0.0, who);
+  const std::vector<double>& x = e.crank_angles_deg;
+  const std::vector<double>& y = e.pressures;
+  if (x.empty()) net_fail(p + ".crank_angles_deg", "0 points", "must have at least 1 point (" + who + ")");
+  if (y.size() != x.size())
+    net_fail(p + ".pressures", std::to_string(y.size()) + " points",
+             "must have as many points as " + p + ".crank_angles_deg (" + std::to_string(x.size()) + ") (" + who + ")");
+  const double cycle = 360.0 * e.crank_ratio;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    net_finite(elem(p + ".pressures", k), y[k], who);
+    net_finite(elem(p + ".crank_angles_deg", k), x[k], who);
+    if (!(x[k] >= 0.0 && x[k] < cycle))
+      net_fail(elem(p + ".crank_angles_deg", k), fmt_num(x[k]),
+               "must be >= 0 and < 360·crank_ratio = " + fmt_num(cycle) + " (one engine cycle) (" + who + ")");
+    if (k > 0 && !(x[k] > x[k - 1]))
+      net_fail(elem(p + ".crank_angles_deg", k), fmt_num(x[k]),
+               "must be strictly increasing (> " + elem(p + ".crank_angles_deg", k - 1) + " = " + fmt_num(x[k - 1]) +
+                   ") (" + who + ")");
+  }
 }
 
 }  // namespace scene_detail

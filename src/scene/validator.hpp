@@ -187,6 +187,38 @@ class Validator {
               "must be within +-" + fmt_num(kMaxTheta0Deg) +
                   " deg: the cam angle theta0 + omega t is one double, and beyond that its resolution is coarser "
                   "than 1e-10 rad (give the angle modulo 360)");
+    // Cam friction: a translating follower; a Stribeck curve rises from μ to μ_s.
+    if (c.friction_coefficient > 0 || c.friction_static_coefficient > 0) {
+      if (c.follower_motion != FollowerMotion::Translating)
+        fail_at("cam.friction_coefficient", fmt_num(c.friction_coefficient),
+                "cam friction needs a translating follower (cam.follower_motion = \"oscillating\" is not supported)",
+                "cam.follower_motion");
+      if (c.follower_face != FollowerFace::Flat && c.follower_face != FollowerFace::Roller)
+        fail_at("cam.friction_coefficient", fmt_num(c.friction_coefficient),
+                std::string("cam friction needs cam.follower_face = \"flat\" or \"roller\" (the face is \"") +
+                    to_string(c.follower_face) + "\")",
+                "cam.follower_face");
+      if (c.follower_face == FollowerFace::Roller && c.roller_slip > 0 && c.follower_offset != 0)
+        fail_at("cam.roller_slip", fmt_num(c.roller_slip),
+                "a slipping roller's sliding speed is modelled for an in-line roller: needs cam.follower_offset = 0 "
+                "(it is " + fmt_num(c.follower_offset) + ")",
+                "cam.follower_offset");
+    }
+    if (c.friction_stribeck_speed > 0 && !(c.friction_static_coefficient >= c.friction_coefficient))
+      fail_at("cam.friction_static_coefficient", fmt_num(c.friction_static_coefficient),
+              "must be >= cam.friction_coefficient = " + fmt_num(c.friction_coefficient) +
+                  " with a Stribeck curve (cam.friction_stribeck_speed > 0)",
+              "cam.friction_stribeck_speed");
+    if (c.friction_stribeck_speed == 0 && c.friction_static_coefficient != 0)
+      fail_at("cam.friction_static_coefficient", fmt_num(c.friction_static_coefficient),
+              "needs cam.friction_stribeck_speed > 0 (without it the friction is the constant "
+              "cam.friction_coefficient); must be 0",
+              "cam.friction_stribeck_speed");
+    if (c.roller_slip != 0.0 && c.follower_face != FollowerFace::Roller)
+      fail_at("cam.roller_slip", fmt_num(c.roller_slip),
+              std::string("applies to cam.follower_face = \"roller\" only (the face is \"") +
+                  to_string(c.follower_face) + "\"); must be 0",
+              "cam.follower_face");
     // Keys that do not apply to the chosen follower: refused, not ignored.
     if (c.roller_radius != 0.0 && c.follower_face != FollowerFace::Roller)
       fail_at("cam.roller_radius", fmt_num(c.roller_radius),
@@ -300,6 +332,10 @@ class Validator {
       key.resize(cut);
     }
   }
+  /// A spring's coil-clash keys (free_length, solid_length, coil_gaps, coil_restitution).
+  void coil_clash(const ElementSpec& e, const std::string& p, const std::string& who) const;
+  /// A gas_load element's table and keys.
+  void gas_load(const ElementSpec& e, const std::string& p, const std::string& who) const;
   [[noreturn]] void net_fail(const std::string& key, const std::string& value, const std::string& rule) const {
     throw SceneError(file_, net_line(key), key, value, rule);
   }

@@ -48,11 +48,23 @@ std::vector<camdyn::Scene> scenes_with_every_key() {
   b.name = "b";
   s.network.nodes = {a, b};
   for (auto k : {camdyn::ElementKind::Spring, camdyn::ElementKind::Dashpot, camdyn::ElementKind::Bar,
-                 camdyn::ElementKind::Lever, camdyn::ElementKind::ProgressiveSpring}) {
+                 camdyn::ElementKind::Lever, camdyn::ElementKind::ProgressiveSpring,
+                 camdyn::ElementKind::GuideFriction, camdyn::ElementKind::GasLoad}) {
     camdyn::ElementSpec e;
     e.kind = k;
     e.name = "e";
     e.nodes = {"a", "b"};
+    s.network.elements.push_back(e);
+  }
+  {  // a spring whose coils clash: its optional keys are written only when on
+    camdyn::ElementSpec e;
+    e.name = "coils";
+    e.nodes = {"a", "b"};
+    e.stiffness = 1e4;
+    e.free_length = 0.04;
+    e.solid_length = 0.02;
+    e.coil_gaps = {0.02};
+    e.coil_restitution = 0.2;
     s.network.elements.push_back(e);
   }
   for (auto k : {camdyn::ContactPointKind::Cam, camdyn::ContactPointKind::Lash, camdyn::ContactPointKind::Stop}) {
