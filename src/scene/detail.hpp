@@ -59,7 +59,8 @@ inline constexpr EnumName<ElementKind> kElementNames[] = {{ElementKind::Spring, 
                                                    {ElementKind::Dashpot, "dashpot"},
                                                    {ElementKind::Bar, "bar"},
                                                    {ElementKind::Lever, "lever"},
-                                                   {ElementKind::ProgressiveSpring, "progressive_spring"}};
+                                                   {ElementKind::ProgressiveSpring, "progressive_spring"},
+                                                   {ElementKind::HydraulicLashAdjuster, "hydraulic_lash_adjuster"}};
 inline constexpr EnumName<ContactPointKind> kContactPointNames[] = {
     {ContactPointKind::Cam, "cam"}, {ContactPointKind::Lash, "lash"}, {ContactPointKind::Stop, "stop"}};
 inline constexpr EnumName<StopSide> kStopSideNames[] = {{StopSide::Below, "below"}, {StopSide::Above, "above"}};

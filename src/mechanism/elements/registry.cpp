@@ -4,6 +4,7 @@
 #include "camdyn/network.hpp"
 #include "mechanism/element.hpp"
 #include "mechanism/elements/progressive_spring.hpp"
+#include "mechanism/elements/hydraulic_lash_adjuster.hpp"
 
 namespace camdyn {
 
@@ -14,6 +15,7 @@ std::unique_ptr<Element> make_element(const ElementSpec& spec, const std::string
     case ElementKind::Bar:
     case ElementKind::Lever: return nullptr;  // linear: assembled into M, C, K, f₀
     case ElementKind::ProgressiveSpring: return std::make_unique<ProgressiveSpring>(spec, name);
+    case ElementKind::HydraulicLashAdjuster: return std::make_unique<HydraulicLashAdjuster>(spec, name);
   }
   throw std::logic_error("make_element: unknown element kind");
 }
