@@ -221,7 +221,8 @@ TEST(HydraulicLashAdjuster, StateJacobianMatchesDifferenceQuotients) {
 // p(0) = F/A (at rest in equilibrium) and kicked with v₀, oscillates as u = (v₀/ω) sin ωt,
 // ω² = βA²/(V m). Amplitude 3.7e-9 m, so the chamber's volume change (Aδ/V ≈ 2e-6) leaves
 // the frequency within 1e-6. Measured max |u − (v₀/ω) sin ωt| over ten periods / amplitude:
-// event on cvode-bdf 1.1e-5, arkode-erk 2.0e-6, arkode-dirk 1.6e-6.
+// event on cvode-bdf 1.3e-6, arkode-erk 1.2e-6, arkode-dirk 3.0e-6 (a 1e-4 error in ω would
+// show as 6e-3).
 TEST(HydraulicLashAdjuster, ClosedChamberStiffnessGivesTheOscillationFrequency) {
   const double F = 100.0, v0 = 1e-4;
   ElementSpec e = hla(0.0, 0.0, 0.0);
@@ -244,7 +245,7 @@ TEST(HydraulicLashAdjuster, ClosedChamberStiffnessGivesTheOscillationFrequency) 
 
 // (b) leak-down: load F, leak only (supply 0), from rest at p(0) = F/A; after the transient
 // (relaxation time V/(βG) = 0.019 s) the plunger sinks at π d c³ F/(12 μ L A²) = 3.6e-4 m/s.
-// Measured relative error of the sink rate over [0.3, 0.4] s: 2e-9 (cvode-bdf, event).
+// Measured relative error of the sink rate over [0.3, 0.4] s: 8.4e-8 (cvode-bdf, event).
 TEST(HydraulicLashAdjuster, LeakDownSinkRateIsTheClosedForm) {
   const double F = 500.0, c = 5e-6;
   ElementSpec e = hla(0.0, c, 0.0);
@@ -266,11 +267,14 @@ TEST(HydraulicLashAdjuster, LeakDownSinkRateIsTheClosedForm) {
 // (c) pump-up: the plunger spring (preload P, no load) lifts the plunger toward a stop `lash`
 // above; the chamber's pressure falls to p = −P/A, the check valve opens (Δ = p_s − p −
 // Δp_open) and the plunger rises at (Q_check(p) + G(p_s − p))/A (quasi-static: the mass's
-// inertia and the chamber's compliance settle within ~1e-4 s). The lash closes at
-// t ≈ lash·A/(Q_check + Q_leak-in); measured: the first impact 0.6 % after the estimate.
+// inertia and the chamber's compliance settle within ~2e-5 s; no air: the chamber's own
+// expansion is 7e-8 m of the 0.1 mm lash). The lash closes at t ≈ lash·A/(Q_check +
+// Q_leak-in) = 0.0251 s; measured: the contact closes at the row of the estimate (rows every
+// t_est/2000: within 5e-4 of it). With 1 % air the chamber's air expands by 2e-5 m at −0.5
+// bar and the 0.1 kg plunger oscillates on the soft chamber: not a quasi-static case.
 TEST(HydraulicLashAdjuster, PumpUpClosesTheLashInThePredictedTime) {
   const double P = 5.0, lash = 1e-4;
-  ElementSpec e = hla(0.01, 5e-6, 2e-8);
+  ElementSpec e = hla(0.0, 5e-6, 2e-8);
   e.preload = P;
   const TestHla m{e};
   const double p = -P / kArea;
@@ -288,7 +292,7 @@ TEST(HydraulicLashAdjuster, PumpUpClosesTheLashInThePredictedTime) {
       break;
     }
   ASSERT_TRUE(std::isfinite(t_close));
-  EXPECT_NEAR(t_close, t_est, 0.03 * t_est) << "estimate " << t_est;
+  EXPECT_NEAR(t_close, t_est, 0.005 * t_est) << "estimate " << t_est;
 }
 
 struct Case {
@@ -299,11 +303,12 @@ struct Case {
 
 // (d) the same ODE by RK4 here: load 20 N, p(0) = 0, supply 3 bar: the plunger falls onto
 // the chamber, oscillates against it while the check valve and the leak exchange oil (air
-// 1 %). RK4 at h = 2e-8 s and h/2 agree to 1e-15 m (Richardson: RK4's own error below that).
-// Measured max |u − u_RK4| (m) / |p − p_RK4| (Pa) over 41 rows, rtol 1e-10: erk lee
-// 9.7e-15 / 6.2e-5, event 1.1e-14 / 6.3e-5, penalty 1.1e-14 / 6.3e-5; dirk lee 2.8e-14 /
-// 1.6e-4, event 3.8e-14 / 1.7e-4, penalty 3.8e-14 / 1.7e-4; cvode-bdf lee 3.6e-12 / 0.021,
-// event 3.7e-12 / 0.021 (amplitude 2.7e-8 m, 2.4e5 Pa).
+// 1 %). RK4 at h = 2e-8 s and h/2 differ by 2.7e-14 m (Richardson: RK4's own error below
+// 3e-14). Measured max |u − u_RK4| (m) / |p − p_RK4| (Pa) over 41 rows, rtol 1e-10
+// (amplitudes 1.8e-5 m, 9.8e5 Pa): erk lee 1.2e-13 / 0.013, event 1.5e-13 / 0.0061, penalty
+// 7.1e-14 / 0.0052; dirk lee 7.7e-14 / 0.0048, event 2.7e-14 / 0.0017, penalty 1.9e-13 /
+// 0.012; cvode-bdf lee 5.2e-13 / 0.042, event 4.8e-13 / 0.026, holonomic 5.2e-13 / 0.042;
+// energy residual ≤ 5.6e-12 J (the contract holds on every one).
 TEST(HydraulicLashAdjuster, MassOnHlaMatchesRk4OnEveryMethodAndEngine) {
   ElementSpec e = hla(0.01, 5e-6, 2e-8);
   const double load = 20.0, t_end = 2e-3, dt = 5e-5;
@@ -311,13 +316,13 @@ TEST(HydraulicLashAdjuster, MassOnHlaMatchesRk4OnEveryMethodAndEngine) {
   const Traj a = rk4(m, load, 0.0, 0.0, 2e-8, 100000, 2500), b = rk4(m, load, 0.0, 0.0, 1e-8, 200000, 5000);
   double rk_u = 0.0;
   for (std::size_t i = 0; i < a.u.size(); ++i) rk_u = std::max(rk_u, std::abs(a.u[i] - b.u[i]));
-  EXPECT_LT(rk_u, 1e-14);
+  EXPECT_LT(rk_u, 1e-13);
   const Case cases[] = {
-      {Integrator::ArkodeErk, ContactModel::Lee, 1e-12, 1.0},    {Integrator::ArkodeErk, ContactModel::Event, 1e-12, 1.0},
-      {Integrator::ArkodeErk, ContactModel::Penalty, 1e-12, 1.0}, {Integrator::ArkodeDirk, ContactModel::Lee, 1e-12, 1.0},
-      {Integrator::ArkodeDirk, ContactModel::Event, 1e-12, 1.0}, {Integrator::ArkodeDirk, ContactModel::Penalty, 1e-12, 1.0},
-      {Integrator::CvodeBdf, ContactModel::Lee, 1e-10, 10.0},    {Integrator::CvodeBdf, ContactModel::Event, 1e-10, 10.0},
-      {Integrator::CvodeBdf, ContactModel::Holonomic, 1e-10, 10.0},
+      {Integrator::ArkodeErk, ContactModel::Lee, 1e-12, 0.1},    {Integrator::ArkodeErk, ContactModel::Event, 1e-12, 0.1},
+      {Integrator::ArkodeErk, ContactModel::Penalty, 1e-12, 0.1}, {Integrator::ArkodeDirk, ContactModel::Lee, 1e-12, 0.1},
+      {Integrator::ArkodeDirk, ContactModel::Event, 1e-12, 0.1}, {Integrator::ArkodeDirk, ContactModel::Penalty, 1e-12, 0.1},
+      {Integrator::CvodeBdf, ContactModel::Lee, 3e-12, 0.3},     {Integrator::CvodeBdf, ContactModel::Event, 3e-12, 0.3},
+      {Integrator::CvodeBdf, ContactModel::Holonomic, 3e-12, 0.3},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(std::string(to_string(c.integ)) + " " + to_string(c.model));
