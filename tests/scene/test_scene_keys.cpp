@@ -48,7 +48,8 @@ std::vector<camdyn::Scene> scenes_with_every_key() {
   b.name = "b";
   s.network.nodes = {a, b};
   for (auto k : {camdyn::ElementKind::Spring, camdyn::ElementKind::Dashpot, camdyn::ElementKind::Bar,
-                 camdyn::ElementKind::Lever, camdyn::ElementKind::ProgressiveSpring}) {
+                 camdyn::ElementKind::Lever, camdyn::ElementKind::ProgressiveSpring,
+                 camdyn::ElementKind::HydraulicLashAdjuster}) {
     camdyn::ElementSpec e;
     e.kind = k;
     e.name = "e";
