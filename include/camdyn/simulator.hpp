@@ -107,6 +107,18 @@ const char* to_string(Termination v);
 /// lies within 1 % of the lift of some cam contact's clearance (|X − c| ≤ 0.01·lift: the
 /// load passes between the cam and the stops there, the forces fall to zero by design);
 /// min_force leaves those rows out, and a separation inside it is no loss of margin.
+/// One reported quantity of a network's elements (a history column force_<name> with
+/// run.element_forces, whatever that flag): its extremes over the accepted step ends, its
+/// value at the end and its range (max − min) over the last whole camshaft revolution (NaN
+/// before one is complete). A hydraulic_lash_adjuster 'h' reports h (force), h_pressure,
+/// h_travel (plunger travel: its cycle_range is the travel per cycle), h_pumped and
+/// h_leaked (oil volumes through the check valve and the leak-down clearance since t = 0:
+/// their `end` values are the pump-up and leak-down totals).
+struct ElementResult {
+  std::string name;
+  double min = NAN, max = NAN, end = NAN, cycle_range = NAN;
+};
+
 struct ContactResult {
   std::string name;
   /// Smallest force while closed over the output rows outside the lash take-up window (0
@@ -232,6 +244,8 @@ struct Summary {
   /// Per contact (network and user followers; empty otherwise), in the contacts' order.
   /// The top-level designer fields above follow the primary (first cam) contact only.
   std::vector<ContactResult> contacts;
+  /// Per reported element quantity of a network with nonlinear elements (empty otherwise).
+  std::vector<ElementResult> elements;
   /// The verdict in words (every follower kind): what the follower does, per contact, in
   /// the order of first occurrence; one "no_separation" item when nothing happens.
   std::vector<VerdictItem> verdict;

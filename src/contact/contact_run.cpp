@@ -39,6 +39,16 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
   }
   unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
   element_force_count_ = mk_.element_force_names().size();
+  if (!mk_.linear() && !mk_.single_follower() && element_force_count_ > 0) {
+    element_results_ = true;
+    for (const std::string& name : mk_.element_force_names()) {
+      sum_.elements.emplace_back();
+      sum_.elements.back().name = name;
+    }
+    element_buf_.assign(element_force_count_, 0.0);
+    element_cyc_min_.assign(element_force_count_, INFINITY);
+    element_cyc_max_.assign(element_force_count_, -INFINITY);
+  }
   if (sc.cam.land_on_breaks) break_angles_ = cam_.breakpoints();
   // The base circle, so that a cam contact's gap sees the lift X_C − X_base
   // (cam_lift_base, include/camdyn/initial_state.hpp: cam.base_radius for a lift table,
@@ -403,8 +413,31 @@ ContactRun::StepEnergy ContactRun::step_energy(
   return e;
 }
 
+void ContactRun::sample_elements() {
+  if (!element_results_) return;
+  mk_.element_forces(t_, y_.data(), y_.data() + n_, element_buf_.data(), states_of(y_));
+  const double turn = std::abs(drive_.theta(t_) - drive_.theta(0.0)) / (2.0 * M_PI);
+  const long rev = long(std::floor(turn * (1 + 1e-12)));
+  const bool new_rev = element_rev_ >= 0 && rev != element_rev_;
+  for (std::size_t i = 0; i < element_force_count_; ++i) {
+    ElementResult& r = sum_.elements[i];
+    const double x = element_buf_[i];
+    r.min = std::isnan(r.min) ? x : std::min(r.min, x);
+    r.max = std::isnan(r.max) ? x : std::max(r.max, x);
+    r.end = x;
+    element_cyc_min_[i] = std::min(element_cyc_min_[i], x);
+    element_cyc_max_[i] = std::max(element_cyc_max_[i], x);
+    if (new_rev) {  // a revolution completed at this sample
+      r.cycle_range = element_cyc_max_[i] - element_cyc_min_[i];
+      element_cyc_min_[i] = element_cyc_max_[i] = x;
+    }
+  }
+  element_rev_ = rev;
+}
+
 void ContactRun::after_step(double h, double dW, double P_prev, double P_end, double dD) {
   ++sum_.steps;
+  sample_elements();
   const CamMotion cm = cam_at(t_);
   const double P = std::isnan(P_end) ? dissipation_power(t_, y_) : P_end;
   work_ += dW;
@@ -517,6 +550,7 @@ Summary ContactRun::run() {
   prepare_start();
   for (int j = 0; j < m_; ++j)  // the start's forces are samples of the least force too
     if (active_[j]) sample_held_force(j, 0.0, F_[j]);
+  sample_elements();
   V0_ = potential(0.0, y_);
   E0_ = mk_.kinetic_energy(y_.data() + n_) + V0_;
   emit_row();

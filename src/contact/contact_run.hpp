@@ -209,6 +209,12 @@ class ContactRun {
   DesignerStats designer_;
   DesignerColumns design_cols_{sc_};  // run.designer_columns
   std::size_t element_force_count_ = 0;  // run.element_forces: the mechanism's reported forces
+  /// A network with nonlinear elements: its reported quantities' extremes, end values and
+  /// per-revolution ranges (Summary::elements) at the current state.
+  void sample_elements();
+  bool element_results_ = false;
+  long element_rev_ = -1;  // the camshaft revolution of the last sample
+  std::vector<double> element_buf_, element_cyc_min_, element_cyc_max_;
   Summary sum_;
   double t_ = 0, work_ = 0, dissipated_ = 0, E0_ = 0, V0_ = 0, last_row_t_ = -1;
   Eigen::VectorXd y_, F_;

@@ -17,7 +17,7 @@ constexpr double kMinAbsPressure = 1e-3;  // p_abs ≥ this × p_ref inside β_e
 }  // namespace
 
 HydraulicLashAdjuster::HydraulicLashAdjuster(const ElementSpec& s, std::string name)
-    : Element(std::move(name), 2, 1),
+    : Element(std::move(name), 2, 3),
       A_(s.area),
       V0_(s.chamber_volume),
       beta_(s.bulk_modulus),
@@ -110,6 +110,8 @@ void HydraulicLashAdjuster::state_rate(const ElementState& e, double* sdot) cons
   const double p = pressure(e), V = chamber_volume(travel(e));
   const double R = A_ * (e.xd[0] - e.xd[1]) - leak_flow(p) + check_flow(p);
   sdot[0] = bulk_modulus(p) / V * R / p_ref_;
+  sdot[1] = check_flow(p) / V0_;
+  sdot[2] = leak_flow(p) / V0_;
 }
 
 void HydraulicLashAdjuster::state_jacobian(const ElementState& e, double* dgdx, double* dgdxd, double* dgds,
@@ -121,13 +123,23 @@ void HydraulicLashAdjuster::state_jacobian(const ElementState& e, double* dgdx, 
   // g = β R/(V p_ref): ∂g/∂δ = −β R dV/dδ /(V² p_ref), ∂g/∂δ̇ = β A/(V p_ref),
   // ∂g/∂s = p_ref ∂g/∂p = (dβ/dp R + β ∂R/∂p)/V
   const double gd = -beta * R * dVdd / (V * V * p_ref_), gv = beta * A_ / (V * p_ref_);
-  dgdx[0] = gd, dgdx[1] = -gd;  // 1 × 2
-  dgdxd[0] = gv, dgdxd[1] = -gv;
+  // 3 × 2 and 3 × 3 column-major (rows: p, the pumped and the leaked volume; only p enters)
+  std::fill(dgdx, dgdx + 6, 0.0);
+  std::fill(dgdxd, dgdxd + 6, 0.0);
+  std::fill(dgds, dgds + 9, 0.0);
+  std::fill(dfds, dfds + 6, 0.0);
+  dgdx[0] = gd, dgdx[3] = -gd;
+  dgdxd[0] = gv, dgdxd[3] = -gv;
   dgds[0] = (dbulk_dp(p) * R + beta * (-leak_ + dcheck_dp(p))) / V;
-  dfds[0] = -A_ * p_ref_, dfds[1] = A_ * p_ref_;  // 2 × 1: F = p A + …, p = p_ref(s − 1)
+  dgds[1] = dcheck_dp(p) * p_ref_ / V0_;
+  dgds[2] = leak_ * p_ref_ / V0_;
+  dfds[0] = -A_ * p_ref_, dfds[1] = A_ * p_ref_;  // 2 × 3: F = p A + …, p = p_ref(s₀ − 1)
 }
 
-void HydraulicLashAdjuster::initial_states(double* s0) const { s0[0] = 1.0 + p0_ / p_ref_; }
+void HydraulicLashAdjuster::initial_states(double* s0) const {
+  s0[0] = 1.0 + p0_ / p_ref_;
+  s0[1] = s0[2] = 0.0;
+}
 
 double HydraulicLashAdjuster::stored_energy(const ElementState& e) const {
   const double d = travel(e);
@@ -141,13 +153,15 @@ double HydraulicLashAdjuster::dissipated_power(const ElementState& e) const {
 }
 
 std::vector<std::string> HydraulicLashAdjuster::force_names() const {
-  return {name(), name() + "_pressure", name() + "_travel"};
+  return {name(), name() + "_pressure", name() + "_travel", name() + "_pumped", name() + "_leaked"};
 }
 
 void HydraulicLashAdjuster::forces(const ElementState& e, double* out) const {
   out[0] = pressure(e) * A_ + P_ + k_ * travel(e);
   out[1] = pressure(e);
   out[2] = travel(e);
+  out[3] = V0_ * e.s[1];
+  out[4] = V0_ * e.s[2];
 }
 
 }  // namespace camdyn

@@ -6,8 +6,10 @@
 //   nodes [lower, upper] as a spring (body and plunger, in the order the train's coordinate
 //   compresses them); plunger travel into the body δ = q_lower − q_upper; chamber
 //   volume V(δ) = V₀ − Aδ (held at ≥ V₀/100: a plunger bottoming out is not modelled).
-//   Internal state: the chamber pressure, carried as s = p_abs/p_ref (p_ref =
-//   air_reference_pressure; gauge p = p_ref(s − 1)).
+//   Internal states: the chamber pressure, carried as s₀ = p_abs/p_ref (p_ref =
+//   air_reference_pressure; gauge p = p_ref(s₀ − 1)), and the oil volumes pumped in through
+//   the check valve and leaked out since t = 0 over V₀ (s₁, s₂: ṡ₁ = Q_check/V₀,
+//   ṡ₂ = Q_leak/V₀; results only, nothing depends on them).
 //     compressive force  F = p·A + P + kδ   (on lower −F, on upper +F)
 //     ṗ = β_eff(p)/V(δ) · (A δ̇ − Q_leak + Q_check)
 //     Q_leak  = π d c³ (p − p_s) / (12 μ L)          laminar flow through the concentric
@@ -25,8 +27,9 @@
 //   P = p(Q_leak − Q_check) − ε(p) dV/dδ δ̇ (throttling losses less the gallery's pumping
 //   work: negative while the check valve fills the chamber), so that F δ̇ = dV/dt + P holds
 //   exactly along the model's solutions.
-//   Reported (history columns with run.element_forces): force_<name> (F),
-//   force_<name>_pressure (gauge p), force_<name>_travel (δ).
+//   Reported (history columns with run.element_forces, Summary::elements): force_<name> (F),
+//   force_<name>_pressure (gauge p), force_<name>_travel (δ), force_<name>_pumped and
+//   force_<name>_leaked (the volumes).
 #pragma once
 
 #include <string>
