@@ -42,13 +42,13 @@
 
 namespace camdyn {
 
-enum class ElementKind { Spring, Dashpot, Bar, Lever, ProgressiveSpring, GuideFriction, GasLoad };
+enum class ElementKind { Spring, Dashpot, Bar, Lever, ProgressiveSpring, GuideFriction, GasLoad, HydraulicLashAdjuster };
 enum class ContactPointKind { Cam, Lash, Stop };
 enum class StopSide { Below, Above };
 enum class BarMass { Consistent, Lumped };
 
 const char* to_string(ElementKind v);       // "spring" | "dashpot" | "bar" | "lever" | "progressive_spring"
-                                            // | "guide_friction" | "gas_load"
+                                            // | "guide_friction" | "gas_load" | "hydraulic_lash_adjuster"
 const char* to_string(ContactPointKind v);  // "cam" | "lash" | "stop"
 const char* to_string(StopSide v);          // "below" | "above"
 const char* to_string(BarMass v);           // "lumped" | "consistent"
@@ -134,6 +134,32 @@ struct ElementSpec {
   std::vector<double> pressures;
   double crank_ratio = 2.0;
   double crank_offset_deg = 0.0;
+  /// hydraulic_lash_adjuster (nodes [lower, upper], compressed by δ = q_lower − q_upper;
+  /// docs/interface.md): plunger area `area`
+  /// [length²] > 0, the plunger spring `stiffness` ≥ 0 and `preload`, and (pressures gauge
+  /// [force/length²]): chamber volume at q = 0 [length³] > 0; oil bulk modulus > 0;
+  /// entrained-air volume fraction at air_reference_pressure, in [0, 1); the absolute
+  /// pressure of that fraction (the atmosphere) > 0; the leak-down path: plunger diameter
+  /// [length] > 0, radial clearance [length] ≥ 0 (0: no leak), leak length [length] > 0,
+  /// dynamic viscosity [force·time/length²] > 0; the gallery (supply) pressure ≥ 0; the check
+  /// valve: opening pressure difference ≥ 0, flow area [length²] ≥ 0 (0: no valve),
+  /// discharge coefficient in (0, 1], laminar-turbulent transition pressure > 0, oil density
+  /// [mass/length³] > 0; the chamber pressure at t = 0, > −air_reference_pressure.
+  double chamber_volume = 0.0;
+  double bulk_modulus = 1.5e9;
+  double air_fraction = 0.0;
+  double air_reference_pressure = 101325.0;
+  double plunger_diameter = 0.0;
+  double leak_clearance = 0.0;
+  double leak_length = 0.0;
+  double viscosity = 0.0;
+  double supply_pressure = 0.0;
+  double check_opening_pressure = 0.0;
+  double check_area = 0.0;
+  double check_discharge_coefficient = 0.7;
+  double check_transition_pressure = 1000.0;
+  double oil_density = 850.0;
+  double initial_pressure = 0.0;
 };
 
 /// A unilateral contact (any number per network).

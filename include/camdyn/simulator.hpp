@@ -101,6 +101,18 @@ enum class Termination {
 /// "solver_error", "invalid_scene", "error" (summary.json's "termination").
 const char* to_string(Termination v);
 
+/// One reported quantity of a network's elements (a history column force_<name> with
+/// run.element_forces, whatever that flag): its extremes over the accepted step ends, its
+/// value at the end and its range (max − min) over the last whole camshaft revolution (NaN
+/// before one is complete). A hydraulic_lash_adjuster 'h' reports h (force), h_pressure,
+/// h_travel (plunger travel: its cycle_range is the travel per cycle), h_pumped and
+/// h_leaked (oil volumes through the check valve and the leak-down clearance since t = 0:
+/// their `end` values are the pump-up and leak-down totals).
+struct ElementResult {
+  std::string name;
+  double min = NAN, max = NAN, end = NAN, cycle_range = NAN;
+};
+
 /// Results of one contact of a network or user follower (summary.json
 /// "contacts", FullReport, Python). Angles: cam degrees in [0, 360); NaN (null) when the
 /// thing did not happen. The lash take-up window: the output rows where the cam's lift X
@@ -296,6 +308,8 @@ struct Summary {
   /// Per contact (network and user followers; empty otherwise), in the contacts' order.
   /// The top-level designer fields above follow the primary (first cam) contact only.
   std::vector<ContactResult> contacts;
+  /// Per reported element quantity of a network with nonlinear elements (empty otherwise).
+  std::vector<ElementResult> elements;
   /// The verdict in words (every follower kind): what the follower does, per contact, in
   /// the order of first occurrence; one "no_separation" item when nothing happens.
   std::vector<VerdictItem> verdict;

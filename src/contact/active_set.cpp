@@ -143,7 +143,7 @@ void project_on_set(const Eigen::MatrixXd& MinvTt, const Eigen::MatrixXd& W, con
     const int j = set[0];
     if (!(W(j, j) > 0.0)) return;
     y.head(n).noalias() -= (g[j] / W(j, j)) * MinvTt.col(j);
-    y.tail(n).noalias() -= (gd[j] / W(j, j)) * MinvTt.col(j);
+    y.segment(n, n).noalias() -= (gd[j] / W(j, j)) * MinvTt.col(j);
     return;
   }
   Eigen::MatrixXd Wss(k, k), B(n, k);
@@ -156,7 +156,7 @@ void project_on_set(const Eigen::MatrixXd& MinvTt, const Eigen::MatrixXd& W, con
   }
   const Eigen::MatrixXd lam = Wss.completeOrthogonalDecomposition().solve(rhs);
   y.head(n).noalias() -= B * lam.col(0);
-  y.tail(n).noalias() -= B * lam.col(1);
+  y.segment(n, n).noalias() -= B * lam.col(1);
 }
 
 }  // namespace detail

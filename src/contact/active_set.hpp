@@ -43,7 +43,7 @@ bool solve_contact_lcp1(double W, double b, double& F, double& w);
 /// Put a state on the held set's manifold g_S = 0, ġ_S = 0, M-orthogonally:
 ///   q ← q − M⁻¹T_Sᵀ W_SS⁺ g_S,   v ← v − M⁻¹T_Sᵀ W_SS⁺ ġ_S
 /// (W_SS⁺: minimal-norm least squares, for dependent sets). `MinvTt` = M⁻¹Tᵀ (n × m),
-/// `W` = T M⁻¹ Tᵀ, `g`, `gd` the gaps and their rates over all m contacts; y = [q; v].
+/// `W` = T M⁻¹ Tᵀ, `g`, `gd` the gaps and their rates over all m contacts; y = [q; v; s] (s, the elements' internal states, unchanged).
 void project_on_set(const Eigen::MatrixXd& MinvTt, const Eigen::MatrixXd& W, const std::vector<int>& set,
                     const Eigen::VectorXd& g, const Eigen::VectorXd& gd, Eigen::VectorXd& y);
 

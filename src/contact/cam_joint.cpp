@@ -22,7 +22,7 @@ bool ContactRun::cam_joint_impact() {
   std::vector<int> struck, leaving;
   for (int j = 0; j < m_; ++j) {
     if (!active_[j] || !mk_.contacts()[j].cam) continue;
-    const double v = mk_.contacts()[j].t.dot(y_.tail(n_)), gd = v - cm.Xdot;
+    const double v = mk_.contacts()[j].t.dot(y_.segment(n_, n_)), gd = v - cm.Xdot;
     if (!(std::abs(gd) > 1e-12 * (std::abs(cm.Xdot) + std::abs(v)))) continue;
     (gd < 0.0 || !unilateral_ ? struck : leaving).push_back(j);
   }

@@ -32,7 +32,7 @@ constexpr double kCheckGaps = 10.0;  // the step check's gap tolerance in tol_u
 ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                        const std::atomic<bool>* stop)
     : sc_(sc), mech_(std::move(mech)), mk_(*mech_), cam_(sc.cam), drive_(sc.cam), obs_(obs),
-      stop_(stop), n_(mk_.n()), m_(mk_.m()), designer_(sc, cam_),
+      stop_(stop), n_(mk_.n()), m_(mk_.m()), ns_(mk_.states()), ny_(2 * n_ + ns_), designer_(sc, cam_),
       analysis_(sc, contact_names(*mech_), mech_->node_names(), cam_.lift(), &cam_) {
   sum_.scene = sc.title;
   sum_.integrator = to_string(sc.solver.integrator);
@@ -46,6 +46,16 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
   }
   unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
   element_force_count_ = mk_.element_force_names().size();
+  if (!mk_.linear() && !mk_.single_follower() && element_force_count_ > 0) {
+    element_results_ = true;
+    for (const std::string& name : mk_.element_force_names()) {
+      sum_.elements.emplace_back();
+      sum_.elements.back().name = name;
+    }
+    element_buf_.assign(element_force_count_, 0.0);
+    element_cyc_min_.assign(element_force_count_, INFINITY);
+    element_cyc_max_.assign(element_force_count_, -INFINITY);
+  }
   if (sc.cam.land_on_breaks) break_angles_ = cam_.breakpoints();
   // The base circle, so that a cam contact's gap sees the lift X_C − X_base
   // (cam_lift_base, include/camdyn/initial_state.hpp: cam.base_radius for a lift table,
@@ -85,12 +95,13 @@ std::vector<std::string> ContactRun::extra_columns(const MechanicalSystem& mech,
 
 OdeSystem ContactRun::contact_system(ForceFn forces) {
   OdeSystem sys;
-  sys.size = 2 * n_;
+  sys.size = ny_;
   sys.rhs = [this, forces = std::move(forces)](double t, const double* y, double* yd) {
-    sys_y_ = Eigen::Map<const Eigen::VectorXd>(y, 2 * n_);
+    sys_y_ = Eigen::Map<const Eigen::VectorXd>(y, ny_);
     forces(t, sys_y_, sys_F_);
     std::copy(y + n_, y + 2 * n_, yd);
-    mk_.acceleration(t, y, y + n_, sys_F_, yd + n_);
+    mk_.acceleration(t, y, y + n_, sys_F_, yd + n_, false, states_of(y));
+    if (ns_) mk_.state_rate(t, y, y + n_, states_of(y), yd + 2 * n_);
   };
   return sys;
 }
@@ -107,8 +118,17 @@ std::shared_ptr<SparseNewton> ContactRun::sparse_newton() const {
   if (!el.empty()) {
     sn->Ke_pattern = &el.stiffness_pattern();
     sn->Ce_pattern = el.damps() ? &el.damping_pattern() : nullptr;
-    sn->element_tangent = [mech, n = n_](double t, const double* y, SparseMatrix& Ke, SparseMatrix& Ce) {
-      mech->elements().tangent(t, y, y + n, Ke, Ce);
+    sn->element_tangent = [this, mech, n = n_](double t, const double* y, SparseMatrix& Ke, SparseMatrix& Ce) {
+      mech->elements().tangent(t, y, y + n, Ke, Ce, states_of(y));
+    };
+  }
+  if (el.states() > 0) {
+    sn->states = el.states();
+    sn->Rs_pattern = &el.rs_pattern();
+    sn->Gq_pattern = &el.gq_pattern();
+    sn->state_blocks = [this, mech, n = n_](double t, const double* y, SparseMatrix& Rs, SparseMatrix& Gq,
+                                            SparseMatrix& Gv, Eigen::MatrixXd& Gs) {
+      mech->elements().state_tangent(t, y, y + n, states_of(y), Rs, Gq, Gv, Gs);
     };
   }
   return sn;
@@ -169,7 +189,7 @@ double ContactRun::gap(int j, const Eigen::VectorXd& y, const CamMotion& cm) con
 }
 double ContactRun::gap_rate(int j, const Eigen::VectorXd& y, const CamMotion& cm) const {
   const MechanismContact& c = mk_.contacts()[j];
-  return c.t.dot(y.tail(n_)) - (c.cam ? cm.Xdot : 0.0);
+  return c.t.dot(y.segment(n_, n_)) - (c.cam ? cm.Xdot : 0.0);
 }
 double ContactRun::cam_acc(int j, const CamMotion& cm) const {
   return mk_.contacts()[j].cam ? cm.Xddot : 0.0;
@@ -188,7 +208,7 @@ void ContactRun::acceleration(double t, const Eigen::VectorXd& y, const Eigen::V
   AccCache& c = acc_cache_[acc_last_];
   c.t = NAN;  // invalid until filled (a user's force may throw)
   c.a.resize(n_);
-  mk_.acceleration(t, y.data(), y.data() + n_, F, c.a.data());
+  mk_.acceleration(t, y.data(), y.data() + n_, F, c.a.data(), false, states_of(y));
   c.t = t;
   c.y = y;
   c.F = F;
@@ -211,7 +231,7 @@ void ContactRun::held_forces_into(double t, const Eigen::VectorXd& y, const CamM
   if (ok) *ok = true;
   if (set.empty()) return;
   Eigen::VectorXd& Ta = hf_ta_;
-  mk_.contact_free_acceleration(t, y.data(), y.data() + n_, Ta);  // T a_free
+  mk_.contact_free_acceleration(t, y.data(), y.data() + n_, Ta, states_of(y));  // T a_free
   const int k = int(set.size());
   if (k == 1) {  // one held contact (a single follower): scalars, the same arithmetic
     const int j = set[0];
@@ -258,10 +278,10 @@ std::vector<int> ContactRun::active_list() const {
 }
 
 double ContactRun::potential(double t, const Eigen::VectorXd& y) const {
-  return mk_.potential_energy(y.data()) + contact_potential(t, y.data());
+  return mk_.potential_energy(y.data(), states_of(y)) + contact_potential(t, y.data());
 }
 double ContactRun::dissipation_power(double t, const Eigen::VectorXd& y) const {
-  return mk_.damping_power(t, y.data(), y.data() + n_) + contact_dissipation(t, y);
+  return mk_.damping_power(t, y.data(), y.data() + n_, states_of(y)) + contact_dissipation(t, y);
 }
 double ContactRun::cam_power(const Eigen::VectorXd& F, const CamMotion& cm) const {
   double p = 0.0;
@@ -283,7 +303,7 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
   r.t = t;
   r.theta = drive_.theta(t);
   r.u_c = c.t.dot(y.head(n_)) + c.g0;
-  r.v_c = c.t.dot(y.tail(n_));
+  r.v_c = c.t.dot(y.segment(n_, n_));
   r.a_c = c.t.dot(a);
   r.contact_force = F[p];
   r.gap = gap(p, y, cm);
@@ -298,7 +318,7 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
     r.extra.push_back(gap(j, y, cm));
     r.extra.push_back(active[j] ? 1.0 : 0.0);
   }
-  const Eigen::VectorXd u = mk_.L() * y.head(n_), v = mk_.L() * y.tail(n_);
+  const Eigen::VectorXd u = mk_.L() * y.head(n_), v = mk_.L() * y.segment(n_, n_);
   for (Eigen::Index i = 0; i < u.size(); ++i) {
     r.extra.push_back(u[i]);
     r.extra.push_back(v[i]);
@@ -306,7 +326,7 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
   if (sc_.run.element_forces && !mk_.single_follower()) {
     const std::size_t k = r.extra.size();
     r.extra.resize(k + element_force_count_);
-    mk_.element_forces(t, y.data(), y.data() + n_, r.extra.data() + k);
+    mk_.element_forces(t, y.data(), y.data() + n_, r.extra.data() + k, states_of(y));
   }
   if (sc_.run.designer_columns) {
     double Fc = 0.0;  // the cam's force: Σ over the cam contacts (their axial components)
@@ -323,6 +343,7 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
     row_u_.assign(u.data(), u.data() + u.size());
     const CamPoint pt = sc_.lubricant.viscosity > 0 ? cam_.evaluate(r.theta) : CamPoint{};
     analysis_.row(t, r.theta, pt, cm.X, cm.Xdot, drive_.omega(t), Fc, row_gaps_, row_u_, r.extra);
+  }
   if (design_cols_.friction()) {
     double Fc = 0.0;
     for (int j = 0; j < m_; ++j)
@@ -436,7 +457,7 @@ ContactRun::StepEnergy ContactRun::step_energy(
   const double h = t1 - t0;
   if (!(h > 0)) return e;
   Eigen::VectorXd &y = se_y_, &F = se_F_;
-  y.resize(2 * n_);
+  y.resize(ny_);
   F.resize(m_);
   for (int g = 0; g < 3; ++g) {
     const double tau = t0 + 0.5 * h * (1.0 + xg[g]);
@@ -449,8 +470,31 @@ ContactRun::StepEnergy ContactRun::step_energy(
   return e;
 }
 
+void ContactRun::sample_elements() {
+  if (!element_results_) return;
+  mk_.element_forces(t_, y_.data(), y_.data() + n_, element_buf_.data(), states_of(y_));
+  const double turn = std::abs(drive_.theta(t_) - drive_.theta(0.0)) / (2.0 * M_PI);
+  const long rev = long(std::floor(turn * (1 + 1e-12)));
+  const bool new_rev = element_rev_ >= 0 && rev != element_rev_;
+  for (std::size_t i = 0; i < element_force_count_; ++i) {
+    ElementResult& r = sum_.elements[i];
+    const double x = element_buf_[i];
+    r.min = std::isnan(r.min) ? x : std::min(r.min, x);
+    r.max = std::isnan(r.max) ? x : std::max(r.max, x);
+    r.end = x;
+    element_cyc_min_[i] = std::min(element_cyc_min_[i], x);
+    element_cyc_max_[i] = std::max(element_cyc_max_[i], x);
+    if (new_rev) {  // a revolution completed at this sample
+      r.cycle_range = element_cyc_max_[i] - element_cyc_min_[i];
+      element_cyc_min_[i] = element_cyc_max_[i] = x;
+    }
+  }
+  element_rev_ = rev;
+}
+
 void ContactRun::after_step(double h, double dW, double P_prev, double P_end, double dD) {
   ++sum_.steps;
+  sample_elements();
   const CamMotion cm = cam_at(t_);
   const double P = std::isnan(P_end) ? dissipation_power(t_, y_) : P_end;
   work_ += dW;
@@ -482,7 +526,7 @@ void ContactRun::after_step(double h, double dW, double P_prev, double P_end, do
   const int p = mk_.primary();
   const MechanismContact& c = mk_.contacts()[p];
   const double th = drive_.theta(t_);
-  designer_.step(t_, th, c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.tail(n_)), contact_acceleration(p), gap(p, y_, cm));
+  designer_.step(t_, th, c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.segment(n_, n_)), contact_acceleration(p), gap(p, y_, cm));
   sample_side_loads(th);
   if (active_[p]) designer_.sample_force(t_, th, F_[p]);
   if (out_dt() <= 0.0) {
@@ -511,7 +555,7 @@ double ContactRun::contact_acceleration(int p) const {
     return mk_.contacts()[p].t.dot(a);
   }
   // T_p a = T_p a_free + W_p F: O(n) linear forms, no mass solve (the same value to round-off)
-  mk_.contact_free_acceleration(t_, y_.data(), y_.data() + n_, hf_ta_);
+  mk_.contact_free_acceleration(t_, y_.data(), y_.data() + n_, hf_ta_, states_of(y_));
   return hf_ta_[p] + mk_.W().row(p).dot(F_);
 }
 
@@ -546,9 +590,10 @@ double ContactRun::next_output_time() const { return output_time(sc_, next_out_)
 
 Summary ContactRun::run() {
   Clock clock;
-  y_.resize(2 * n_);
+  y_.resize(ny_);
   y_.head(n_) = mk_.q0();
-  y_.tail(n_) = mk_.v0();
+  y_.segment(n_, n_) = mk_.v0();
+  y_.tail(ns_) = mk_.s0();
   t_ = 0.0;
   F_ = Eigen::VectorXd::Zero(m_);
   active_.assign(m_, 0);
@@ -562,6 +607,7 @@ Summary ContactRun::run() {
   prepare_start();
   for (int j = 0; j < m_; ++j)  // the start's forces are samples of the least force too
     if (active_[j]) sample_held_force(j, 0.0, F_[j]);
+  sample_elements();
   V0_ = potential(0.0, y_);
   E0_ = mk_.kinetic_energy(y_.data() + n_) + V0_;
   emit_row();
@@ -571,7 +617,7 @@ Summary ContactRun::run() {
     const MechanismContact& c = mk_.contacts()[p];
     Eigen::VectorXd a;
     acceleration(t_, y_, F_, a);
-    designer_.step(0.0, drive_.theta(0.0), c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.tail(n_)),
+    designer_.step(0.0, drive_.theta(0.0), c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.segment(n_, n_)),
                    c.t.dot(a), gap(p, y_, cm0));
   }
   next_out_ = 1;

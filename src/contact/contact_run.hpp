@@ -7,7 +7,9 @@
 //   methods/lee_cvode.cpp, methods/penalty.cpp, methods/event.cpp, methods/holonomic_ida.cpp; chosen
 //   by make_contact_method, contact_run.cpp) → HistoryRow stream + Summary.
 //
-// The state is y = [q; v] over the mechanism's unknowns, F the contact forces (one per
+// The state is y = [q; v; s] over the mechanism's unknowns q (v = q̇) and its elements'
+// internal states s (MechanicalSystem::states(), often none; continuous: impacts and
+// projections leave them unchanged), F the contact forces (one per
 // contact, ≥ 0), `active` the contacts that are closed and carry force. Shared here: the
 // initial state and its consistent forces, gaps, the acceleration-level forces of an
 // active set, the Newton impact law on several contacts, output rows (standard columns for
@@ -69,8 +71,9 @@ class ContactRun {
   virtual double contact_potential(double /*t*/, const double* /*q*/) const { return 0.0; }
   virtual double contact_dissipation(double /*t*/, const Eigen::VectorXd& /*y*/) const { return 0.0; }
 
-  /// The first-order system the native methods integrate: y = [q; v], q̇ = v,
-  /// v̇ = M⁻¹(r(t, q, v) + TᵀF) with the method's contact forces forces(t, y, F) (m entries).
+  /// The first-order system the native methods integrate: y = [q; v; s], q̇ = v,
+  /// v̇ = M⁻¹(r(t, q, v, s) + TᵀF), ṡ = g(t, q, v, s) with the method's contact forces
+  /// forces(t, y, F) (m entries).
   using ForceFn = std::function<void(double t, const Eigen::VectorXd& y, Eigen::VectorXd& F)>;
   OdeSystem contact_system(ForceFn forces);
   /// The implicit engines' sparse Newton structure (M, K, C, T) of a linear Mechanism;
@@ -204,12 +207,22 @@ class ContactRun {
   const std::atomic<bool>* stop_;
   std::string stop_reason_ = "stopped by caller";
   int n_, m_;
+  int ns_, ny_;  // the elements' internal states, and the state's size 2n + ns
+  /// s inside a state y = [q; v; s] (null without internal states).
+  const double* states_of(const double* y) const { return ns_ ? y + 2 * n_ : nullptr; }
+  const double* states_of(const Eigen::VectorXd& y) const { return states_of(y.data()); }
   DesignerStats designer_;
   DesignerColumns design_cols_{sc_};  // run.designer_columns
   RunAnalysis analysis_;              // film, lift deviation, landings, ramp velocity
   double take_up_lo_ = NAN, take_up_hi_ = NAN;  // the lash take-up window of the cam's lift
   std::vector<double> row_gaps_, row_u_;        // emit_row_at's buffers for analysis_
   std::size_t element_force_count_ = 0;  // run.element_forces: the mechanism's reported forces
+  /// A network with nonlinear elements: its reported quantities' extremes, end values and
+  /// per-revolution ranges (Summary::elements) at the current state.
+  void sample_elements();
+  bool element_results_ = false;
+  long element_rev_ = -1;  // the camshaft revolution of the last sample
+  std::vector<double> element_buf_, element_cyc_min_, element_cyc_max_;
   Summary sum_;
   double t_ = 0, work_ = 0, dissipated_ = 0, E0_ = 0, V0_ = 0, last_row_t_ = -1;
   Eigen::VectorXd y_, F_;

@@ -171,7 +171,7 @@ void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion
     }
     S = kept;
   }
-  y_.tail(n_) += mk_.MinvTt() * P;
+  y_.segment(n_, n_) += mk_.MinvTt() * P;
   const double T_after = mk_.kinetic_energy(y_.data() + n_);
   const double W_imp = cam_power(P, cm);  // Σ_cam P_j Ẋ_C
   work_ += W_imp;

@@ -89,8 +89,8 @@ class EngineBase : public OdeEngine {
     if (!sys_.rhs) throw std::invalid_argument("OdeEngine: no right-hand side");
     if (sys_.linear && !sys_.jacobian && !sys_.newton)
       throw std::invalid_argument("OdeEngine: linear = true needs a jacobian or the sparse Newton structure");
-    if (sys_.newton && 2 * sys_.newton->M->rows() != n_)
-      throw std::invalid_argument("OdeEngine: the sparse Newton structure's size is not half the system's");
+    if (sys_.newton && 2 * sys_.newton->M->rows() + sys_.newton->states != n_)
+      throw std::invalid_argument("OdeEngine: the sparse Newton structure's size (2n + states) is not the system's");
     y_ = make_nvec(n_, ctx_.ctx);
     tmp_ = make_nvec(n_, ctx_.ctx);
     local_error_ = Eigen::VectorXd::Zero(n_);
@@ -156,7 +156,7 @@ class EngineBase : public OdeEngine {
   // The sparse Schur path (OdeSystem::newton): our own linear solver; the integrator's
   // linear-system function hands over γ and the state.
   void make_sparse_solver() {
-    const bool dense = resolve_linear_solver(spec_, n_ / 2) == LinearSolverKind::Dense;
+    const bool dense = resolve_linear_solver(spec_, int(sys_.newton->M->rows())) == LinearSolverKind::Dense;
     newton_ = std::make_unique<detail::SparseNewtonSolver>(*sys_.newton, dense, stats_);
     cls_ = std::make_unique<detail::CustomLinearSolver>(
         ctx_.ctx, [this] { newton_->setup(); }, [this](double* x) { newton_->solve(x); });

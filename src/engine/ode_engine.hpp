@@ -34,7 +34,8 @@
 
 namespace camdyn {
 
-/// The Newton matrix of a mechanism, y = [q; v], q̇ = v, M v̇ = f₀ − K q − C v + Tᵀ F(t, y):
+/// The Newton matrix of a mechanism, y = [q; v] (and its elements' states s, below), q̇ = v,
+/// M v̇ = f₀ − K q − C v + Tᵀ F(t, y):
 /// the implicit engines solve (I − γJ)x = b through the n × n Schur complement
 ///   S x_v = M b_v − γ K̃ b_u (+ T_Aᵀ μ),   x_u = b_u + γ x_v,   S = M + γC̃ + γ²K̃,
 /// K̃ = K − Tᵀ diag(∂F/∂g) T, C̃ = C − Tᵀ diag(∂F/∂ġ) T, sparse (KLU, one symbolic analysis
@@ -60,6 +61,19 @@ struct SparseNewton {
   const SparseMatrix* Ke_pattern = nullptr;
   const SparseMatrix* Ce_pattern = nullptr;
   std::function<void(double t, const double* y, SparseMatrix& Ke, SparseMatrix& Ce)> element_tangent;
+  /// The elements' internal states (0: none): y = [q; v; s], ṡ = g(t, q, v, s), and r depends
+  /// on s. J gains the blocks R_s = ∂r/∂s (in the velocity rows, through M⁻¹), G_q = ∂g/∂q,
+  /// G_v = ∂g/∂q̇, G_s = ∂g/∂s; s is eliminated with H = (I − γG_s)⁻¹ (states × states):
+  ///   S = M + γC̃ + γ²K̃ − γ² R_s H (γG_q + G_v),
+  ///   S x_v = M b_v − γK̃ b_u + γ R_s H (b_s + γ G_q b_u),   x_s = H (b_s + γ(G_q x_u + G_v x_v)).
+  /// Rs_pattern (n × states) and Gq_pattern (states × n, also G_v's) fix the patterns;
+  /// state_blocks(t, y, Rs, Gq, Gv, Gs) writes the values at (t, y) (Gs dense).
+  int states = 0;
+  const SparseMatrix* Rs_pattern = nullptr;
+  const SparseMatrix* Gq_pattern = nullptr;
+  std::function<void(double t, const double* y, SparseMatrix& Rs, SparseMatrix& Gq, SparseMatrix& Gv,
+                     Eigen::MatrixXd& Gs)>
+      state_blocks;
 };
 
 /// The system an OdeEngine integrates.

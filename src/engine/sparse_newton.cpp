@@ -45,6 +45,21 @@ SparseNewtonSolver::SparseNewtonSolver(const SparseNewton& sys, bool dense, Engi
     if (sys.Ce_pattern) pattern(*sys.Ce_pattern);
   }
   for (long i = 0; i < n_; ++i) t.emplace_back(i, i, 0.0);
+  if (sys.states > 0) {  // R_s H (γG_q + G_v): every row of R_s with every column of G_q (H may be full)
+    ns_ = sys.states;
+    std::vector<long> ri, cj;
+    for (long j = 0; j < sys.Rs_pattern->outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(*sys.Rs_pattern, j); it; ++it) ri.push_back(it.row());
+    for (long j = 0; j < sys.Gq_pattern->outerSize(); ++j)
+      if (sys.Gq_pattern->outerIndexPtr()[j + 1] > sys.Gq_pattern->outerIndexPtr()[j]) cj.push_back(j);
+    std::sort(ri.begin(), ri.end());
+    ri.erase(std::unique(ri.begin(), ri.end()), ri.end());
+    for (long i : ri)
+      for (long j : cj) t.emplace_back(i, j, 0.0);
+    Rs_ = Rs_f_ = *sys.Rs_pattern;
+    Gq_ = Gq_f_ = Gv_ = Gv_f_ = *sys.Gq_pattern;
+    Gs_ = Gs_f_ = Eigen::MatrixXd::Zero(ns_, ns_);
+  }
   std::vector<std::vector<std::pair<long, double>>> rows(static_cast<std::size_t>(m_));
   if (sys.contact_derivatives) {
     for (int j = 0; j < m_; ++j) {
@@ -78,6 +93,7 @@ void SparseNewtonSolver::prepare(double t, const double* y, double gamma) {
   gamma_ = gamma;
   if (sys_.contact_derivatives) sys_.contact_derivatives(t, y, dFdg_, dFdgd_);
   if (sys_.element_tangent) sys_.element_tangent(t, y, Ke_, Ce_);
+  if (ns_) sys_.state_blocks(t, y, Rs_, Gq_, Gv_, Gs_);
 }
 
 namespace {
@@ -88,7 +104,8 @@ bool same_values(const SparseMatrix& a, const SparseMatrix& b) {
 
 void SparseNewtonSolver::setup() {
   if (factored_ && gamma_ == gamma_f_ && dFdg_ == dFdg_f_ && dFdgd_ == dFdgd_f_ &&
-      (!sys_.element_tangent || (same_values(Ke_, Ke_f_) && same_values(Ce_, Ce_f_))))
+      (!sys_.element_tangent || (same_values(Ke_, Ke_f_) && same_values(Ce_, Ce_f_))) &&
+      (!ns_ || (same_values(Rs_, Rs_f_) && same_values(Gq_, Gq_f_) && same_values(Gv_, Gv_f_) && Gs_ == Gs_f_)))
     return;  // S unchanged
   const double g = gamma_;
   double* x = S_.valuePtr();
@@ -110,6 +127,18 @@ void SparseNewtonSolver::setup() {
     Ke_f_ = Ke_;
     Ce_f_ = Ce_;
   }
+  if (ns_) {  // − γ² R_s H (γG_q + G_v), H = (I − γG_s)⁻¹
+    H_ = (Eigen::MatrixXd::Identity(ns_, ns_) - g * Gs_).partialPivLu().inverse();
+    const SparseMatrix Hs = H_.sparseView(0.0, 0.0);
+    const SparseMatrix G = g * Gq_ + Gv_;
+    D_ = Rs_ * (Hs * G);
+    for (long j = 0; j < D_.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(D_, j); it; ++it) x[position(S_, it.row(), j)] -= g * g * it.value();
+    Rs_f_ = Rs_;
+    Gq_f_ = Gq_;
+    Gv_f_ = Gv_;
+    Gs_f_ = Gs_;
+  }
   lu_.factor(S_);
   ++stats_.lin_setups;
   gamma_f_ = g;
@@ -126,6 +155,12 @@ void SparseNewtonSolver::solve(double* b) {
   rhs_.noalias() = *sys_.M * V;
   rhs_.noalias() -= g * (*sys_.K * U);
   if (sys_.element_tangent) rhs_.noalias() -= g * (Ke_f_ * U);
+  Eigen::Map<Eigen::VectorXd> Bs(b + 2 * n_, ns_);
+  if (ns_) {  // + γ R_s H (b_s + γ G_q b_u)
+    w_ = Bs;
+    w_.noalias() += g * (Gq_f_ * U);
+    rhs_.noalias() += g * (Rs_f_ * (H_ * w_));
+  }
   if (sys_.contact_derivatives)
     for (int j = 0; j < m_; ++j)
       if (dFdg_f_[j] != 0.0) rhs_.noalias() += (g * dFdg_f_[j] * sys_.T.row(j).dot(U)) * sys_.T.row(j).transpose();
@@ -157,6 +192,12 @@ void SparseNewtonSolver::solve(double* b) {
   }
   V = rhs_;
   U += g * V;
+  if (ns_) {  // x_s = H (b_s + γ(G_q x_u + G_v x_v))
+    w_ = Bs;
+    w_.noalias() += g * (Gq_f_ * U);
+    w_.noalias() += g * (Gv_f_ * V);
+    Bs = H_ * w_;
+  }
 }
 
 }  // namespace detail

@@ -25,7 +25,7 @@ class SparseNewtonSolver {
   void prepare(double t, const double* y, double gamma);
   /// Factorise S (if γ or the contact derivatives changed since the last time).
   void setup();
-  /// x = (I − γJ)⁻¹ b in place (length 2n).
+  /// x = (I − γJ)⁻¹ b in place (length 2n + states).
   void solve(double* b);
 
  private:
@@ -43,6 +43,12 @@ class SparseNewtonSolver {
   // the elements' tangent: prepared (Ke_, Ce_) and factorised (Ke_f_, Ce_f_); positions in S_
   SparseMatrix Ke_, Ce_, Ke_f_, Ce_f_;
   std::vector<long> pos_ke_, pos_ce_;
+  // the elements' internal states: prepared blocks (Rs_, Gq_, Gv_, Gs_), factorised ones
+  // (…_f_), H = (I − γG_s)⁻¹ and the condensed term D = R_s H (γG_q + G_v) of the last setup
+  int ns_ = 0;
+  SparseMatrix Rs_, Gq_, Gv_, Rs_f_, Gq_f_, Gv_f_, D_;
+  Eigen::MatrixXd Gs_, Gs_f_, H_;
+  Eigen::VectorXd w_;
   double gamma_ = 0, gamma_f_ = -1;
   bool factored_ = false;
   Eigen::VectorXd rhs_, r_;

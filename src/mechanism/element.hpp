@@ -17,7 +17,9 @@
 // into the mechanism's sparse M, C, K, f₀ (src/mechanism/mechanism.cpp), so a linear train
 // keeps its linear-algebra path. An Element is a nonlinear part; a mechanism with one is not
 // linear() and its implicit engines add the element tangent K_e = −∂r_e/∂q, C_e = −∂r_e/∂q̇
-// to their Newton matrix (SparseNewton::element_tangent, IDA's residual Jacobian).
+// to their Newton matrix (SparseNewton::element_tangent, IDA's residual Jacobian). Internal
+// states s are carried by the ODE engines after q and v (y = [q; v; s], element_set.hpp);
+// IDA does not carry them (a scene with a stateful element on "ida" is refused).
 #pragma once
 
 #include <memory>

@@ -1,6 +1,7 @@
 // camdyn — the nonlinear elements of a mechanism (element_set.hpp).
 #include "mechanism/element_set.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace camdyn {
@@ -8,11 +9,11 @@ namespace camdyn {
 namespace {
 // per-thread scratch for an element's x, ẋ, f and Jacobian blocks
 struct Scratch {
-  std::vector<double> x, xd, f, dfdx, dfdxd;
+  std::vector<double> x, xd, f, dfdx, dfdxd, dgdx, dgdxd, dgds, dfds;
 };
-Scratch& scratch(int nodes) {
+Scratch& scratch(int nodes, int states = 0) {
   thread_local Scratch s;
-  const std::size_t k = std::size_t(nodes);
+  const std::size_t k = std::size_t(nodes), m = std::size_t(states);
   if (s.x.size() < k) {
     s.x.resize(k);
     s.xd.resize(k);
@@ -20,15 +21,20 @@ Scratch& scratch(int nodes) {
     s.dfdx.resize(k * k);
     s.dfdxd.resize(k * k);
   }
+  if (s.dgds.size() < m * m || s.dgdx.size() < m * k) {
+    s.dgdx.resize(std::max(s.dgdx.size(), m * k));
+    s.dgdxd.resize(std::max(s.dgdxd.size(), m * k));
+    s.dfds.resize(std::max(s.dfds.size(), m * k));
+    s.dgds.resize(std::max(s.dgds.size(), m * m));
+  }
   return s;
 }
 }  // namespace
 
 void ElementSet::add(std::unique_ptr<const Element> element, std::vector<Row> rows) {
-  if (element->states() > 0)
-    throw std::invalid_argument("element '" + element->name() +
-                                "': elements with internal states are not integrated by the engines yet");
   Placed p;
+  p.state_offset = ns_;
+  ns_ += element->states();
   p.element = std::move(element);
   p.rows = std::move(rows);
   placed_.push_back(std::move(p));
@@ -65,6 +71,21 @@ void ElementSet::finish(int n) {
       if (S.innerIndexPtr()[p] == i) return p;
     throw std::logic_error("ElementSet: entry outside the pattern");
   };
+  // the state blocks' patterns: R_s (n × ns) and G_q = G_v (ns × n) on the element's unknowns
+  std::vector<Trip> tr, tg;
+  for (const Placed& p : placed_)
+    for (int l = 0; l < p.element->states(); ++l)
+      for (const Row& row : p.rows)
+        for (const auto& a : row) {
+          tr.emplace_back(a.first, p.state_offset + l, 0.0);
+          tg.emplace_back(p.state_offset + l, a.first, 0.0);
+        }
+  Rs_.resize(n, ns_);
+  Rs_.setFromTriplets(tr.begin(), tr.end());
+  Rs_.makeCompressed();
+  Gq_.resize(ns_, n);
+  Gq_.setFromTriplets(tg.begin(), tg.end());
+  Gq_.makeCompressed();
   for (Placed& p : placed_) {
     const int k = p.element->nodes();
     p.pos_k.clear();
@@ -79,7 +100,8 @@ void ElementSet::finish(int n) {
   }
 }
 
-ElementState ElementSet::gather(const Placed& p, double t, const double* q, const double* v) const {
+ElementState ElementSet::gather(const Placed& p, double t, const double* q, const double* v,
+                                const double* st) const {
   const int k = p.element->nodes();
   Scratch& s = scratch(k);
   for (int i = 0; i < k; ++i) {
@@ -95,12 +117,16 @@ ElementState ElementSet::gather(const Placed& p, double t, const double* q, cons
   e.t = t;
   e.x = s.x.data();
   e.xd = s.xd.data();
+  if (p.element->states() > 0) {
+    if (!st) throw std::logic_error("ElementSet: element '" + p.element->name() + "' needs its internal states");
+    e.s = st + p.state_offset;
+  }
   return e;
 }
 
-void ElementSet::add_force(double t, const double* q, const double* v, double* r) const {
+void ElementSet::add_force(double t, const double* q, const double* v, double* r, const double* st) const {
   for (const Placed& p : placed_) {
-    const ElementState e = gather(p, t, q, v);
+    const ElementState e = gather(p, t, q, v, st);
     const int k = p.element->nodes();
     double* f = scratch(k).f.data();
     p.element->force(e, f);
@@ -109,7 +135,8 @@ void ElementSet::add_force(double t, const double* q, const double* v, double* r
   }
 }
 
-void ElementSet::tangent(double t, const double* q, const double* v, SparseMatrix& Ke, SparseMatrix& Ce) const {
+void ElementSet::tangent(double t, const double* q, const double* v, SparseMatrix& Ke, SparseMatrix& Ce,
+                         const double* st) const {
   if (Ke.nonZeros() != Ke_.nonZeros()) Ke = Ke_;
   if (damps() && Ce.nonZeros() != Ce_.nonZeros()) Ce = Ce_;
   double* kv = Ke.valuePtr();
@@ -117,7 +144,7 @@ void ElementSet::tangent(double t, const double* q, const double* v, SparseMatri
   double* cv = damps() ? Ce.valuePtr() : nullptr;
   if (cv) std::fill(cv, cv + Ce.nonZeros(), 0.0);
   for (const Placed& p : placed_) {
-    const ElementState e = gather(p, t, q, v);
+    const ElementState e = gather(p, t, q, v, st);
     const int k = p.element->nodes();
     Scratch& s = scratch(k);
     const bool c = p.element->damps();
@@ -137,16 +164,59 @@ void ElementSet::tangent(double t, const double* q, const double* v, SparseMatri
   }
 }
 
-double ElementSet::stored_energy(const double* q) const {
+void ElementSet::initial_states(double* s0) const {
+  for (const Placed& p : placed_)
+    if (p.element->states() > 0) p.element->initial_states(s0 + p.state_offset);
+}
+
+void ElementSet::state_rate(double t, const double* q, const double* v, const double* st, double* sdot) const {
+  for (const Placed& p : placed_)
+    if (p.element->states() > 0) p.element->state_rate(gather(p, t, q, v, st), sdot + p.state_offset);
+}
+
+void ElementSet::state_tangent(double t, const double* q, const double* v, const double* st, SparseMatrix& Rs,
+                               SparseMatrix& Gq, SparseMatrix& Gv, Eigen::MatrixXd& Gs) const {
+  if (Rs.nonZeros() != Rs_.nonZeros()) Rs = Rs_;
+  if (Gq.nonZeros() != Gq_.nonZeros()) Gq = Gq_;
+  if (Gv.nonZeros() != Gq_.nonZeros()) Gv = Gq_;
+  std::fill(Rs.valuePtr(), Rs.valuePtr() + Rs.nonZeros(), 0.0);
+  std::fill(Gq.valuePtr(), Gq.valuePtr() + Gq.nonZeros(), 0.0);
+  std::fill(Gv.valuePtr(), Gv.valuePtr() + Gv.nonZeros(), 0.0);
+  Gs.setZero(ns_, ns_);
+  for (const Placed& p : placed_) {
+    const int k = p.element->nodes(), ms = p.element->states();
+    if (ms == 0) continue;
+    const ElementState e = gather(p, t, q, v, st);
+    Scratch& s = scratch(k, ms);
+    std::fill(s.dgdx.begin(), s.dgdx.end(), 0.0);
+    std::fill(s.dgdxd.begin(), s.dgdxd.end(), 0.0);
+    std::fill(s.dgds.begin(), s.dgds.end(), 0.0);
+    std::fill(s.dfds.begin(), s.dfds.end(), 0.0);
+    p.element->state_jacobian(e, s.dgdx.data(), s.dgdxd.data(), s.dgds.data(), s.dfds.data());
+    const int o = p.state_offset;
+    for (int l = 0; l < ms; ++l) {
+      for (int c = 0; c < ms; ++c) Gs(o + l, o + c) = s.dgds[std::size_t(l + c * ms)];
+      for (int i = 0; i < k; ++i)
+        for (const auto& a : p.rows[std::size_t(i)]) {
+          Rs.coeffRef(a.first, o + l) += a.second * s.dfds[std::size_t(i + l * k)];
+          Gq.coeffRef(o + l, a.first) += s.dgdx[std::size_t(l + i * ms)] * a.second;
+          Gv.coeffRef(o + l, a.first) += s.dgdxd[std::size_t(l + i * ms)] * a.second;
+        }
+    }
+  }
+}
+
+double ElementSet::stored_energy(const double* q, const double* st) const {
   double V = 0.0;
-  for (const Placed& p : placed_) V += p.element->stored_energy(gather(p, 0.0, q, nullptr));
+  for (const Placed& p : placed_)
+    V += p.element->stored_energy(gather(p, 0.0, q, nullptr, st));
   return V;
 }
 
-double ElementSet::dissipated_power(double t, const double* q, const double* v) const {
+double ElementSet::dissipated_power(double t, const double* q, const double* v, const double* st) const {
   double P = 0.0;
   for (const Placed& p : placed_)
-    P += p.element->dissipated_power(gather(p, t, q, v));  // also without ẋ: an external force's work
+    P += p.element->dissipated_power(gather(p, t, q, v, st));  // also without ẋ: an external force's work
   return P;
 }
 
@@ -157,9 +227,9 @@ std::vector<std::string> ElementSet::force_names() const {
   return n;
 }
 
-void ElementSet::forces(double t, const double* q, const double* v, double* out) const {
+void ElementSet::forces(double t, const double* q, const double* v, double* out, const double* st) const {
   for (const Placed& p : placed_) {
-    p.element->forces(gather(p, t, q, v), out);
+    p.element->forces(gather(p, t, q, v, st), out);
     out += p.element->force_names().size();
   }
 }

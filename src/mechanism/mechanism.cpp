@@ -150,7 +150,8 @@ Mechanism::Mechanism(const Scene& scene) {
         break;
       case ElementKind::ProgressiveSpring:
       case ElementKind::GuideFriction:
-      case ElementKind::GasLoad: {
+      case ElementKind::GasLoad:
+      case ElementKind::HydraulicLashAdjuster: {
         std::unique_ptr<Element> el = make_element(e, element_report_name(e, ei), &scene);
         any_damping |= el->damps();
         d.str(el->describe());
@@ -258,6 +259,8 @@ Mechanism::Mechanism(const Scene& scene) {
     elements_.add(std::move(nl.element), std::move(rows));
   }
   elements_.finish(n_);
+  s0_ = Eigen::VectorXd::Zero(elements_.states());
+  elements_.initial_states(s0_.data());
   for (const TwoNodeForce& f : two_node) linear_forces_.push_back({f.name, row(f.a), row(f.b), f.k, f.c, f.P});
 
   // ---- contacts
@@ -316,7 +319,7 @@ Mechanism::Mechanism(const Scene& scene) {
   force_scale_ = f0_.size() ? f0_.cwiseAbs().maxCoeff() : 0.0;
   if (!elements_.empty()) {  // the elements' forces at q = 0 (their preloads)
     Eigen::VectorXd re = Eigen::VectorXd::Zero(n_), z = re;
-    elements_.add_force(0.0, z.data(), z.data(), re.data());
+    elements_.add_force(0.0, z.data(), z.data(), re.data(), s0_.data());
     force_scale_ = std::max(force_scale_, re.cwiseAbs().maxCoeff());
   }
 
@@ -363,6 +366,7 @@ Mechanism::Mechanism(const Scene& scene) {
 
 bool Mechanism::acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
                                       Eigen::MatrixXd& dadv) const {
+  if (states() > 0) return false;  // the engines use the sparse Newton structure with the state blocks
   Eigen::MatrixXd K(K_), C = damped() ? Eigen::MatrixXd(C_) : Eigen::MatrixXd::Zero(n_, n_);
   if (!elements_.empty()) {
     SparseMatrix Ke, Ce;
@@ -382,7 +386,7 @@ std::vector<std::string> Mechanism::element_force_names() const {
   return n;
 }
 
-void Mechanism::element_forces(double t, const double* q, const double* v, double* out) const {
+void Mechanism::element_forces(double t, const double* q, const double* v, double* out, const double* s) const {
   auto dot = [](const std::vector<std::pair<int, double>>& r, const double* x) {
     double s = 0.0;
     for (const auto& e : r) s += e.second * x[e.first];
@@ -390,7 +394,7 @@ void Mechanism::element_forces(double t, const double* q, const double* v, doubl
   };
   for (const LinearForce& f : linear_forces_)
     *out++ = f.P + f.k * (dot(f.a, q) - dot(f.b, q)) + f.c * (dot(f.a, v) - dot(f.b, v));
-  elements_.forces(t, q, v, out);
+  elements_.forces(t, q, v, out, s);
 }
 
 void Mechanism::factor_mass() {
@@ -439,8 +443,12 @@ void Mechanism::solve_mass(Eigen::Ref<Eigen::VectorXd> x) const {
   }
 }
 
+void Mechanism::state_rate(double t, const double* q, const double* v, const double* s, double* sdot) const {
+  elements_.state_rate(t, q, v, s, sdot);
+}
+
 void Mechanism::acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
-                             bool homogeneous) const {
+                             bool homogeneous, const double* s) const {
   Eigen::Map<Eigen::VectorXd> A(a, n_);
   if (!single_follower_) {
     // Networks: f₀ − Kq − Cv and the sparse LDLᵀ, in this order (a penalty run at rtol 1e-4
@@ -450,7 +458,7 @@ void Mechanism::acceleration(double t, const double* q, const double* v, const E
     Eigen::VectorXd r = -(K_ * Q);
     if (!homogeneous) r += f0_;
     if (damped()) r.noalias() -= C_ * V;
-    if (!elements_.empty() && !homogeneous) elements_.add_force(t, q, v, r.data());
+    if (!elements_.empty() && !homogeneous) elements_.add_force(t, q, v, r.data(), s);
     A = Mldlt_.solve(r);
     if (F.size()) A.noalias() += MinvTt_ * F;
     return;
@@ -482,9 +490,10 @@ void Mechanism::acceleration(double t, const double* q, const double* v, const E
     A.noalias() += MinvTt_ * F;
 }
 
-void Mechanism::contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta) const {
+void Mechanism::contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta,
+                                          const double* s) const {
   if (!single_follower_) {
-    MechanicalSystem::contact_free_acceleration(t, q, v, Ta);
+    MechanicalSystem::contact_free_acceleration(t, q, v, Ta, s);
     return;
   }
   Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
@@ -497,18 +506,18 @@ double Mechanism::kinetic_energy(const double* v) const {
   Eigen::Map<const Eigen::VectorXd> V(v, n_);
   return 0.5 * V.dot(M_ * V);
 }
-double Mechanism::potential_energy(const double* q) const {
+double Mechanism::potential_energy(const double* q, const double* s) const {
   Eigen::Map<const Eigen::VectorXd> Q(q, n_);
-  return 0.5 * Q.dot(K_ * Q) - f0_.dot(Q) + (elements_.empty() ? 0.0 : elements_.stored_energy(q));
+  return 0.5 * Q.dot(K_ * Q) - f0_.dot(Q) + (elements_.empty() ? 0.0 : elements_.stored_energy(q, s));
 }
 double Mechanism::damping_power(const double* v) const {
   if (!damped()) return 0.0;
   Eigen::Map<const Eigen::VectorXd> V(v, n_);
   return V.dot(C_ * V);
 }
-double Mechanism::damping_power(double t, const double* q, const double* v) const {
+double Mechanism::damping_power(double t, const double* q, const double* v, const double* s) const {
   double P = damping_power(v);
-  if (!elements_.empty()) P += elements_.dissipated_power(t, q, v);
+  if (!elements_.empty()) P += elements_.dissipated_power(t, q, v, s);
   return P;
 }
 

@@ -86,31 +86,41 @@ class MechanicalSystem {
 
   /// true: r affine in (q, q̇) with constant coefficients (Lee's step map is affine).
   virtual bool linear() const = 0;
-  /// a = M⁻¹(r(t, q, v) + TᵀF) (F over all contacts, or empty); homogeneous (linear only):
+  /// The elements' internal states s (element.hpp): their count (0: none, and every `s`
+  /// argument below may be null) and s(0). The methods carry them after q and v,
+  /// y = [q; v; s], and pass y + 2n as `s`; impacts and projections leave them unchanged.
+  int states() const { return int(s0_.size()); }
+  const Eigen::VectorXd& s0() const { return s0_; }
+  /// ṡ = g(t, q, v, s) (states() entries). Default: none.
+  virtual void state_rate(double /*t*/, const double* /*q*/, const double* /*v*/, const double* /*s*/,
+                          double* /*sdot*/) const {}
+  /// a = M⁻¹(r(t, q, v, s) + TᵀF) (F over all contacts, or empty); homogeneous (linear only):
   /// without r's constant part.
   virtual void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F,
-                            double* a, bool homogeneous = false) const = 0;
+                            double* a, bool homogeneous = false, const double* s = nullptr) const = 0;
   /// ∂a/∂q, ∂a/∂v without contacts (n × n, dense: for small systems; a Mechanism's
   /// engines use its sparse M, C, K instead); false if not available.
   virtual bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
                                      Eigen::MatrixXd& dadv) const = 0;
   /// T a_free: the contacts' accelerations without contact forces, T M⁻¹ r(t, q, v)
   /// (m entries). Default: acceleration() then T·a.
-  virtual void contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta) const {
+  virtual void contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta,
+                                         const double* s = nullptr) const {
     Eigen::VectorXd a(n_);
-    acceleration(t, q, v, Eigen::VectorXd(), a.data());
+    acceleration(t, q, v, Eigen::VectorXd(), a.data(), false, s);
     Ta = T_ * a;
   }
   virtual double kinetic_energy(const double* v) const = 0;
-  /// Up to a constant.
-  virtual double potential_energy(const double* q) const = 0;
-  /// The power dissipated inside the mechanism (not at its contacts) at (t, q, v).
-  virtual double damping_power(double t, const double* q, const double* v) const = 0;
+  /// Up to a constant (with the elements' stored energy at their states s).
+  virtual double potential_energy(const double* q, const double* s = nullptr) const = 0;
+  /// The power dissipated inside the mechanism (not at its contacts) at (t, q, v, s).
+  virtual double damping_power(double t, const double* q, const double* v, const double* s = nullptr) const = 0;
   /// The elements' reported forces (history columns force_<name>, run.element_forces): their
   /// names, and their values at (t, q, v) (element_force_names().size() entries). Default:
   /// none.
   virtual std::vector<std::string> element_force_names() const { return {}; }
-  virtual void element_forces(double /*t*/, const double* /*q*/, const double* /*v*/, double* /*out*/) const {}
+  virtual void element_forces(double /*t*/, const double* /*q*/, const double* /*v*/, double* /*out*/,
+                              const double* /*s*/ = nullptr) const {}
   /// false: damping_power is zero for every v (a quadrature of it may skip the state).
   virtual bool dissipative() const { return true; }
 
@@ -138,7 +148,7 @@ class MechanicalSystem {
   int n_ = 0, primary_ = 0;
   Eigen::MatrixXd MinvTt_, T_, W_;
   SparseMatrix L_;
-  Eigen::VectorXd q0_, v0_;
+  Eigen::VectorXd q0_, v0_, s0_;
   std::vector<MechanismContact> contacts_;
   std::vector<std::string> node_names_;
   ModelDescription desc_;
@@ -164,20 +174,23 @@ class Mechanism final : public MechanicalSystem {
   /// true without nonlinear elements.
   bool linear() const override { return elements_.empty(); }
   void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
-                    bool homogeneous = false) const override;
+                    bool homogeneous = false, const double* s = nullptr) const override;
+  void state_rate(double t, const double* q, const double* v, const double* s, double* sdot) const override;
   bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
                              Eigen::MatrixXd& dadv) const override;
   /// A single follower: z_jᵀr₀ − (K z_j)ᵀ(q − q(0)) − (C z_j)ᵀv with z_j = M⁻¹T_jᵀ, O(n)
   /// without a mass solve; networks: the default.
-  void contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta) const override;
+  void contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta,
+                                 const double* s = nullptr) const override;
   double kinetic_energy(const double* v) const override;
   /// ½qᵀKq − f₀ᵀq (up to a constant).
-  double potential_energy(const double* q) const override;
-  double damping_power(double t, const double* q, const double* v) const override;
-  bool dissipative() const override { return damped() || elements_.damps(); }
+  double potential_energy(const double* q, const double* s = nullptr) const override;
+  double damping_power(double t, const double* q, const double* v, const double* s = nullptr) const override;
+  bool dissipative() const override { return damped() || elements_.dissipates(); }
   /// Springs' and dashpots' P + kδ + cδ̇ (springs without mass), then the nonlinear elements'.
   std::vector<std::string> element_force_names() const override;
-  void element_forces(double t, const double* q, const double* v, double* out) const override;
+  void element_forces(double t, const double* q, const double* v, double* out,
+                      const double* s = nullptr) const override;
   /// The nonlinear elements (empty for a linear mechanism).
   const ElementSet& elements() const { return elements_; }
 

@@ -89,7 +89,7 @@ class UserMechanism final : public MechanicalSystem {
   }
   bool linear() const override { return f_->linear(); }
   void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
-                    bool homogeneous) const override {
+                    bool homogeneous, const double* /*s: none*/) const override {
     r_.resize(n_);
     f_->force(t, q, v, r_.data());
     // A non-finite force is named here (the engine would only see its step size collapse).
@@ -119,8 +119,10 @@ class UserMechanism final : public MechanicalSystem {
     return true;
   }
   double kinetic_energy(const double* v) const override { return f_->kinetic_energy(v); }
-  double potential_energy(const double* q) const override { return f_->potential_energy(q); }
-  double damping_power(double, const double*, const double* v) const override { return f_->damping_power(v); }
+  double potential_energy(const double* q, const double*) const override { return f_->potential_energy(q); }
+  double damping_power(double, const double*, const double* v, const double*) const override {
+    return f_->damping_power(v);
+  }
 
  private:
   std::shared_ptr<const FollowerSystem> f_;

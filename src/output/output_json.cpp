@@ -493,6 +493,7 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
     t += s.criteria.empty() ? "]" : "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
     o.raw("criteria", t);
     o.boolean("criteria_pass", s.criteria_pass);
+  }
   if (!s.coil_clash.empty()) {
     // springs whose coils clash (include/camdyn/simulator.hpp CoilClashResult)
     std::string t = "[";
@@ -510,6 +511,24 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
     }
     t += "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
     o.raw("coil_clash", t);
+  }
+  if (!s.elements.empty()) {
+    // per reported element quantity (ElementResult)
+    std::string t = "[";
+    for (size_t i = 0; i < s.elements.size(); ++i) {
+      const ElementResult& c = s.elements[i];
+      std::string u;
+      JsonObject k(u, o.child_indent() + 2);
+      k.str("name", c.name);
+      k.num("min", c.min);
+      k.num("max", c.max);
+      k.num("end", c.end);
+      k.num("cycle_range", c.cycle_range);
+      k.close();
+      t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
+    }
+    t += "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
+    o.raw("elements", t);
   }
   if (!s.verdict.empty()) {
     o.raw("verdict", detail::verdict_json(s.verdict, o.child_indent()));

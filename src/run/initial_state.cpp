@@ -131,7 +131,8 @@ void check_start(const Scene& sc, const MechanicalSystem& mech, StartKeys keys) 
     double depth = 0.0;
     if (sc.contact.model == ContactModel::Penalty) {
       if (!have_a0) {
-        mech.acceleration(0.0, q.data(), mech.v0().data(), Eigen::VectorXd::Zero(m), a0.data());
+        mech.acceleration(0.0, q.data(), mech.v0().data(), Eigen::VectorXd::Zero(m), a0.data(), false,
+                         mech.states() ? mech.s0().data() : nullptr);
         have_a0 = true;
       }
       const double F = ((c.cam ? cm.Xddot : 0.0) - c.t.dot(a0)) / mech.W()(j, j);

@@ -61,7 +61,8 @@ inline constexpr EnumName<ElementKind> kElementNames[] = {{ElementKind::Spring, 
                                                    {ElementKind::Lever, "lever"},
                                                    {ElementKind::ProgressiveSpring, "progressive_spring"},
                                                    {ElementKind::GuideFriction, "guide_friction"},
-                                                   {ElementKind::GasLoad, "gas_load"}};
+                                                   {ElementKind::GasLoad, "gas_load"},
+                                                   {ElementKind::HydraulicLashAdjuster, "hydraulic_lash_adjuster"}};
 inline constexpr EnumName<ContactPointKind> kContactPointNames[] = {
     {ContactPointKind::Cam, "cam"}, {ContactPointKind::Lash, "lash"}, {ContactPointKind::Stop, "stop"}};
 inline constexpr EnumName<StopSide> kStopSideNames[] = {{StopSide::Below, "below"}, {StopSide::Above, "above"}};

@@ -202,12 +202,12 @@ const KeyDoc kDocs[] = {
     {"elements.name", "—", "Element name, for messages.", "string", "any string", "\"<type> #<index>\""},
     {"elements.type", "—", "Element type; decides the other keys allowed.", "enum",
      "must be one of \"spring\", \"dashpot\", \"bar\", \"lever\", \"progressive_spring\", \"guide_friction\", "
-     "\"gas_load\"", "(required)"},
+     "\"gas_load\", \"hydraulic_lash_adjuster\"", "(required)"},
     {"elements.nodes", "—", "[lower, upper] (lever: [input, output], or [input, output, pivot] for a lever on a moving "
                             "pivot); \"ground\" may end a spring, dashpot, bar, progressive_spring, guide_friction "
                             "([node, guide]) or gas_load ([valve, body]).",
      "names", "two different node names (a lever: two or three)", "(required)"},
-    {"elements.stiffness", "force/length", "Spring stiffness k.", "real", "must be >= 0"},
+    {"elements.stiffness", "force/length", "Spring stiffness k (hydraulic_lash_adjuster: its plunger spring).", "real", "must be >= 0"},
     {"elements.preload", "force", "Compressive force P at q = 0 (> 0 pushes the ends apart).", "real",
      "must be finite"},
     {"elements.damping", "force·time/length", "Viscous damping c (spring: parallel damper).", "real",
@@ -217,7 +217,7 @@ const KeyDoc kDocs[] = {
     {"elements.masses", "—", "spring: internal surge masses N (N ≥ 1 exactly when mass > 0).", "integer",
      "must be >= 0 and <= 100000"},
     {"elements.youngs_modulus", "force/length²", "bar: Young's modulus E.", "real", "must be > 0"},
-    {"elements.area", "length²", "bar: cross-section area A; gas_load: the valve head's area.", "real", "must be > 0"},
+    {"elements.area", "length²", "bar: cross-section area A; gas_load: the valve head's area; hydraulic_lash_adjuster: the plunger's pressure area A.", "real", "must be > 0"},
     {"elements.length", "length", "bar: length L.", "real", "must be > 0"},
     {"elements.elements", "—", "bar: number of two-node elements.", "integer", "must be >= 1 and <= 100000"},
     {"elements.mass_matrix", "—", "bar: `lumped` or `consistent`.", "enum",
@@ -263,6 +263,21 @@ const KeyDoc kDocs[] = {
                                   "crank_offset_deg.",
      "real", "must be > 0", "2"},
     {"elements.crank_offset_deg", "deg", "gas_load: crank angle at cam angle 0.", "real", "must be finite", "0"},
+    {"elements.chamber_volume", "length³", "hydraulic_lash_adjuster: high-pressure chamber volume V₀ at q = 0; V(δ) = V₀ − Aδ.", "real", "must be > 0"},
+    {"elements.bulk_modulus", "force/length²", "hydraulic_lash_adjuster: bulk modulus β of the air-free oil.", "real", "must be > 0"},
+    {"elements.air_fraction", "—", "hydraulic_lash_adjuster: entrained-air volume fraction α at air_reference_pressure; β_eff(p) = (v_l + v_g)/(v_l/β + v_g/p_abs), v_l = 1 − α, v_g = α p_ref/p_abs (isothermal air in oil, Merritt 1967).", "real", "must be >= 0 and < 1"},
+    {"elements.air_reference_pressure", "force/length²", "hydraulic_lash_adjuster: absolute pressure p_ref at which air_fraction is given (the atmosphere; the default is in Pa); gauge pressures are relative to it.", "real", "must be > 0"},
+    {"elements.plunger_diameter", "length", "hydraulic_lash_adjuster: plunger diameter d of the leak-down clearance.", "real", "must be > 0"},
+    {"elements.leak_clearance", "length", "hydraulic_lash_adjuster: radial clearance c between plunger and body; leak-down Q = π d c³ (p − p_s)/(12 μ L); 0: no leak.", "real", "must be >= 0"},
+    {"elements.leak_length", "length", "hydraulic_lash_adjuster: length L of the leak-down clearance.", "real", "must be > 0"},
+    {"elements.viscosity", "force·time/length²", "hydraulic_lash_adjuster: dynamic viscosity μ of the oil.", "real", "must be > 0"},
+    {"elements.supply_pressure", "force/length²", "hydraulic_lash_adjuster: oil gallery (supply) gauge pressure p_s, behind the check valve and at the leak's exit.", "real", "must be >= 0"},
+    {"elements.check_opening_pressure", "force/length²", "hydraulic_lash_adjuster: check valve opening pressure difference Δp_open (the valve opens for p < p_s − Δp_open).", "real", "must be >= 0"},
+    {"elements.check_area", "length²", "hydraulic_lash_adjuster: check valve flow area A_v; Q = C_d A_v √(2/ρ) Δ/(Δ² + Δ_t²)^¼, Δ = p_s − p − Δp_open > 0; 0: no check valve.", "real", "must be >= 0"},
+    {"elements.check_discharge_coefficient", "—", "hydraulic_lash_adjuster: check valve discharge coefficient C_d.", "real", "must be > 0 and <= 1"},
+    {"elements.check_transition_pressure", "force/length²", "hydraulic_lash_adjuster: check valve regularisation Δ_t: the flow is the orifice law above it, linear (laminar) below it (default in Pa).", "real", "must be > 0"},
+    {"elements.oil_density", "mass/length³", "hydraulic_lash_adjuster: oil density ρ of the check valve's orifice law (default in kg/m³).", "real", "must be > 0"},
+    {"elements.initial_pressure", "force/length²", "hydraulic_lash_adjuster: chamber gauge pressure at t = 0 (the internal state's start).", "real", "must be finite and > -air_reference_pressure"},
     // [[contacts]]
     {"contacts.name", "—", "Contact name: history columns `F_<name>`, `gap_<name>`, `in_<name>`; the `contact` column of events.csv.",
      "string", "non-empty, unique", "(required)"},
@@ -313,6 +328,7 @@ std::map<std::string, std::string> defaults() {
   s.network.nodes.emplace_back();
   for (ElementKind k : {ElementKind::Spring, ElementKind::Dashpot, ElementKind::Bar, ElementKind::Lever,
                         ElementKind::ProgressiveSpring, ElementKind::GuideFriction, ElementKind::GasLoad}) {
+                        ElementKind::ProgressiveSpring, ElementKind::HydraulicLashAdjuster}) {
     ElementSpec e;
     e.kind = k;
     s.network.elements.push_back(e);

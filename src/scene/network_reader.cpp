@@ -45,7 +45,8 @@ const std::vector<std::string>& all_element_keys() {
                                           "ratio",   "deflections",  "forces",         "installed_deflection",
                                           "free_length", "solid_length", "coil_gaps", "coil_restitution",
                                           "friction_coefficient", "normal_load", "velocity_scale",
-                                          "crank_angles_deg", "pressures", "crank_ratio", "crank_offset_deg"};
+                                          "crank_angles_deg", "pressures", "crank_ratio", "crank_offset_deg",
+                                          "chamber_volume", "bulk_modulus", "air_fraction", "air_reference_pressure", "plunger_diameter", "leak_clearance", "leak_length", "viscosity", "supply_pressure", "check_opening_pressure", "check_area", "check_discharge_coefficient", "check_transition_pressure", "oil_density", "initial_pressure"};
   return k;
 }
 
@@ -70,6 +71,8 @@ std::vector<std::string> element_keys(ElementKind kind) {
       break;
     case ElementKind::GasLoad:
       k.insert(k.end(), {"crank_angles_deg", "pressures", "area", "crank_ratio", "crank_offset_deg"});
+    case ElementKind::HydraulicLashAdjuster:
+      k.insert(k.end(), {"area", "stiffness", "preload", "chamber_volume", "bulk_modulus", "air_fraction", "air_reference_pressure", "plunger_diameter", "leak_clearance", "leak_length", "viscosity", "supply_pressure", "check_opening_pressure", "check_area", "check_discharge_coefficient", "check_transition_pressure", "oil_density", "initial_pressure"});
       break;
   }
   return k;
@@ -176,6 +179,25 @@ std::vector<SceneEntry> element_entries(const ElementSpec& e) {
       l.real("area", e.area);
       l.real("crank_ratio", e.crank_ratio);
       l.real("crank_offset_deg", e.crank_offset_deg);
+    case ElementKind::HydraulicLashAdjuster:
+      l.real("area", e.area);
+      l.real("stiffness", e.stiffness);
+      l.real("preload", e.preload);
+      l.real("chamber_volume", e.chamber_volume);
+      l.real("bulk_modulus", e.bulk_modulus);
+      l.real("air_fraction", e.air_fraction);
+      l.real("air_reference_pressure", e.air_reference_pressure);
+      l.real("plunger_diameter", e.plunger_diameter);
+      l.real("leak_clearance", e.leak_clearance);
+      l.real("leak_length", e.leak_length);
+      l.real("viscosity", e.viscosity);
+      l.real("supply_pressure", e.supply_pressure);
+      l.real("check_opening_pressure", e.check_opening_pressure);
+      l.real("check_area", e.check_area);
+      l.real("check_discharge_coefficient", e.check_discharge_coefficient);
+      l.real("check_transition_pressure", e.check_transition_pressure);
+      l.real("oil_density", e.oil_density);
+      l.real("initial_pressure", e.initial_pressure);
       break;
   }
   return std::move(l.v);
@@ -341,6 +363,21 @@ void read_network_array(const std::string& array, const toml::node& node, Scene&
         else if (k == "pressures") e.pressures = r.reals(*v, key);
         else if (k == "crank_ratio") e.crank_ratio = r.real(*v, key);
         else if (k == "crank_offset_deg") e.crank_offset_deg = r.real(*v, key);
+        else if (k == "chamber_volume") e.chamber_volume = r.real(*v, key);
+        else if (k == "bulk_modulus") e.bulk_modulus = r.real(*v, key);
+        else if (k == "air_fraction") e.air_fraction = r.real(*v, key);
+        else if (k == "air_reference_pressure") e.air_reference_pressure = r.real(*v, key);
+        else if (k == "plunger_diameter") e.plunger_diameter = r.real(*v, key);
+        else if (k == "leak_clearance") e.leak_clearance = r.real(*v, key);
+        else if (k == "leak_length") e.leak_length = r.real(*v, key);
+        else if (k == "viscosity") e.viscosity = r.real(*v, key);
+        else if (k == "supply_pressure") e.supply_pressure = r.real(*v, key);
+        else if (k == "check_opening_pressure") e.check_opening_pressure = r.real(*v, key);
+        else if (k == "check_area") e.check_area = r.real(*v, key);
+        else if (k == "check_discharge_coefficient") e.check_discharge_coefficient = r.real(*v, key);
+        else if (k == "check_transition_pressure") e.check_transition_pressure = r.real(*v, key);
+        else if (k == "oil_density") e.oil_density = r.real(*v, key);
+        else if (k == "initial_pressure") e.initial_pressure = r.real(*v, key);
       }
       s.network.elements.push_back(std::move(e));
     } else {

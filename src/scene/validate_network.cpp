@@ -168,6 +168,40 @@ void Validator::network() const {
         net_gt(p + ".velocity_scale", e.velocity_scale, 0.0, who);
         break;
       case ElementKind::GasLoad: gas_load(e, p, who); break;
+      case ElementKind::HydraulicLashAdjuster: {
+        net_gt(p + ".area", e.area, 0.0, who);
+        net_ge(p + ".stiffness", e.stiffness, 0.0, who);
+        net_finite(p + ".preload", e.preload, who);
+        net_gt(p + ".chamber_volume", e.chamber_volume, 0.0, who);
+        net_gt(p + ".bulk_modulus", e.bulk_modulus, 0.0, who);
+        net_ge(p + ".air_fraction", e.air_fraction, 0.0, who);
+        if (!(e.air_fraction < 1.0))
+          net_fail(p + ".air_fraction", fmt_num(e.air_fraction), "must be < 1 (a volume fraction in [0, 1)) (" + who + ")");
+        net_gt(p + ".air_reference_pressure", e.air_reference_pressure, 0.0, who);
+        net_gt(p + ".plunger_diameter", e.plunger_diameter, 0.0, who);
+        net_ge(p + ".leak_clearance", e.leak_clearance, 0.0, who);
+        net_gt(p + ".leak_length", e.leak_length, 0.0, who);
+        net_gt(p + ".viscosity", e.viscosity, 0.0, who);
+        net_ge(p + ".supply_pressure", e.supply_pressure, 0.0, who);
+        net_ge(p + ".check_opening_pressure", e.check_opening_pressure, 0.0, who);
+        net_ge(p + ".check_area", e.check_area, 0.0, who);
+        net_gt(p + ".check_discharge_coefficient", e.check_discharge_coefficient, 0.0, who);
+        if (!(e.check_discharge_coefficient <= 1.0))
+          net_fail(p + ".check_discharge_coefficient", fmt_num(e.check_discharge_coefficient),
+                   "must be <= 1 (" + who + ")");
+        net_gt(p + ".check_transition_pressure", e.check_transition_pressure, 0.0, who);
+        net_gt(p + ".oil_density", e.oil_density, 0.0, who);
+        net_finite(p + ".initial_pressure", e.initial_pressure, who);
+        if (!(e.initial_pressure > -e.air_reference_pressure))
+          net_fail(p + ".initial_pressure", fmt_num(e.initial_pressure),
+                   "must be > -air_reference_pressure (" + fmt_num(-e.air_reference_pressure) +
+                       "): a gauge pressure above vacuum (" + who + ")");
+        if (s.solver.integrator == Integrator::Ida)
+          net_fail("solver.integrator", "\"ida\"",
+                   "cannot run " + who + ": IDA does not carry an element's internal states (the chamber "
+                   "pressure); use arkode-erk, arkode-dirk or cvode-bdf with contact.model = \"holonomic\"");
+        break;
+      }
     }
   }
 
@@ -279,7 +313,8 @@ void Validator::network() const {
     // a guide with Coulomb friction holds its node too (against forces below μN)
     const bool stiff = (e.kind == ElementKind::Spring && e.stiffness > 0) || e.kind == ElementKind::Bar ||
                        e.kind == ElementKind::ProgressiveSpring ||
-                       (e.kind == ElementKind::GuideFriction && e.friction_coefficient * e.normal_load > 0);
+                       (e.kind == ElementKind::GuideFriction && e.friction_coefficient * e.normal_load > 0) ||
+                       e.kind == ElementKind::HydraulicLashAdjuster;
     const bool joins = stiff || e.kind == ElementKind::Lever || (e.kind == ElementKind::Spring && e.mass > 0);
     if (!joins) continue;
     const bool g0 = e.nodes[0] == "ground", g1 = e.nodes[1] == "ground";

@@ -49,7 +49,8 @@ std::vector<camdyn::Scene> scenes_with_every_key() {
   s.network.nodes = {a, b};
   for (auto k : {camdyn::ElementKind::Spring, camdyn::ElementKind::Dashpot, camdyn::ElementKind::Bar,
                  camdyn::ElementKind::Lever, camdyn::ElementKind::ProgressiveSpring,
-                 camdyn::ElementKind::GuideFriction, camdyn::ElementKind::GasLoad}) {
+                 camdyn::ElementKind::GuideFriction, camdyn::ElementKind::GasLoad,
+                 camdyn::ElementKind::HydraulicLashAdjuster}) {
     camdyn::ElementSpec e;
     e.kind = k;
     e.name = "e";

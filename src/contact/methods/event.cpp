@@ -71,7 +71,7 @@ void EventMethod::restart() {
   set_metric();
   // the state the engine starts from is on the active set's manifold too
   if (k) {
-    Eigen::VectorXd corr(2 * n_);
+    Eigen::VectorXd corr(ny_);
     project(t_, y_.data(), corr.data());
     y_ += corr;
   }
@@ -111,7 +111,7 @@ void EventMethod::stiff_metric(double h) {
 
 void EventMethod::project(double t, const double* y, double* corr) {
   const int k = int(set_.size());
-  Eigen::Map<Eigen::VectorXd> C(corr, 2 * n_);
+  Eigen::Map<Eigen::VectorXd> C(corr, ny_);
   if (k == 0) {
     C.setZero();
     return;
@@ -129,11 +129,13 @@ void EventMethod::project(double t, const double* y, double* corr) {
     const double w = Waa_.matrixQTZ()(0, 0);
     const double x = Waa_.rank() ? pg_[0] / w : 0.0, xd = Waa_.rank() ? pgd_[0] / w : 0.0;
     C.head(n_).noalias() = -(MTa_.col(0) * x);
-    C.tail(n_).noalias() = -(MTa_.col(0) * xd);
+    C.segment(n_, n_).noalias() = -(MTa_.col(0) * xd);
+    C.tail(ns_).setZero();  // the elements' internal states are not projected
     return;
   }
   C.head(n_).noalias() = -MTa_ * Waa_.solve(pg_);
-  C.tail(n_).noalias() = -MTa_ * Waa_.solve(pgd_);
+  C.segment(n_, n_).noalias() = -MTa_ * Waa_.solve(pgd_);
+  C.tail(ns_).setZero();
 }
 
 // The cam's work over [ta, tb] inside the last step: 3-point Gauss–Legendre on the
@@ -167,7 +169,7 @@ ContactRun::StepEnergy EventMethod::advance_energy(double t0, double t1) {
   auto state = [this, P](double tau, Eigen::VectorXd& y) {
     eng_->dense(tau, y);
     if (P > 1 && !set_.empty()) {
-      rc_.resize(2 * n_);
+      rc_.resize(ny_);
       project(tau, y.data(), rc_.data());
       y += rc_;
     }
@@ -189,10 +191,10 @@ ContactRun::StepEnergy EventMethod::advance_energy(double t0, double t1) {
 
 void EventMethod::run_method() {
   eng_->set_roots(m_, [this](double t, const double* y, double* g) {
-    const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
+    const Eigen::Map<const Eigen::VectorXd> Y(y, ny_);
     yv_ = Y;
     if (on_manifold_roots_ && !set_.empty()) {  // see the header: on_manifold_roots_
-      rc_.resize(2 * n_);
+      rc_.resize(ny_);
       project(t, yv_.data(), rc_.data());
       yv_ += rc_;
     }
@@ -214,7 +216,7 @@ void EventMethod::run_method() {
   }
   set_cam_window(on_break_ ? t_ : NAN, NAN);
   restart();
-  Eigen::VectorXd y1(2 * n_);
+  Eigen::VectorXd y1(ny_);
   const double gap_thr = gap_thr_;
   while (t_ < sc_.run.t_end * (1 - 1e-15)) {
     if (cam_joint_impact()) restart();  // closed contacts on a C0 joint of the cam
@@ -239,7 +241,7 @@ void EventMethod::run_method() {
     // error (case A7 at rtol 1e-11: the free flights started up to 6.1e-10 m off the
     // rtol-1e-12 run, 2.5e-12 m with the projection).
     if (hit && !set_.empty()) {
-      rc_.resize(2 * n_);
+      rc_.resize(ny_);
       project(t_, y_.data(), rc_.data());
       y_ += rc_;
     }
@@ -318,7 +320,7 @@ bool EventMethod::scan_closing(double t0, double& t1, Eigen::VectorXd& y1, int& 
   auto lowest = [&](double tau, int& j) {
     eng_->dense(tau, yg_);
     if (!set_.empty()) {
-      rc_.resize(2 * n_);
+      rc_.resize(ny_);
       project(tau, yg_.data(), rc_.data());
       yg_ += rc_;
     }

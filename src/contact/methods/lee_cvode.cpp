@@ -68,7 +68,7 @@ class LeeInCvode final : public EventMethod {
   };
   Power power_at(double tau) {
     eng_->dense(tau, yh_);
-    corr_.resize(2 * n_);
+    corr_.resize(ny_);
     project(tau, yh_.data(), corr_.data());
     yh_ += corr_;
     const CamMotion cm = cam_at(tau);
@@ -153,7 +153,7 @@ class LeeInCvode final : public EventMethod {
       r.t = to;
       eng_->dense(to, r.y);
       if (!set_.empty()) {
-        corr_.resize(2 * n_);
+        corr_.resize(ny_);
         project(to, r.y.data(), corr_.data());
         r.y += corr_;
       }

@@ -47,7 +47,7 @@ class LeeLocated final : public ContactRun {
     samples_.resize(m_);
     least_ = Eigen::VectorXd::Constant(m_, INFINITY);
     OdeSystem sys;
-    sys.size = 2 * n_;
+    sys.size = ny_;
     sys.rhs = [this](double t, const double* y, double* yd) { rhs(t, y, yd); };
     // The mechanism's sparse Newton structure (the force shape does not depend on the
     // state); a user's follower: its dense Jacobian, without one difference quotients.
@@ -74,7 +74,11 @@ class LeeLocated final : public ContactRun {
     const double x = (t - s_t0_) / s_h_;
     for (int j = 0; j < m_; ++j) fs_[j] = F0_[j] + (F1_[j] - F0_[j]) * x + Fc_[j] * 4.0 * x * (1.0 - x);
     std::copy(y + n_, y + 2 * n_, yd);
-    mk_.acceleration(t, y, y + n_, fs_, yd + n_, homogeneous_);
+    mk_.acceleration(t, y, y + n_, fs_, yd + n_, homogeneous_, states_of(y));
+    if (ns_) {  // the elements' internal states (a homogeneous response carries none)
+      if (homogeneous_) std::fill(yd + 2 * n_, yd + ny_, 0.0);
+      else mk_.state_rate(t, y, y + n_, states_of(y), yd + 2 * n_);
+    }
   }
   double integrate(double t, const Eigen::VectorXd& from, double h, Eigen::VectorXd& out) {
     return integrate_on(*eng_, t, from, h, out);
@@ -114,7 +118,7 @@ class LeeLocated final : public ContactRun {
     for (int j : set) all = all && r->have[j];
     if (all) return *r;
     ++resp_gen_;  // solve_step's factorisation of J is stale
-    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(2 * n_);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ny_);
     const Eigen::VectorXd keep0 = F0_, keep1 = F1_, keepc = Fc_;
     for (int j : set) {
       if (r->have[j]) continue;
@@ -146,6 +150,7 @@ class LeeLocated final : public ContactRun {
   struct StepData {
     double t0 = 0, t1 = 0;
     Eigen::VectorXd y0, y1, a0, a1, F0, F1;  // F1: acceleration-level forces at t1
+    Eigen::VectorXd r0, r1;                  // ṡ at both ends (the elements' internal states)
     std::vector<int> set;                    // active contacts over the step
     double W0 = 0, D0 = 0, P0 = 0;
     Eigen::VectorXd s0, s1, sc;              // the force shape (start, end, bubble)
@@ -160,9 +165,10 @@ class LeeLocated final : public ContactRun {
     const double x2 = x * x, x3 = x2 * x;
     const double h00 = 2 * x3 - 3 * x2 + 1, h10 = (x3 - 2 * x2 + x) * h;
     const double h01 = -2 * x3 + 3 * x2, h11 = (x3 - x2) * h;
-    y.resize(2 * n_);
-    y.head(n_) = h00 * s.y0.head(n_) + h10 * s.y0.tail(n_) + h01 * s.y1.head(n_) + h11 * s.y1.tail(n_);
-    y.tail(n_) = h00 * s.y0.tail(n_) + h10 * s.a0 + h01 * s.y1.tail(n_) + h11 * s.a1;
+    y.resize(ny_);
+    y.head(n_) = h00 * s.y0.head(n_) + h10 * s.y0.segment(n_, n_) + h01 * s.y1.head(n_) + h11 * s.y1.segment(n_, n_);
+    y.segment(n_, n_) = h00 * s.y0.segment(n_, n_) + h10 * s.a0 + h01 * s.y1.segment(n_, n_) + h11 * s.a1;
+    if (ns_) y.tail(ns_) = h00 * s.y0.tail(ns_) + h10 * s.r0 + h01 * s.y1.tail(ns_) + h11 * s.r1;
   }
   // The held contacts' largest |gap| inside the step on its Hermite state, over
   // max(10 tol_u, 10⁻⁴ of the cam's lift). The displacement level holds at the step's ends
@@ -374,7 +380,7 @@ class LeeLocated final : public ContactRun {
     if (!y1.allFinite()) return "the trial step's end state is not finite";
     Eigen::VectorXd a(n_);
     try {
-      mk_.acceleration(t1, y1.data(), y1.data() + n_, F1_, a.data(), false);
+      mk_.acceleration(t1, y1.data(), y1.data() + n_, F1_, a.data(), false, states_of(y1));
     } catch (const std::exception& e) {
       return e.what();
     }
@@ -392,8 +398,8 @@ class LeeLocated final : public ContactRun {
         if (R) {
           J(2 * i, 2 * l) = ti.dot(R->D1[j].head(n_));
           J(2 * i, 2 * l + 1) = ti.dot(R->Dc[j].head(n_));
-          J(2 * i + 1, 2 * l) = ti.dot(R->D1[j].tail(n_));
-          J(2 * i + 1, 2 * l + 1) = ti.dot(R->Dc[j].tail(n_));
+          J(2 * i + 1, 2 * l) = ti.dot(R->D1[j].segment(n_, n_));
+          J(2 * i + 1, 2 * l + 1) = ti.dot(R->Dc[j].segment(n_, n_));
         } else {
           const double w = mk_.W()(set[i], j);
           J(2 * i, 2 * l) = w * hs * hs / 6.0;
@@ -417,7 +423,7 @@ class LeeLocated final : public ContactRun {
     const double rtol = sc_.solver.rtol, tol_u = sc_.contact.tol_u;
     const double gap_thr = 1e-3 * tol_u;
     double h = initial_step(), h_try = -1.0;
-    Eigen::VectorXd y1(2 * n_);
+    Eigen::VectorXd y1(ny_);
     {
       CamMotion m;  // a start on a breakpoint: the first step sees the segment after it
       if (one_sided_motion(cam_, drive_, break_angles_, t_, 1, &m)) brk_t_ = t_;
@@ -507,6 +513,12 @@ class LeeLocated final : public ContactRun {
       s.sc = Fc_;
       acceleration(t_, y_, F_, s.a0);
       acceleration(t1, y1, Fa, s.a1);
+      if (ns_) {
+        s.r0.resize(ns_);
+        s.r1.resize(ns_);
+        mk_.state_rate(t_, y_.data(), y_.data() + n_, states_of(y_), s.r0.data());
+        mk_.state_rate(t1, y1.data(), y1.data() + n_, states_of(y1), s.r1.data());
+      }
       if (const double r = held_drift(s); r > 1.0) {  // the step does not resolve the cam
         ++sum_.rejected_steps;
         steps_.failed(hs);

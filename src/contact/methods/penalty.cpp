@@ -31,7 +31,7 @@ class PenaltyMethod final : public ContactRun {
       sys.newton = sn;
       sn->contact_derivatives =
           [this](double t, const double* y, Eigen::VectorXd& dFdg, Eigen::VectorXd& dFdgd) {
-            yv_ = Eigen::Map<const Eigen::VectorXd>(y, 2 * n_);
+            yv_ = Eigen::Map<const Eigen::VectorXd>(y, ny_);
             const CamMotion cm = cam_at(t);
             dFdg.resize(m_);
             dFdgd.resize(m_);
@@ -44,7 +44,7 @@ class PenaltyMethod final : public ContactRun {
           };
     } else if (mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq0, dv0))
       sys.jacobian = [this](double t, const double* y, Eigen::MatrixXd& J) {
-        const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
+        const Eigen::Map<const Eigen::VectorXd> Y(y, ny_);
         yv_ = Y;
         const CamMotion cm = cam_at(t);
         Eigen::MatrixXd dadq, dadv;
@@ -128,7 +128,7 @@ class PenaltyMethod final : public ContactRun {
   void start_equilibrium(const std::vector<int>& set) {
     const int k = int(set.size());
     const CamMotion cm0 = cam_at(0.0);
-    const Eigen::VectorXd q0 = y_.head(n_), v0 = y_.tail(n_);
+    const Eigen::VectorXd q0 = y_.head(n_), v0 = y_.segment(n_, n_);
     const bool single = mk_.single_follower();
     Eigen::MatrixXd P(n_, k), TP(k, k), Wss(k, k);
     Eigen::VectorXd g0(k), sd(k), mu(k), s_static(k), Fs(k);
@@ -188,13 +188,13 @@ class PenaltyMethod final : public ContactRun {
   void run_method() override {
     // every gap is a root: the law's kink
     eng_->set_roots(m_, [this](double t, const double* y, double* g) {
-      const Eigen::Map<const Eigen::VectorXd> Y(y, 2 * n_);
+      const Eigen::Map<const Eigen::VectorXd> Y(y, ny_);
       yv_ = Y;
       const CamMotion cm = cam_at(t);
       for (int j = 0; j < m_; ++j) g[j] = gap(j, yv_, cm);
     });
     eng_->reinit(t_, y_);
-    Eigen::VectorXd y1(2 * n_), Fprev;
+    Eigen::VectorXd y1(ny_), Fprev;
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       const double tout = next_stop_time();
       Fprev = F_;

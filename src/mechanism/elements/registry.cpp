@@ -7,6 +7,7 @@
 #include "mechanism/elements/guide_friction.hpp"
 #include "mechanism/elements/gas_load.hpp"
 #include "camdyn/scene.hpp"
+#include "mechanism/elements/hydraulic_lash_adjuster.hpp"
 
 namespace camdyn {
 
@@ -21,6 +22,7 @@ std::unique_ptr<Element> make_element(const ElementSpec& spec, const std::string
     case ElementKind::GasLoad:
       if (!scene) throw std::logic_error("make_element: a gas_load needs the scene's cam drive");
       return std::make_unique<GasLoad>(spec, name, scene->cam);
+    case ElementKind::HydraulicLashAdjuster: return std::make_unique<HydraulicLashAdjuster>(spec, name);
   }
   throw std::logic_error("make_element: unknown element kind");
 }
