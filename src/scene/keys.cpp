@@ -327,8 +327,8 @@ std::map<std::string, std::string> defaults() {
   Scene s;
   s.network.nodes.emplace_back();
   for (ElementKind k : {ElementKind::Spring, ElementKind::Dashpot, ElementKind::Bar, ElementKind::Lever,
-                        ElementKind::ProgressiveSpring, ElementKind::GuideFriction, ElementKind::GasLoad}) {
-                        ElementKind::ProgressiveSpring, ElementKind::HydraulicLashAdjuster}) {
+                        ElementKind::ProgressiveSpring, ElementKind::GuideFriction, ElementKind::GasLoad,
+                        ElementKind::HydraulicLashAdjuster}) {
     ElementSpec e;
     e.kind = k;
     s.network.elements.push_back(e);
