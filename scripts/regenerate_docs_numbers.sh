@@ -8,6 +8,12 @@
 #   scale/                build/bench/bench_scale sweep + scripts/bench_scale_plot.py (when the
 #                         bench targets are built: cmake --build build --target bench_scale)
 #   one_mechanism.md      bench/one_mechanism_table.py, only with CAMDYN_BEFORE_BIN=<older camdyn>
+#   valve_trains.md       bench/valve_train_table.py: the examples' table of docs/guide/valve_trains.md
+#   newton_stiff.md       the stiff bar's penalty on cvode-bdf: steps and Newton statistics against
+#                         rtol (bench/newton_stats_table.py), the "steps follow the error test" check
+#   peers/                bench/peers/peers.py: camdyn, Siconos and MuJoCo on the two-mass valve
+#                         train and case A (peers.md, peers.csv, peers_*.png); a peer that is not
+#                         installed is skipped with one line (install: scripts/setup.sh --peers)
 #   headlines.csv/.md     every case's headlines (Lee against the best penalty and the best
 #                         event run at equal accuracy, with their goals); the README and
 #                         docs/background/performance.md quote these between
@@ -26,6 +32,10 @@
 #   --cases   only these work-precision cases (the headlines are gathered from every
 #             wp_<case>/ present, each stamped by the run that made it)
 #   --no-tol-sweep  leave tol_sweep/ as it is
+#   --no-peers      leave peers/ as it is
+#   --check-repeat CASE   only check: rerun `camdyn bench CASE` with the mode of the committed
+#             wp_CASE/ into a temporary directory and compare the rows with
+#             scripts/bench_rows_equal.py (timings aside); exit 1 when a row differs
 # Timings are CPU seconds (Summary::cpu_seconds, median of the repeats); on a shared
 # machine they are noisy: compare ratios. Run it at low priority (it uses nice -n 5).
 set -euo pipefail
@@ -35,6 +45,8 @@ BUILD="$ROOT/build"
 MODE=full
 QUOTE=0
 TOL=1
+PEERS=1
+CHECK=""
 CASES=""
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -44,8 +56,10 @@ while [ $# -gt 0 ]; do
     --quote) QUOTE=1 ;;
     --quote-only) QUOTE=2 ;;
     --no-tol-sweep) TOL=0 ;;
-    -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
-    *) echo "regenerate_docs_numbers.sh: unknown argument '$1' (allowed: --quick, --build DIR, --cases LIST, --quote, --quote-only, --no-tol-sweep)" >&2; exit 2 ;;
+    --no-peers) PEERS=0 ;;
+    --check-repeat) CHECK="$2"; shift ;;
+    -h|--help) sed -n '2,38p' "$0"; exit 0 ;;
+    *) echo "regenerate_docs_numbers.sh: unknown argument '$1' (allowed: --quick, --build DIR, --cases LIST, --quote, --quote-only, --no-tol-sweep, --no-peers, --check-repeat CASE)" >&2; exit 2 ;;
   esac
   shift
 done
@@ -72,6 +86,16 @@ fi
 OUT="$ROOT/docs/bench/generated"
 mkdir -p "$OUT"
 cd "$ROOT"
+if [ -n "$CHECK" ]; then
+  [ -f "$OUT/wp_$CHECK/work_precision.md" ] || { echo "regenerate_docs_numbers.sh: --check-repeat: no $OUT/wp_$CHECK/ to compare with" >&2; exit 2; }
+  if grep -q "Mode: quick" "$OUT/wp_$CHECK/work_precision.md"; then ARGS=(--quick --repeats 1); else ARGS=(--repeats 3); fi
+  TMP="$(mktemp -d)"
+  trap 'rm -rf "$TMP"' EXIT
+  echo "== check: $CAMDYN bench $CHECK ${ARGS[*]} against $OUT/wp_$CHECK (made at: $(head -1 "$OUT/wp_$CHECK/work_precision.md"))" >&2
+  nice -n 5 "$CAMDYN" bench "$CHECK" "${ARGS[@]}" --quiet --no-plot --out "$TMP"
+  python3 "$ROOT/scripts/bench_rows_equal.py" "$OUT/wp_$CHECK" "$TMP"
+  exit $?
+fi
 COMMIT="$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)"
 git diff --quiet HEAD -- src include CMakeLists.txt 2>/dev/null || COMMIT="$COMMIT+uncommitted"
 DATE="$(date -u +%Y-%m-%dT%H:%M:%SZ)"
@@ -87,10 +111,15 @@ T0=$(date +%s)
   echo "|---|---|---|"
 } > "$LOG.tmp"
 
-stamp_md() {  # prepend the stamp to a Markdown file
+stamp_md() {  # prepend the stamp to a Markdown file (after its front matter, if any)
   local f="$1"
   [ -f "$f" ] || return 0
-  { echo "<!-- $STAMP -->"; echo; cat "$f"; } > "$f.tmp" && mv "$f.tmp" "$f"
+  if [ "$(head -1 "$f")" = "---" ]; then
+    awk -v s="<!-- $STAMP -->" 'NR==1{print; fm=1; next} fm && $0=="---"{print; print ""; print s; fm=0; next} {print}' "$f" > "$f.tmp"
+  else
+    { echo "<!-- $STAMP -->"; echo; cat "$f"; } > "$f.tmp"
+  fi
+  mv "$f.tmp" "$f"
 }
 
 run_part() {  # run_part NAME CMD...: time it, log it
@@ -140,6 +169,19 @@ if [ -n "${CAMDYN_BEFORE_BIN:-}" ]; then
   stamp_md "$OUT/one_mechanism.md"
 else
   echo "| one mechanism | skipped: set CAMDYN_BEFORE_BIN to an older camdyn binary (bench/one_mechanism_table.py) | – |" >> "$LOG.tmp"
+fi
+
+run_part "valve-train examples" bash -c "nice -n 5 python3 bench/valve_train_table.py --bin '$CAMDYN' --out '$OUT/valve_trains.md'"
+stamp_md "$OUT/valve_trains.md"
+run_part "stiff bar Newton statistics" bash -c "nice -n 5 python3 bench/newton_stats_table.py --bin '$CAMDYN' --out '$OUT/newton_stiff.md'"
+stamp_md "$OUT/newton_stiff.md"
+
+if [ "$PEERS" = 1 ]; then
+  PEER_ARGS=(--camdyn "$CAMDYN" --build "$BUILD" --out "$OUT/peers")
+  [ "$MODE" = quick ] && PEER_ARGS+=(--quick --repeats 1)
+  run_part "peers" nice -n 5 /usr/bin/python3 bench/peers/peers.py "${PEER_ARGS[@]}"
+else
+  echo "| peers | not rerun (--no-peers) | – |" >> "$LOG.tmp"
 fi
 
 # every case's headlines in one file, with the text the docs quote
