@@ -29,14 +29,16 @@ SETS = {"contact.model": "penalty", "contact.penalty_stiffness": 1e7, "contact.p
 
 
 def run(binary, rtol, t_end, tmp):
-    cmd = [binary, "run", SCENE, "-q", "--out", tmp]
+    cmd = [binary, "run", SCENE, "-q", "--out", tmp]  # the rows' command, shown with DIR and R
     for k, v in dict(SETS, **{"solver.rtol": rtol, "run.t_end": t_end}).items():
         cmd += ["--set", f"{k}={v}"]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode not in (0, 1):
         raise SystemExit(f"newton_stats_table: {' '.join(cmd)}: exit {r.returncode}: {r.stderr.strip()}")
     with open(os.path.join(tmp, "summary.json")) as f:
-        return json.load(f), " ".join(cmd[1:]).replace(ROOT + "/", "")
+        summary = json.load(f)
+    shown = ["DIR" if c == tmp else "solver.rtol=R" if c.startswith("solver.rtol=") else c for c in cmd[1:]]
+    return summary, " ".join(shown).replace(ROOT + "/", "")
 
 
 def main(argv=None):
