@@ -19,9 +19,11 @@ CPU_IN_NOTE = re.compile(r"\d+(?:\.\d+)?(?:e[-+]?\d+)? s\b")
 
 
 def norm_note(n):
-    """The note without what depends on the clock: CPU times, and "timed once (> 5 s)" (a
-    run is timed once when its first timing exceeds the cap)."""
+    """The note without what depends on the clock or the cache: CPU times, "timed once (> 5 s)"
+    (a run is timed once when its first timing exceeds the cap), and whether a reference came
+    from the reference cache (its rows are the same)."""
     n = CPU_IN_NOTE.sub("<t> s", n)
+    n = n.replace(", from the cache", "").replace("; this check from the cache too", "")
     n = re.sub(r"(; )?timed once \(> <t> s\)", "", n)
     return n.strip("; ")
 

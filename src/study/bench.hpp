@@ -63,8 +63,7 @@ struct BenchRow {
   double cpu_seconds = std::numeric_limits<double>::quiet_NaN();  ///< median over repeats
   long steps = 0, rhs_evals = 0;
   /// Implicit engines: Newton-matrix factorisations, Newton iterations, Newton convergence
-  /// failures and error-test failures (Summary's counters; 0 on an explicit engine and on
-  /// a cached reference run).
+  /// failures and error-test failures (Summary's counters; 0 on an explicit engine).
   long lin_setups = 0, nonlin_iters = 0, nonlin_conv_fails = 0, err_test_fails = 0;
   long rejected_steps = 0;
   double err_u = std::numeric_limits<double>::quiet_NaN();
