@@ -23,7 +23,8 @@ def norm_note(n):
     (a run is timed once when its first timing exceeds the cap), and whether a reference came
     from the reference cache (its rows are the same)."""
     n = CPU_IN_NOTE.sub("<t> s", n)
-    n = n.replace(", from the cache", "").replace("; this check from the cache too", "")
+    n = re.sub(r"[,;] this check from the cache too", "", n)
+    n = re.sub(r"[,;] from the cache", "", n)
     n = re.sub(r"(; )?timed once \(> <t> s\)", "", n)
     return n.strip("; ")
 
