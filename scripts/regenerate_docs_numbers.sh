@@ -80,6 +80,12 @@ for path in sys.argv[2:]:
         open(path, "w").write(t)
 EOF
 }
+for part in ${ONLY//,/ }; do
+  case "$part" in
+    wp|tol|scale|one|valve|newton|peers) ;;
+    *) echo "regenerate_docs_numbers.sh: --only: unknown part '$part' (allowed: wp, tol, scale, one, valve, newton, peers)" >&2; exit 2 ;;
+  esac
+done
 if [ "$QUOTE" = 2 ]; then quote; exit 0; fi
 CAMDYN="$BUILD/camdyn"
 [ -x "$CAMDYN" ] || { echo "regenerate_docs_numbers.sh: $CAMDYN not found (build camdyn_cli first)" >&2; exit 2; }
