@@ -208,16 +208,13 @@ class EngineBase : public OdeEngine {
     if (!newton_) stats_.lin_setups += d;
   }
   // The integrator's Newton iterations, Newton convergence failures and error-test failures
-  // up to now (running totals since its last reset).
-  void count_newton(long nni, long ncf, long netf) {
-    stats_.nonlin_iters += nni_.delta(nni);
-    stats_.nonlin_conv_fails += ncf_.delta(ncf);
-    stats_.err_test_fails += netf_.delta(netf);
-  }
-  void reset_newton_counters(long nni, long ncf, long netf) {
-    nni_.base = nni;
-    ncf_.base = ncf;
-    netf_.base = netf;
+  // up to now (running totals since its last reset): counted, or (count = false) the base.
+  void count_newton(long nni, long ncf, long netf, bool count = true) {
+    const long a = nni_.delta(nni), b = ncf_.delta(ncf), c = netf_.delta(netf);
+    if (!count) return;
+    stats_.nonlin_iters += a;
+    stats_.nonlin_conv_fails += b;
+    stats_.err_test_fails += c;
   }
 
   bool trial_;
@@ -367,21 +364,12 @@ class DirkOde final : public EngineBase {
     }
   }
   ~DirkOde() override { mem_.reset(); }  // ARKStepFree before the solver and matrix it uses
-  void newton_counts(long& nni, long& ncf, long& netf) {
-    void* mem = mem_.get();
-    check(ARKStepGetNumNonlinSolvIters(mem, &nni), "ARKStepGetNumNonlinSolvIters");
-    check(ARKStepGetNumNonlinSolvConvFails(mem, &ncf), "ARKStepGetNumNonlinSolvConvFails");
-    check(ARKStepGetNumErrTestFails(mem, &netf), "ARKStepGetNumErrTestFails");
-  }
-  void newton_base() {
+  void newton_count(bool count = true) {  // count = false: set the counters' base
     long nni = 0, ncf = 0, netf = 0;
-    newton_counts(nni, ncf, netf);
-    reset_newton_counters(nni, ncf, netf);
-  }
-  void newton_count() {
-    long nni = 0, ncf = 0, netf = 0;
-    newton_counts(nni, ncf, netf);
-    count_newton(nni, ncf, netf);
+    check(ARKStepGetNumNonlinSolvIters(mem_.get(), &nni), "ARKStepGetNumNonlinSolvIters");
+    check(ARKStepGetNumNonlinSolvConvFails(mem_.get(), &ncf), "ARKStepGetNumNonlinSolvConvFails");
+    check(ARKStepGetNumErrTestFails(mem_.get(), &netf), "ARKStepGetNumErrTestFails");
+    count_newton(nni, ncf, netf, count);
   }
   const char* name() const override { return "arkode-dirk"; }
   int error_order() const override { return 4; }  // embedded 3rd order
@@ -396,7 +384,7 @@ class DirkOde final : public EngineBase {
     long nls = 0;
     check(ARKStepGetNumLinSolvSetups(mem, &nls), "ARKStepGetNumLinSolvSetups");
     setups_.base = nls;
-    newton_base();
+    newton_count(false);
     double tret = t;
     // A root inside the step (root functions set): go on to t + h (same step, no new one).
     while (check(ARKStepEvolve(mem, t + h, y_.get(), &tret, ARK_ONE_STEP), "ARKStepEvolve") == ARK_ROOT_RETURN) {
@@ -422,7 +410,7 @@ class DirkOde final : public EngineBase {
     check(ARKStepGetNumLinSolvSetups(mem, &nls), "ARKStepGetNumLinSolvSetups");
     steps_.base = ns;
     setups_.base = nls;
-    newton_base();
+    newton_count(false);
     hit_root_ = false;
   }
   double advance(double tout, Eigen::VectorXd& y_out) override {
@@ -446,7 +434,7 @@ class DirkOde final : public EngineBase {
       check(ARKStepGetNumLinSolvSetups(mem, &nls), "ARKStepGetNumLinSolvSetups");
       steps_.base = ns;
       setups_.base = nls;
-      newton_base();
+      newton_count(false);
     }
     y_out = map(y_.get());
     return tret;
@@ -516,7 +504,7 @@ class CvodeOde final : public EngineBase {
     check(CVodeSetMinStep(mem, trial_min_step(t, h)), "CVodeSetMinStep");
     steps_.base = 0;
     setups_.base = 0;
-    reset_newton_counters(0, 0, 0);
+    count_newton(0, 0, 0, false);
     double tret = t;
     while (check(CVode(mem, t + h, y_.get(), &tret, CV_NORMAL), "CVode") == CV_ROOT_RETURN) {
     }  // roots (if set) do not end a trial step
@@ -537,7 +525,7 @@ class CvodeOde final : public EngineBase {
     ++stats_.reinits;
     steps_.base = 0;
     setups_.base = 0;
-    reset_newton_counters(0, 0, 0);
+    count_newton(0, 0, 0, false);
     hit_root_ = false;
   }
   double advance(double tout, Eigen::VectorXd& y_out) override {
