@@ -6,6 +6,8 @@
 #   scripts/setup.sh              everything above
 #   scripts/setup.sh --deps-only  only install the missing Debian packages
 #   scripts/setup.sh --build-only install missing packages and build, no run
+#   scripts/setup.sh --peers      only the optional peers of bench/peers/peers.py (Siconos,
+#                                 MuJoCo: python3-siconos libmujoco-dev); nothing else needs them
 # The documentation site: scripts/docs.sh after a build (Sphinx, MyST, Breathe, Doxygen).
 set -euo pipefail
 
@@ -68,10 +70,15 @@ case "$mode" in
     configure_and_build
     exit 0
     ;;
+  --peers)
+    PACKAGES=(python3-siconos libmujoco-dev)
+    install_missing_packages
+    exit 0
+    ;;
   all | "")
     ;;
   *)
-    echo "usage: scripts/setup.sh [--deps-only | --build-only]" >&2
+    echo "usage: scripts/setup.sh [--deps-only | --build-only | --peers]" >&2
     exit 2
     ;;
 esac

@@ -232,6 +232,10 @@ struct Summary {
   /// Implicit engines: numeric factorisations of the Newton matrix (redone only when the
   /// step size changed) and symbolic analyses of its pattern (once per engine).
   long lin_setups = 0, lin_analyses = 0;
+  /// Implicit engines (arkode-dirk, cvode-bdf, ida): Newton iterations, steps retried
+  /// smaller because Newton did not converge, and steps retried because the error test
+  /// failed (the integrator's own counters, summed over its restarts).
+  long nonlin_iters = 0, nonlin_conv_fails = 0, err_test_fails = 0;
   /// Multistep engine (cvode-bdf): restarts, each losing CVODE's history and order
   /// (at the start, and where the state jumps or its equations change: impacts,
   /// separations; Lee's trial steps on networks: every trial).

@@ -636,6 +636,9 @@ Summary ContactRun::run() {
     sum_.rhs_evals += e->stats().rhs_evals;
     sum_.lin_setups += e->stats().lin_setups;
     sum_.lin_analyses += e->stats().lin_analyses;
+    sum_.nonlin_iters += e->stats().nonlin_iters;
+    sum_.nonlin_conv_fails += e->stats().nonlin_conv_fails;
+    sum_.err_test_fails += e->stats().err_test_fails;
     sum_.engine_restarts += e->stats().reinits;
   }
   sum_.cpu_seconds = clock.cpu();

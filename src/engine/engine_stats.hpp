@@ -12,6 +12,9 @@ struct EngineStats {
   long lin_setups = 0;    ///< numeric factorisations of the Newton matrix (implicit engines)
   long lin_analyses = 0;  ///< symbolic analyses (KLU orderings) of its sparsity pattern
   long reinits = 0;       ///< restarts (CVODE history lost)
+  long nonlin_iters = 0;       ///< Newton iterations of the implicit engines
+  long nonlin_conv_fails = 0;  ///< steps retried smaller because Newton did not converge
+  long err_test_fails = 0;     ///< steps retried smaller because the error test failed
 };
 
 

@@ -470,6 +470,9 @@ EngineStats IdaHeldSet::stats() const {
   check_flag(IDAGetNumSteps(mem, &s.steps), "IDAGetNumSteps");
   check_flag(IDAGetNumResEvals(mem, &s.rhs_evals), "IDAGetNumResEvals");
   check_flag(IDAGetNumLinSolvSetups(mem, &s.lin_setups), "IDAGetNumLinSolvSetups");
+  check_flag(IDAGetNumNonlinSolvIters(mem, &s.nonlin_iters), "IDAGetNumNonlinSolvIters");
+  check_flag(IDAGetNumNonlinSolvConvFails(mem, &s.nonlin_conv_fails), "IDAGetNumNonlinSolvConvFails");
+  check_flag(IDAGetNumErrTestFails(mem, &s.err_test_fails), "IDAGetNumErrTestFails");
   s.lin_analyses = impl_->dense ? 0 : 1;  // SUNLinSol_KLU: one symbolic analysis (fixed pattern)
   return s;
 }

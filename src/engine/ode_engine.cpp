@@ -207,6 +207,15 @@ class EngineBase : public OdeEngine {
     const long d = setups_.delta(nls);
     if (!newton_) stats_.lin_setups += d;
   }
+  // The integrator's Newton iterations, Newton convergence failures and error-test failures
+  // up to now (running totals since its last reset): counted, or (count = false) the base.
+  void count_newton(long nni, long ncf, long netf, bool count = true) {
+    const long a = nni_.delta(nni), b = ncf_.delta(ncf), c = netf_.delta(netf);
+    if (!count) return;
+    stats_.nonlin_iters += a;
+    stats_.nonlin_conv_fails += b;
+    stats_.err_test_fails += c;
+  }
 
   bool trial_;
   ContextHolder ctx_;
@@ -217,7 +226,7 @@ class EngineBase : public OdeEngine {
   std::unique_ptr<detail::CustomLinearSolver> cls_;
   std::string callback_error_;
   std::string sundials_message_;  ///< the last message of SUNDIALS' error handler
-  Counter steps_, setups_;
+  Counter steps_, setups_, nni_, ncf_, netf_;
 };
 
 // ---------------------------------------------------------------- ERK ------------
@@ -355,6 +364,13 @@ class DirkOde final : public EngineBase {
     }
   }
   ~DirkOde() override { mem_.reset(); }  // ARKStepFree before the solver and matrix it uses
+  void newton_count(bool count = true) {  // count = false: set the counters' base
+    long nni = 0, ncf = 0, netf = 0;
+    check(ARKStepGetNumNonlinSolvIters(mem_.get(), &nni), "ARKStepGetNumNonlinSolvIters");
+    check(ARKStepGetNumNonlinSolvConvFails(mem_.get(), &ncf), "ARKStepGetNumNonlinSolvConvFails");
+    check(ARKStepGetNumErrTestFails(mem_.get(), &netf), "ARKStepGetNumErrTestFails");
+    count_newton(nni, ncf, netf, count);
+  }
   const char* name() const override { return "arkode-dirk"; }
   int error_order() const override { return 4; }  // embedded 3rd order
   bool estimates_error() const override { return true; }
@@ -368,12 +384,14 @@ class DirkOde final : public EngineBase {
     long nls = 0;
     check(ARKStepGetNumLinSolvSetups(mem, &nls), "ARKStepGetNumLinSolvSetups");
     setups_.base = nls;
+    newton_count(false);
     double tret = t;
     // A root inside the step (root functions set): go on to t + h (same step, no new one).
     while (check(ARKStepEvolve(mem, t + h, y_.get(), &tret, ARK_ONE_STEP), "ARKStepEvolve") == ARK_ROOT_RETURN) {
     }
     check(ARKStepGetNumLinSolvSetups(mem, &nls), "ARKStepGetNumLinSolvSetups");
     count_setups(nls);
+    newton_count();
     // A Newton failure makes ARKODE retry smaller: the step would not be of h.
     if (tret != t + h) throw SundialsError("ARKStepEvolve (trial step ended short of t + h)", -1);
     y_out = map(y_.get());
@@ -392,6 +410,7 @@ class DirkOde final : public EngineBase {
     check(ARKStepGetNumLinSolvSetups(mem, &nls), "ARKStepGetNumLinSolvSetups");
     steps_.base = ns;
     setups_.base = nls;
+    newton_count(false);
     hit_root_ = false;
   }
   double advance(double tout, Eigen::VectorXd& y_out) override {
@@ -405,6 +424,7 @@ class DirkOde final : public EngineBase {
     check(ARKStepGetNumLinSolvSetups(mem, &nls), "ARKStepGetNumLinSolvSetups");
     stats_.steps += steps_.delta(ns);
     count_setups(nls);
+    newton_count();
     if (!hit_root_ && project_step_end(tret)) {
       double hnext = 0;
       check(ARKStepGetCurrentStep(mem, &hnext), "ARKStepGetCurrentStep");
@@ -414,6 +434,7 @@ class DirkOde final : public EngineBase {
       check(ARKStepGetNumLinSolvSetups(mem, &nls), "ARKStepGetNumLinSolvSetups");
       steps_.base = ns;
       setups_.base = nls;
+      newton_count(false);
     }
     y_out = map(y_.get());
     return tret;
@@ -483,6 +504,7 @@ class CvodeOde final : public EngineBase {
     check(CVodeSetMinStep(mem, trial_min_step(t, h)), "CVodeSetMinStep");
     steps_.base = 0;
     setups_.base = 0;
+    count_newton(0, 0, 0, false);
     double tret = t;
     while (check(CVode(mem, t + h, y_.get(), &tret, CV_NORMAL), "CVode") == CV_ROOT_RETURN) {
     }  // roots (if set) do not end a trial step
@@ -503,6 +525,7 @@ class CvodeOde final : public EngineBase {
     ++stats_.reinits;
     steps_.base = 0;
     setups_.base = 0;
+    count_newton(0, 0, 0, false);
     hit_root_ = false;
   }
   double advance(double tout, Eigen::VectorXd& y_out) override {
@@ -541,6 +564,11 @@ class CvodeOde final : public EngineBase {
     check(CVodeGetNumLinSolvSetups(mem_.get(), &nls), "CVodeGetNumLinSolvSetups");
     stats_.steps += steps_.delta(ns);
     count_setups(nls);
+    long nni = 0, ncf = 0, netf = 0;
+    check(CVodeGetNumNonlinSolvIters(mem_.get(), &nni), "CVodeGetNumNonlinSolvIters");
+    check(CVodeGetNumNonlinSolvConvFails(mem_.get(), &ncf), "CVodeGetNumNonlinSolvConvFails");
+    check(CVodeGetNumErrTestFails(mem_.get(), &netf), "CVodeGetNumErrTestFails");
+    count_newton(nni, ncf, netf);
   }
   static int project_cb(double t, N_Vector ycur, N_Vector corr, double, N_Vector, void* ud) {
     return guarded(ud, [&](EngineBase* self) {

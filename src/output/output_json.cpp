@@ -341,6 +341,9 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
   o.integer("lin_setups", s.lin_setups);
   o.integer("lin_analyses", s.lin_analyses);
   o.integer("engine_restarts", s.engine_restarts);
+  o.integer("nonlin_iters", s.nonlin_iters);
+  o.integer("nonlin_conv_fails", s.nonlin_conv_fails);
+  o.integer("err_test_fails", s.err_test_fails);
   if (s.first_tensile_time >= 0) {
     o.num("first_tensile_time", s.first_tensile_time);
   } else {

@@ -328,6 +328,8 @@ std::string Summary::FullReport() const {
     << "  linear solver:      " << lin_setups << " factorisations, " << lin_analyses
     << " symbolic analyses\n"
     << "  engine restarts:    " << engine_restarts << "\n"
+    << "  Newton:             " << nonlin_iters << " iterations, " << nonlin_conv_fails
+    << " convergence failures, " << err_test_fails << " error-test failures\n"
     << "  contact iterations: " << contact_iterations << " (" << iteration_failures
     << " iteration failures)\n";
   lv("displacement level", level_u);

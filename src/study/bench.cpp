@@ -40,6 +40,8 @@ class Bench {
     Run first = done ? *done : run_once(sc, budgeted ? o_.time_budget_seconds : 0.0, true);
     row.steps = first.sum.steps;
     row.rhs_evals = first.sum.rhs_evals;
+    row.rejected_steps = first.sum.rejected_steps, row.lin_setups = first.sum.lin_setups;
+    row.nonlin_iters = first.sum.nonlin_iters, row.nonlin_conv_fails = first.sum.nonlin_conv_fails, row.err_test_fails = first.sum.err_test_fails;
     std::vector<double> cpu{first.sum.cpu_seconds};
     bool ok = first.sum.finished && !first.over_budget;
     if (ok) {
@@ -466,7 +468,8 @@ const std::vector<std::string>& bench_columns() {
   static const std::vector<std::string> c{
       "scene",     "method", "engine", "variant",  "tol",       "kp",          "cp",
       "cpu_seconds", "steps", "rhs_evals", "err_u", "err_force", "osc_index", "impulse_err",
-      "event_err", "max_step", "finished",  "note", "err_force_pointwise", "impact_speed_err"};
+      "event_err", "max_step", "finished",  "note", "err_force_pointwise", "impact_speed_err",
+      "rejected_steps", "lin_setups", "nonlin_iters", "nonlin_conv_fails", "err_test_fails"};
   return c;
 }
 
@@ -481,7 +484,8 @@ std::string bench_csv(const std::vector<BenchRow>& rows) {
          std::to_string(r.rhs_evals) + "," + csv_num(r.err_u) + "," + csv_num(r.err_force) +
          "," + csv_num(r.osc_index) + "," + csv_num(r.impulse_err) + "," +
          csv_num(r.event_err) + "," + csv_num(r.max_step) + "," + (r.finished ? "1" : "0") + "," + csv_text(r.note) + "," +
-         csv_num(r.err_force_pointwise) + "," + csv_num(r.impact_speed_err) + "\n";
+         csv_num(r.err_force_pointwise) + "," + csv_num(r.impact_speed_err) + "," + std::to_string(r.rejected_steps) + "," +
+         std::to_string(r.lin_setups) + "," + std::to_string(r.nonlin_iters) + "," + std::to_string(r.nonlin_conv_fails) + "," + std::to_string(r.err_test_fails) + "\n";
   }
   return s;
 }
@@ -579,16 +583,16 @@ BenchResult run_bench(const BenchOptions& options) {
                       : std::string())
        << ". Its convergence: the `reference-check` row (one decade looser).\n\n";
     md << "| method | engine | variant | tol | max_step | k_p | c_p | cpu s | steps | rhs | err_u | "
-          "err_F | err_F_pw | osc | impulse_err | event_err | v_imp | note |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "err_F | err_F_pw | osc | impulse_err | event_err | v_imp | Newton it/ncf/etf | note |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& r : res.rows) {
       if (r.scene != ri.label) continue;
       md << "| " << r.method << " | " << r.engine << " | " << r.variant << " | " << g3(r.tol)
          << " | " << g3(r.max_step) << " | " << g3(r.kp) << " | " << g3(r.cp) << " | " << g3(r.cpu_seconds) << " | "
          << r.steps << " | " << r.rhs_evals << " | " << g3(r.err_u) << " | " << g3(r.err_force) << " | "
          << g3(r.err_force_pointwise) << " | " << g3(r.osc_index) << " | " << g3(r.impulse_err)
-         << " | " << g3(r.event_err) << " | " << g3(r.impact_speed_err) << " | "
-         << (r.finished ? "" : "**not finished** ") << r.note << " |\n";
+         << " | " << g3(r.event_err) << " | " << g3(r.impact_speed_err) << " | " << r.nonlin_iters << "/"
+         << r.nonlin_conv_fails << "/" << r.err_test_fails << " | " << (r.finished ? "" : "**not finished** ") << r.note << " |\n";
     }
     md << "\n";
   }

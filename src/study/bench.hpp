@@ -62,6 +62,10 @@ struct BenchRow {
   double cp = std::numeric_limits<double>::quiet_NaN();   ///< penalty only
   double cpu_seconds = std::numeric_limits<double>::quiet_NaN();  ///< median over repeats
   long steps = 0, rhs_evals = 0;
+  /// Implicit engines: Newton-matrix factorisations, Newton iterations, Newton convergence
+  /// failures and error-test failures (Summary's counters; 0 on an explicit engine).
+  long lin_setups = 0, nonlin_iters = 0, nonlin_conv_fails = 0, err_test_fails = 0;
+  long rejected_steps = 0;
   double err_u = std::numeric_limits<double>::quiet_NaN();
   /// rigid: max |F − F_ref| / max F_ref; elastic: 1 ms window impulse error / max window
   /// impulse (chaotic scenes: over the first revolution only).

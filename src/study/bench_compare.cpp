@@ -39,8 +39,9 @@ bool load_run(const std::string& path, Run& r) {
   std::string magic;
   long nrows = 0, nev = 0, fin = 0;
   if (!(f >> magic >> fin >> r.sum.separations >> r.sum.cpu_seconds >> r.sum.steps >> r.sum.rhs_evals >>
-        nrows >> nev) ||
-      magic != "camdyn-bench-reference-2" || nrows < 0 || nev < 0)
+        r.sum.rejected_steps >> r.sum.lin_setups >> r.sum.nonlin_iters >> r.sum.nonlin_conv_fails >>
+        r.sum.err_test_fails >> nrows >> nev) ||
+      magic != "camdyn-bench-reference-3" || nrows < 0 || nev < 0)
     return false;
   r.sum.finished = fin != 0;
   r.rows.resize(size_t(nrows));
@@ -60,8 +61,10 @@ bool load_run(const std::string& path, Run& r) {
 void save_run(const std::string& path, const Run& r) {
   std::ostringstream o;
   o.precision(17);
-  o << "camdyn-bench-reference-2 " << (r.sum.finished ? 1 : 0) << " " << r.sum.separations << " "
-    << r.sum.cpu_seconds << " " << r.sum.steps << " " << r.sum.rhs_evals << " " << r.rows.size() << " "
+  o << "camdyn-bench-reference-3 " << (r.sum.finished ? 1 : 0) << " " << r.sum.separations << " "
+    << r.sum.cpu_seconds << " " << r.sum.steps << " " << r.sum.rhs_evals << " " << r.sum.rejected_steps << " "
+    << r.sum.lin_setups << " " << r.sum.nonlin_iters << " " << r.sum.nonlin_conv_fails << " "
+    << r.sum.err_test_fails << " " << r.rows.size() << " "
     << r.events.size() << "\n";
   for (const auto& row : r.rows)
     o << row.t << " " << row.u_c << " " << row.v_c << " " << row.contact_force << " " << row.in_contact << "\n";

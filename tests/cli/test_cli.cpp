@@ -461,7 +461,8 @@ TEST(Output, SummaryJsonHasEveryKey) {
   }
   // Keys of the summary itself appear once (a duplicated key is invalid JSON for strict
   // readers; lin_setups was written twice after two branches each added it).
-  for (const char* key : {"lin_setups", "lin_analyses", "relocated_steps", "min_contact_force"}) {
+  for (const char* key : {"lin_setups", "lin_analyses", "relocated_steps", "min_contact_force", "nonlin_iters",
+                          "nonlin_conv_fails", "err_test_fails"}) {
     const std::string k = "\"" + std::string(key) + "\":";
     const size_t first = j.find(k);
     EXPECT_NE(first, std::string::npos) << key;

@@ -36,6 +36,9 @@ class HolonomicIda final : public ContactRun {
         st.rhs_evals += s.rhs_evals;
         st.lin_setups += s.lin_setups;
         st.lin_analyses += s.lin_analyses;
+        st.nonlin_iters += s.nonlin_iters;
+        st.nonlin_conv_fails += s.nonlin_conv_fails;
+        st.err_test_fails += s.err_test_fails;
         rejected += ida->rejected_steps();
         ++sum_.engine_restarts;
       }
@@ -81,6 +84,9 @@ class HolonomicIda final : public ContactRun {
     sum_.rhs_evals += st.rhs_evals + s.rhs_evals;
     sum_.lin_setups += st.lin_setups + s.lin_setups;
     sum_.lin_analyses += st.lin_analyses + s.lin_analyses;
+    sum_.nonlin_iters += st.nonlin_iters + s.nonlin_iters;
+    sum_.nonlin_conv_fails += st.nonlin_conv_fails + s.nonlin_conv_fails;
+    sum_.err_test_fails += st.err_test_fails + s.err_test_fails;
   }
 };
 
