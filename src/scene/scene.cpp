@@ -103,7 +103,7 @@ Field mk(const char* t, const char* k, FK kind) {
     return f;                                                                          \
   }()
 
-const char* const kTables[] = {"cam", "follower", "spring", "contact", "solver", "run", "jump"};
+const char* const kTables[] = {"cam", "follower", "spring", "contact", "solver", "run", "jump", "camshaft"};
 
 Field ruled(Field f, Rule r, double lo, double hi = 0, const char* note = "") {
   f.rule = r;
@@ -223,6 +223,20 @@ const std::vector<Field>& fields() {
 
     v.push_back(F_INT(jump, settle_revolutions, 0, 10000));
     v.push_back(F_INT(jump, judge_revolutions, 1, 10000));
+    v.push_back(F_ARR(camshaft, inertias));
+    v.push_back(F_ARR(camshaft, stiffnesses));
+    v.push_back(ruled(F_REAL(camshaft, rayleigh_alpha), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(camshaft, rayleigh_beta), Rule::Ge, 0));
+    v.push_back(F_ARR(camshaft, cam_stations));
+    v.push_back(F_ARR(camshaft, cam_offsets_deg));
+    v.push_back(F_ARR(camshaft, cam_offsets_crank_deg));
+    v.push_back(F_ARR(camshaft, contact_cams));
+    v.push_back(F_INT(camshaft, drive_station, 0, 1000000));
+    v.push_back(ruled(F_REAL(camshaft, drive_stiffness), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(camshaft, drive_damping), Rule::Ge, 0));
+    v.push_back(F_ARR(camshaft, crank_orders));
+    v.push_back(F_ARR(camshaft, crank_amplitudes_deg));
+    v.push_back(F_ARR(camshaft, crank_phases_deg));
     return v;
   }();
   return kFields;
@@ -485,6 +499,9 @@ bool operator==(const ContactSpec& a, const ContactSpec& b) {
 bool operator==(const SolverSpec& a, const SolverSpec& b) { return same_table(a, b, &Scene::solver, "solver"); }
 bool operator==(const RunSpec& a, const RunSpec& b) { return same_table(a, b, &Scene::run, "run"); }
 bool operator==(const JumpSpec& a, const JumpSpec& b) { return same_table(a, b, &Scene::jump, "jump"); }
+bool operator==(const CamshaftSpec& a, const CamshaftSpec& b) {
+  return same_table(a, b, &Scene::camshaft, "camshaft");
+}
 bool operator==(const Scene& a, const Scene& b) { return same_keys(a, b, nullptr) && a.network == b.network; }
 bool operator!=(const Scene& a, const Scene& b) { return !(a == b); }
 

@@ -242,6 +242,7 @@ class Validator {
       fail_at("run.output_dt", fmt_num(s.run.output_dt), "must be <= run.t_end = " + fmt_num(s.run.t_end));
 
     network();
+    camshaft();
   }
 
   // ---- network (follower.kind = "network")
@@ -297,6 +298,8 @@ class Validator {
   }
 
   void network() const;
+  /// [camshaft] (src/scene/validate_camshaft.cpp).
+  void camshaft() const;
 
  private:
   const Scene& s_;
