@@ -1,6 +1,8 @@
 // camdyn — the mechanism builder for network scenes (src/mechanism/mechanism.hpp has the maths).
 #include "mechanism/mechanism.hpp"
 
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -353,6 +355,20 @@ Mechanism::Mechanism(const Scene& scene) {
         d << "; '" << net.contacts[j].name << "' on cam " << contact_cam[j] << " (station "
           << camshaft_->cam_station(contact_cam[j]) << ", offset "
           << fmt(camshaft_->cam_offset(contact_cam[j]) * 180.0 / 3.14159265358979323846) << " deg)";
+    {  // the shaft's torsional frequencies with the crank held and the trains apart
+      const Eigen::Index N = Eigen::Index(station_dof.size());
+      Eigen::MatrixXd Ms(N, N), Ks(N, N);  // the stations' block (the shaft couples to the trains only by contacts)
+      for (Eigen::Index i = 0; i < N; ++i)
+        for (Eigen::Index j = 0; j < N; ++j) {
+          Ms(i, j) = M_.coeff(station_dof[std::size_t(i)], station_dof[std::size_t(j)]);
+          Ks(i, j) = K_.coeff(station_dof[std::size_t(i)], station_dof[std::size_t(j)]);
+        }
+      const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ks, Ms, Eigen::EigenvaluesOnly);
+      d << "; torsional frequencies (crank held, trains apart):";
+      for (Eigen::Index i = 0; i < std::min<Eigen::Index>(N, 3); ++i)
+        d << (i ? ", " : " ") << fmt(std::sqrt(std::max(es.eigenvalues()[i], 0.0)) / (2 * 3.14159265358979323846))
+          << " Hz";
+    }
     desc_.network.push_back(d.str());
   }
   finish_contacts([&](const double* b, double* x) {

@@ -53,10 +53,10 @@ void Validator::camshaft() const {
             std::string("a camshaft needs follower.kind = \"network\" (follower.kind is \"") +
                 to_string(s_.follower.kind) + "\"): its cam contacts are the network's",
             "follower.kind");
-  if (s_.contact.model != ContactModel::Penalty && s_.contact.model != ContactModel::Event)
-    fail_at("contact.model", std::string("\"") + to_string(s_.contact.model) + "\"",
-            "a [camshaft] runs on contact.model = \"penalty\" or \"event\" (Lee's and the holonomic method do not "
-            "carry the shaft angle in their contact rows yet)",
+  if (s_.contact.model == ContactModel::Holonomic)
+    fail_at("contact.model", "\"holonomic\"",
+            "a [camshaft] runs on contact.model = \"lee\", \"event\" or \"penalty\" (the holonomic method does not "
+            "carry the shaft angle in its contact rows yet)",
             "camshaft.inertias");
   if (s_.solver.integrator != Integrator::ArkodeErk)
     fail_at("solver.integrator", std::string("\"") + to_string(s_.solver.integrator) + "\"",
