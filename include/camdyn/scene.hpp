@@ -321,6 +321,51 @@ struct LubricantSpec {
   double roughness = 0;           ///< composite roughness √(R_q,cam² + R_q,follower²) [length], ≥ 0 (0: no λ)
 };
 
+/// [camshaft] (optional; inertias empty: no camshaft, the cam turns at the prescribed angle of
+/// [cam]): the camshaft as a torsionally elastic body (issue 40). Stations 0 … N−1 are unknowns
+/// of the mechanism whose coordinate is the shaft angle φ_i [rad] (history columns
+/// u_shaft_<i>, v_shaft_<i>); segment i joins stations i and i + 1. Every cam has the profile of
+/// [cam] and sits on a station with an angular offset α (its lift is X_C(φ_station − α): a cam
+/// with a larger offset opens later). The drive: a torsional spring–damper (the chain, belt or
+/// gear train as an equivalent) from the drive station to a crank whose angle is the cam angle
+/// θ(t) that [cam] prescribes plus harmonic orders,
+///   θ_crank(t) = θ(t) + Σ_k a_k sin(n_k θ(t) + p_k)   (orders n_k per camshaft revolution).
+/// The cam contacts of the network ([[contacts]] of type cam, in their order) ride on the cams
+/// contact_cams names. Needs follower.kind = "network".
+struct CamshaftSpec {
+  /// Polar inertia per station [mass·length²], each > 0; ≥ 1 station.
+  std::vector<double> inertias;
+  /// Torsional stiffness GJ/L of each segment [force·length/rad], N − 1 entries, each > 0.
+  std::vector<double> stiffnesses;
+  /// Rayleigh damping of the shaft C = αJ + βK_shaft (α acts on the stations' absolute speed:
+  /// a viscous bearing drag; β on the segments' twist rates), α [1/time], β [time], ≥ 0.
+  double rayleigh_alpha = 0.0;
+  double rayleigh_beta = 0.0;
+  /// The station of each cam (0-based integers, < N); one entry per cam, ≥ 1 cam.
+  std::vector<double> cam_stations;
+  /// Each cam's angular offset in camshaft degrees, or in crank degrees (2 × camshaft
+  /// degrees, a four-stroke's firing interval), one form only, one entry per cam
+  /// (neither: all 0).
+  std::vector<double> cam_offsets_deg;
+  std::vector<double> cam_offsets_crank_deg;
+  /// For every cam contact of the network (in [[contacts]] order), the cam it rides on
+  /// (0-based integers). Empty: the i-th cam contact rides on cam i (as many cam contacts as cams).
+  std::vector<double> contact_cams;
+  /// The drive station (0-based, < N) [0].
+  long drive_station = 0;
+  /// The drive coupling's torsional stiffness [force·length/rad], > 0, and damping
+  /// [force·length·time/rad], ≥ 0.
+  double drive_stiffness = 0.0;
+  double drive_damping = 0.0;
+  /// The crank's speed fluctuation: orders n_k (per camshaft revolution, > 0), angle
+  /// amplitudes a_k [camshaft degrees], phases p_k [degrees]; equal lengths (may be empty).
+  std::vector<double> crank_orders;
+  std::vector<double> crank_amplitudes_deg;
+  std::vector<double> crank_phases_deg;
+  /// true when the scene has a camshaft (inertias given).
+  bool present() const { return !inertias.empty(); }
+};
+
 struct Scene {
   std::string title = "camdyn scene";
   CamSpec cam;
@@ -332,6 +377,8 @@ struct Scene {
   JumpSpec jump;
   CriteriaSpec criteria;
   LubricantSpec lubricant;
+  /// [camshaft]: the camshaft as a body (empty: the prescribed cam angle of [cam]).
+  CamshaftSpec camshaft;
   /// follower.kind = "network": the nodes, elements and contacts ([[nodes]], [[elements]],
   /// [[contacts]]); empty for the other kinds (follower.* bar keys and [spring] are then
   /// unused, [contact] gives the method and the contacts' default restitution and penalty).
@@ -473,6 +520,7 @@ bool operator==(const RunSpec& a, const RunSpec& b);
 bool operator==(const JumpSpec& a, const JumpSpec& b);
 bool operator==(const CriteriaSpec& a, const CriteriaSpec& b);
 bool operator==(const LubricantSpec& a, const LubricantSpec& b);
+bool operator==(const CamshaftSpec& a, const CamshaftSpec& b);
 bool operator==(const Scene& a, const Scene& b);
 bool operator!=(const Scene& a, const Scene& b);
 

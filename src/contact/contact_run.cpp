@@ -90,6 +90,11 @@ std::vector<std::string> ContactRun::extra_columns(const MechanicalSystem& mech,
   }
   if (element_forces)
     for (const std::string& f : mech.element_force_names()) c.push_back("force_" + f);
+  if (const CamShaft* cs = mech.camshaft()) {  // the drive and each cam's wind-up
+    c.push_back("drive_torque");
+    c.push_back("drive_twist");
+    for (int i = 0; i < cs->cams(); ++i) c.push_back("windup_cam" + std::to_string(i));
+  }
   return c;
 }
 
@@ -185,10 +190,14 @@ CamMotion ContactRun::cam_at(double t) const {
 }
 double ContactRun::gap(int j, const Eigen::VectorXd& y, const CamMotion& cm) const {
   const MechanismContact& c = mk_.contacts()[j];
+  if (const CamShaft* cs = mk_.camshaft(); cs && cs->contact_cam(j) >= 0)  // the cam at its station's angle
+    return c.t.dot(y.head(n_)) + c.g0 - cs->lift(j, y.data()).X;
   return c.t.dot(y.head(n_)) + c.g0 - (c.cam ? cm.X : 0.0);
 }
 double ContactRun::gap_rate(int j, const Eigen::VectorXd& y, const CamMotion& cm) const {
   const MechanismContact& c = mk_.contacts()[j];
+  if (const CamShaft* cs = mk_.camshaft(); cs && cs->contact_cam(j) >= 0)  // T̃_j v = T_j v − X_L′ φ̇_s
+    return c.t.dot(y.segment(n_, n_)) - cs->lift(j, y.data()).dX * y[n_ + cs->contact_dof(j)];
   return c.t.dot(y.segment(n_, n_)) - (c.cam ? cm.Xdot : 0.0);
 }
 double ContactRun::cam_acc(int j, const CamMotion& cm) const {
@@ -231,11 +240,18 @@ void ContactRun::held_forces_into(double t, const Eigen::VectorXd& y, const CamM
   if (ok) *ok = true;
   if (set.empty()) return;
   Eigen::VectorXd& Ta = hf_ta_;
-  mk_.contact_free_acceleration(t, y.data(), y.data() + n_, Ta, states_of(y));  // T a_free
+  const Rows R = rows_at(y.data());
+  if (mk_.camshaft()) {  // T̃ a_free at the state's rows
+    hf_a_.resize(n_);
+    mk_.acceleration(t, y.data(), y.data() + n_, Eigen::VectorXd(), hf_a_.data(), false, states_of(y));
+    Ta = R.T * hf_a_;
+  } else {
+    mk_.contact_free_acceleration(t, y.data(), y.data() + n_, Ta, states_of(y));  // T a_free
+  }
   const int k = int(set.size());
   if (k == 1) {  // one held contact (a single follower): scalars, the same arithmetic
     const int j = set[0];
-    const double W = mk_.W()(j, j), b = Ta[j] - cam_acc(j, cm);
+    const double W = R.W(j, j), b = Ta[j] - cam_acc(j, y, cm);
     if (!unilateral_) {
       F[j] = -b / W;
       if (margin) (*margin)[j] = F[j];
@@ -250,8 +266,8 @@ void ContactRun::held_forces_into(double t, const Eigen::VectorXd& y, const CamM
   Eigen::MatrixXd Wss(k, k);
   Eigen::VectorXd b(k);  // the gap accelerations without contact forces
   for (int i = 0; i < k; ++i) {
-    b[i] = Ta[set[i]] - cam_acc(set[i], cm);
-    for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(set[i], set[l]);
+    b[i] = Ta[set[i]] - cam_acc(set[i], y, cm);
+    for (int l = 0; l < k; ++l) Wss(i, l) = R.W(set[i], set[l]);
   }
   if (!unilateral_) {  // holonomic: every contact held, pulls allowed
     const Eigen::VectorXd Fs = k == 1 ? Eigen::VectorXd(-b / Wss(0, 0))
@@ -285,8 +301,9 @@ double ContactRun::dissipation_power(double t, const Eigen::VectorXd& y) const {
 }
 double ContactRun::cam_power(const Eigen::VectorXd& F, const CamMotion& cm) const {
   double p = 0.0;
-  for (int j = 0; j < m_; ++j)
-    if (mk_.contacts()[j].cam) p += F[j] * cm.Xdot;
+  const CamShaft* cs = mk_.camshaft();
+  for (int j = 0; j < m_; ++j)  // a camshaft's contacts work inside the mechanism
+    if (mk_.contacts()[j].cam && !(cs && cs->contact_cam(j) >= 0)) p += F[j] * cm.Xdot;
   return p;
 }
 
@@ -328,6 +345,14 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
     r.extra.resize(k + element_force_count_);
     mk_.element_forces(t, y.data(), y.data() + n_, r.extra.data() + k, states_of(y));
   }
+  if (const CamShaft* cs = mk_.camshaft()) {
+    const int d = cs->drive_dof();
+    double th = 0.0, w = 0.0;
+    cs->crank(t, &th, &w);
+    r.extra.push_back(cs->drive_torque(t, y[d], y[n_ + d]));
+    r.extra.push_back(th - y[d]);
+    for (int i = 0; i < cs->cams(); ++i) r.extra.push_back(y[d] - y[cs->station_dof(cs->cam_station(i))]);
+  }
   if (sc_.run.designer_columns) {
     double Fc = 0.0;  // the cam's force: Σ over the cam contacts (their axial components)
     for (int j = 0; j < m_; ++j)
@@ -367,7 +392,9 @@ void ContactRun::record_event(EventKind type, int contact, double v, double impu
   // jump: first_separation_theta_deg, camdyn jump).
   if (contact == mk_.primary()) {
     const MechanismContact& c = mk_.contacts()[contact];
-    const bool on_lift = !c.cam || cam_at(te).X > c.g0 + kFloatLift * cam_.lift();
+    const CamShaft* cs = mk_.camshaft();
+    const double X = cs && cs->contact_cam(contact) >= 0 ? cs->lift(contact, y_.data()).X : cam_at(te).X;
+    const bool on_lift = !c.cam || X > c.g0 + kFloatLift * cam_.lift();
     if (e.type != EventKind::Separation || on_lift) designer_.event(e);
   }
   sum_.events.push_back(e);
@@ -464,7 +491,7 @@ ContactRun::StepEnergy ContactRun::step_energy(
     state(tau, y);
     const CamMotion cm = cam_at(tau);
     forces(tau, y, cm, F);
-    e.work += 0.5 * h * wg[g] * cam_power(F, cm);
+    e.work += 0.5 * h * wg[g] * (cam_power(F, cm) + mk_.input_power(tau, y.data(), y.data() + n_));
     e.dissipated += 0.5 * h * wg[g] * dissipation_power(tau, y);
   }
   return e;

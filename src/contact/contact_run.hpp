@@ -107,6 +107,18 @@ class ContactRun {
   double gap(int j, const Eigen::VectorXd& y, const CamMotion& cm) const;
   double gap_rate(int j, const Eigen::VectorXd& y, const CamMotion& cm) const;
   double cam_acc(int j, const CamMotion& cm) const;
+  /// The part of g̈_j besides T̃_j q̈, at the state y: a camshaft's cam contact X_L″ φ̇_s²
+  /// (camshaft.hpp), the others cam_acc(j, cm).
+  double cam_acc(int j, const Eigen::VectorXd& y, const CamMotion& cm) const;
+  /// The contact rows at the unknowns q: T̃ (m × n), M⁻¹T̃ᵀ, W̃ = T̃M⁻¹T̃ᵀ. A camshaft's cam
+  /// contact j gains the column −X_L′ on its station (camshaft.hpp); without a camshaft these
+  /// are the mechanism's constant T, M⁻¹Tᵀ, W (no copy). Valid until the next call.
+  struct Rows {
+    const Eigen::MatrixXd& T;
+    const Eigen::MatrixXd& MinvTt;
+    const Eigen::MatrixXd& W;
+  };
+  Rows rows_at(const double* q) const;
   /// a = M⁻¹(f₀ − Kq − Cv + TᵀF).
   void acceleration(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F, Eigen::VectorXd& a) const;
   /// The acceleration level of the closed contacts `set`, by complementarity
@@ -230,6 +242,9 @@ class ContactRun {
   std::vector<char> active_;
   Eigen::VectorXd sys_y_, sys_F_;  // contact_system()'s buffers
   mutable Eigen::VectorXd hf_ta_;  // held_forces' T a_free
+  mutable Eigen::VectorXd hf_a_;   // held_forces' a_free (a camshaft)
+  mutable Eigen::VectorXd rows_q_;  // rows_at's state and rows (a camshaft)
+  mutable Eigen::MatrixXd rows_T_, rows_MT_, rows_W_;
   mutable Eigen::VectorXd se_y_, se_F_;  // step_energy's state and forces
   double x_base_ = 0.0;     // the base circle's X_C: cam_at() returns the lift X_C − x_base_
   bool unilateral_ = true;

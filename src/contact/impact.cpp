@@ -53,10 +53,11 @@ void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion
     const int k = int(set.size());
     Eigen::MatrixXd Wss(k, k), MTs(n_, k);
     Eigen::VectorXd g(k);
+    const Rows R = rows_at(y_.data());
     for (int i = 0; i < k; ++i) {
       g[i] = level == 0 ? gap(set[i], y_, cm) : gap_rate(set[i], y_, cm);
-      MTs.col(i) = mk_.MinvTt().col(set[i]);
-      for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(set[i], set[l]);
+      MTs.col(i) = R.MinvTt.col(set[i]);
+      for (int l = 0; l < k; ++l) Wss(i, l) = R.W(set[i], set[l]);
     }
     y_.segment(level * n_, n_) -= MTs * Wss.completeOrthogonalDecomposition().solve(g);
   };
@@ -75,6 +76,7 @@ void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion
     close_exactly(A, 1);
   }
   const double T_before = mk_.kinetic_energy(y_.data() + n_);
+  const Rows R = rows_at(y_.data());  // q no longer changes below
   Eigen::VectorXd gd(m_);
   for (int j = 0; j < m_; ++j) gd[j] = gap_rate(j, y_, cm);
   Eigen::VectorXd a_free;
@@ -85,7 +87,7 @@ void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion
     if (v_impact_ref_ == 0.0 && -gd[j] > 0.0) v_impact_ref_ = -gd[j];
   Eigen::VectorXd v_stick(m_);
   for (int j = 0; j < m_; ++j) {
-    const double rel_acc = std::abs(mk_.contacts()[j].t.dot(a_free) - cam_acc(j, cm));
+    const double rel_acc = std::abs(R.T.row(j).dot(a_free) - cam_acc(j, y_, cm));
     v_stick[j] = std::max(1e-6 * v_impact_ref_, 4.0 * std::sqrt(2.0 * rel_acc * 1e-3 * stick_gap_tol_));
   }
   bool soft = true;  // every closing contact only touches
@@ -105,7 +107,7 @@ void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion
       const int j = set[i];
       const double target = is_closing[j] && !stick[j] ? -mk_.contacts()[j].law.impact.restitution * gd[j] : 0.0;
       b[i] = gd[j] - target;
-      for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, set[l]);
+      for (int l = 0; l < k; ++l) Wss(i, l) = R.W(j, set[l]);
     }
   };
   Eigen::VectorXd P = Eigen::VectorXd::Zero(m_);
@@ -136,7 +138,7 @@ void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion
       const double thr = 1e-6 * Ps.cwiseAbs().maxCoeff();
       auto pulls = [&](int i) {
         if (!unilateral_ || !(Ps[i] < -thr)) return false;
-        return !(-Ps[i] * mk_.W()(T[i], T[i]) < v_stick[T[i]]);
+        return !(-Ps[i] * R.W(T[i], T[i]) < v_stick[T[i]]);
       };
       for (int i = 0; i < k; ++i)
         if (pulls(i) && (worst < 0 || Ps[i] < Ps[worst])) worst = i;
@@ -171,7 +173,7 @@ void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion
     }
     S = kept;
   }
-  y_.segment(n_, n_) += mk_.MinvTt() * P;
+  y_.segment(n_, n_) += R.MinvTt * P;
   const double T_after = mk_.kinetic_energy(y_.data() + n_);
   const double W_imp = cam_power(P, cm);  // Σ_cam P_j Ẋ_C
   work_ += W_imp;

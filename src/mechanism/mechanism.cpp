@@ -1,6 +1,8 @@
 // camdyn — the mechanism builder for network scenes (src/mechanism/mechanism.hpp has the maths).
 #include "mechanism/mechanism.hpp"
 
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -25,6 +27,40 @@ std::string element_report_name(const ElementSpec& e, std::size_t index) {
 }
 
 namespace {
+/// The scene's network with the camshaft's stations, segments and bearing dampers added
+/// (stations start at the crank's angle and speed: an untwisted shaft).
+NetworkSpec with_camshaft(const Scene& scene) {
+  const CamshaftSpec& c = scene.camshaft;
+  NetworkSpec net = scene.network;
+  double phi0 = 0.0, w0 = 0.0;
+  CamShaft(scene, std::vector<int>(c.inertias.size(), 0), {}).initial_state(&phi0, &w0);
+  for (std::size_t i = 0; i < c.inertias.size(); ++i) {
+    NodeSpec nd;
+    nd.name = "shaft_" + std::to_string(i);
+    nd.mass = c.inertias[i];
+    nd.initial_displacement = phi0;
+    nd.initial_velocity = w0;
+    net.nodes.push_back(nd);
+    if (c.rayleigh_alpha > 0.0) {
+      ElementSpec d;
+      d.name = "shaft_bearing_" + std::to_string(i);
+      d.kind = ElementKind::Dashpot;
+      d.nodes = {nd.name, "ground"};
+      d.damping = c.rayleigh_alpha * c.inertias[i];
+      net.elements.push_back(d);
+    }
+  }
+  for (std::size_t i = 0; i < c.stiffnesses.size(); ++i) {
+    ElementSpec e;
+    e.name = "shaft_segment_" + std::to_string(i);
+    e.kind = ElementKind::Spring;
+    e.nodes = {"shaft_" + std::to_string(i), "shaft_" + std::to_string(i + 1)};
+    e.stiffness = c.stiffnesses[i];
+    e.damping = c.rayleigh_beta * c.stiffnesses[i];
+    net.elements.push_back(e);
+  }
+  return net;
+}
 }  // namespace
 
 Mechanism::Mechanism(const Scene& scene) {
@@ -33,7 +69,12 @@ Mechanism::Mechanism(const Scene& scene) {
     build_follower(scene);
     return;
   }
-  const NetworkSpec& net = scene.network;
+  // A [camshaft]: its stations are nodes "shaft_<i>" whose coordinate is the shaft angle,
+  // its segments and Rayleigh damping springs and dashpots (camshaft.hpp).
+  NetworkSpec shaft_net;
+  const bool shaft = scene.camshaft.present();
+  if (shaft) shaft_net = with_camshaft(scene);
+  const NetworkSpec& net = shaft ? shaft_net : scene.network;
   std::map<std::string, int> index;  // named node → full DOF
   for (const NodeSpec& nd : net.nodes) {
     index[nd.name] = int(node_names_.size());
@@ -160,6 +201,12 @@ Mechanism::Mechanism(const Scene& scene) {
       }
     }
     desc_.network.push_back(d.str());
+  }
+  if (shaft) {  // the drive coupling: −k_d φ_d − c_d φ̇_d here, the crank's part in acceleration()
+    const CamshaftSpec& c = scene.camshaft;
+    links.push_back({index.at("shaft_" + std::to_string(c.drive_station)), -1, c.drive_stiffness,
+                     c.drive_damping, 0.0});
+    any_damping |= c.drive_damping != 0.0;
   }
 
   // ---- levers: q_full = Lf q (an output is ratio × its input plus (1 − ratio) × its
@@ -313,6 +360,53 @@ Mechanism::Mechanism(const Scene& scene) {
     c.law = ContactLaw::of(scene.contact, cc.e, std::nullopt, std::nullopt);
     contacts_.push_back(std::move(c));
   }
+  if (shaft) {
+    const CamshaftSpec& c = scene.camshaft;
+    std::vector<int> station_dof, contact_cam;
+    for (std::size_t i = 0; i < c.inertias.size(); ++i)
+      station_dof.push_back(red[index.at("shaft_" + std::to_string(i))]);
+    int k = 0;  // the cam contacts in order
+    for (const ContactPointSpec& cs : net.contacts) {
+      if (cs.kind != ContactPointKind::Cam) {
+        contact_cam.push_back(-1);
+        continue;
+      }
+      contact_cam.push_back(c.contact_cams.empty() ? k : int(c.contact_cams[std::size_t(k)]));
+      ++k;
+    }
+    auto cs = std::make_shared<CamShaft>(scene, station_dof, contact_cam);
+    Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(n_, Eigen::Index(station_dof.size()));
+    for (std::size_t i = 0; i < station_dof.size(); ++i) {
+      Eigen::VectorXd e = Eigen::VectorXd::Zero(n_);
+      e[station_dof[i]] = 1.0;
+      Z.col(Eigen::Index(i)) = Mldlt_.solve(e);
+    }
+    cs->set_station_response(std::move(Z));
+    camshaft_ = cs;
+    std::ostringstream d;
+    d << "camshaft: " << c.inertias.size() << " stations, " << c.cam_stations.size() << " cams, drive at station "
+      << c.drive_station << " (k " << fmt(c.drive_stiffness) << ", c " << fmt(c.drive_damping) << ")";
+    for (std::size_t j = 0; j < contact_cam.size(); ++j)
+      if (contact_cam[j] >= 0)
+        d << "; '" << net.contacts[j].name << "' on cam " << contact_cam[j] << " (station "
+          << camshaft_->cam_station(contact_cam[j]) << ", offset "
+          << fmt(camshaft_->cam_offset(contact_cam[j]) * 180.0 / 3.14159265358979323846) << " deg)";
+    {  // the shaft's torsional frequencies with the crank held and the trains apart
+      const Eigen::Index N = Eigen::Index(station_dof.size());
+      Eigen::MatrixXd Ms(N, N), Ks(N, N);  // the stations' block (the shaft couples to the trains only by contacts)
+      for (Eigen::Index i = 0; i < N; ++i)
+        for (Eigen::Index j = 0; j < N; ++j) {
+          Ms(i, j) = M_.coeff(station_dof[std::size_t(i)], station_dof[std::size_t(j)]);
+          Ks(i, j) = K_.coeff(station_dof[std::size_t(i)], station_dof[std::size_t(j)]);
+        }
+      const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ks, Ms, Eigen::EigenvaluesOnly);
+      d << "; torsional frequencies (crank held, trains apart):";
+      for (Eigen::Index i = 0; i < std::min<Eigen::Index>(N, 3); ++i)
+        d << (i ? ", " : " ") << fmt(std::sqrt(std::max(es.eigenvalues()[i], 0.0)) / (2 * 3.14159265358979323846))
+          << " Hz";
+    }
+    desc_.network.push_back(d.str());
+  }
   finish_contacts([&](const double* b, double* x) {
     Eigen::Map<Eigen::VectorXd>(x, n_) = Mldlt_.solve(Eigen::Map<const Eigen::VectorXd>(b, n_));
   });
@@ -459,6 +553,10 @@ void Mechanism::acceleration(double t, const double* q, const double* v, const E
     if (!homogeneous) r += f0_;
     if (damped()) r.noalias() -= C_ * V;
     if (!elements_.empty() && !homogeneous) elements_.add_force(t, q, v, r.data(), s);
+    if (camshaft_) {  // the crank's part of the drive, the contacts' torques on the shaft
+      if (!homogeneous) r[camshaft_->drive_dof()] += camshaft_->drive_forcing(t);
+      if (F.size()) camshaft_->add_contact_torques(q, F.data(), int(F.size()), r.data());
+    }
     A = Mldlt_.solve(r);
     if (F.size()) A.noalias() += MinvTt_ * F;
     return;
@@ -508,12 +606,27 @@ double Mechanism::kinetic_energy(const double* v) const {
 }
 double Mechanism::potential_energy(const double* q, const double* s) const {
   Eigen::Map<const Eigen::VectorXd> Q(q, n_);
-  return 0.5 * Q.dot(K_ * Q) - f0_.dot(Q) + (elements_.empty() ? 0.0 : elements_.stored_energy(q, s));
+  double V = 0.5 * Q.dot(K_ * Q) - f0_.dot(Q) + (elements_.empty() ? 0.0 : elements_.stored_energy(q, s));
+  if (camshaft_) {  // the drive coupling is the driver, not stored energy (camshaft.hpp)
+    const double p = q[camshaft_->drive_dof()];
+    V -= 0.5 * camshaft_->drive_stiffness() * p * p;
+  }
+  return V;
 }
 double Mechanism::damping_power(const double* v) const {
   if (!damped()) return 0.0;
   Eigen::Map<const Eigen::VectorXd> V(v, n_);
-  return V.dot(C_ * V);
+  double P = V.dot(C_ * V);
+  if (camshaft_) {  // the drive coupling's damper is the driver's (camshaft.hpp)
+    const double w = v[camshaft_->drive_dof()];
+    P -= camshaft_->drive_damping() * w * w;
+  }
+  return P;
+}
+double Mechanism::input_power(double t, const double* q, const double* v) const {
+  if (!camshaft_) return 0.0;
+  const int d = camshaft_->drive_dof();
+  return camshaft_->drive_torque(t, q[d], v[d]) * v[d];
 }
 double Mechanism::damping_power(double t, const double* q, const double* v, const double* s) const {
   double P = damping_power(v);

@@ -36,6 +36,7 @@
 #include "camdyn/scene.hpp"
 #include "contact/laws/contact_law.hpp"
 #include "mechanism/element_set.hpp"
+#include "mechanism/camshaft.hpp"
 
 namespace camdyn {
 
@@ -123,6 +124,12 @@ class MechanicalSystem {
                               const double* /*s*/ = nullptr) const {}
   /// false: damping_power is zero for every v (a quadrature of it may skip the state).
   virtual bool dissipative() const { return true; }
+  /// The camshaft of a [camshaft] scene (src/mechanism/camshaft.hpp), null without one: its
+  /// cam contacts' gaps and rows depend on the shaft angle.
+  const CamShaft* camshaft() const { return camshaft_.get(); }
+  /// The power the driver feeds in at (t, q, v) (a camshaft's drive coupling, τ_d φ̇_d); 0
+  /// without a camshaft (the prescribed cam's work is the contacts' F Ẋ_C).
+  virtual double input_power(double /*t*/, const double* /*q*/, const double* /*v*/) const { return 0.0; }
 
  protected:
   /// T_, MinvTt_ (through solve), W_, primary_ from contacts_.
@@ -154,6 +161,7 @@ class MechanicalSystem {
   ModelDescription desc_;
   double force_scale_ = 0.0;
   bool single_follower_ = false;
+  std::shared_ptr<const CamShaft> camshaft_;
 };
 
 /// The linear mechanism of a network scene: r = f₀ − Kq − Cq̇.
@@ -171,8 +179,8 @@ class Mechanism final : public MechanicalSystem {
   bool damped() const { return C_.size() > 0; }
   const Eigen::VectorXd& f0() const { return f0_; }
 
-  /// true without nonlinear elements.
-  bool linear() const override { return elements_.empty(); }
+  /// true without nonlinear elements and without a camshaft.
+  bool linear() const override { return elements_.empty() && !camshaft_; }
   void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
                     bool homogeneous = false, const double* s = nullptr) const override;
   void state_rate(double t, const double* q, const double* v, const double* s, double* sdot) const override;
@@ -187,6 +195,8 @@ class Mechanism final : public MechanicalSystem {
   double potential_energy(const double* q, const double* s = nullptr) const override;
   double damping_power(double t, const double* q, const double* v, const double* s = nullptr) const override;
   bool dissipative() const override { return damped() || elements_.dissipates(); }
+  /// A camshaft's drive power τ_d φ̇_d (camshaft.hpp); 0 without one.
+  double input_power(double t, const double* q, const double* v) const override;
   /// Springs' and dashpots' P + kδ + cδ̇ (springs without mass), then the nonlinear elements'.
   std::vector<std::string> element_force_names() const override;
   void element_forces(double t, const double* q, const double* v, double* out,

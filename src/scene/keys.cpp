@@ -192,6 +192,31 @@ const KeyDoc kDocs[] = {
     {"lubricant.pressure_viscosity", "length²/force", "Pressure–viscosity coefficient ξ (1/Pa in SI; mineral oil ≈ 2e-8)."},
     {"lubricant.roughness", "length", "Composite surface roughness √(R_q,cam² + R_q,follower²): λ = film / roughness; "
                                       "0 = no λ."},
+    {"camshaft.inertias", "mass·length²", "Camshaft as a body (optional; empty: the cam turns at [cam]'s prescribed angle): "
+                                         "the polar inertia of each shaft station (each > 0). Station i is an unknown whose "
+                                         "coordinate is its angle [rad] (history columns `u_shaft_<i>`, `v_shaft_<i>`). Needs "
+                                         "follower.kind = \"network\"."},
+    {"camshaft.stiffnesses", "force·length/rad", "Torsional stiffness GJ/L of each shaft segment (station i to i + 1), "
+                                                "one fewer than stations, each > 0."},
+    {"camshaft.rayleigh_alpha", "1/time", "Shaft damping C = αJ + βK: α on the stations' absolute speed (a viscous bearing drag)."},
+    {"camshaft.rayleigh_beta", "time", "Shaft damping: β on the segments' twist rates."},
+    {"camshaft.cam_stations", "—", "The station of each cam (0-based integers); one entry per cam, at least one cam. Every "
+                                   "cam has [cam]'s profile."},
+    {"camshaft.cam_offsets_deg", "deg", "Each cam's angular offset in camshaft degrees: its lift is X_C(φ_station − α) "
+                                        "(a larger offset opens later). Not with camshaft.cam_offsets_crank_deg; neither: 0."},
+    {"camshaft.cam_offsets_crank_deg", "deg", "Each cam's offset in crank degrees (2 × camshaft degrees: a four-stroke's "
+                                              "firing intervals). Not with camshaft.cam_offsets_deg."},
+    {"camshaft.contact_cams", "—", "For every cam contact of the network in [[contacts]] order, the cam it rides on "
+                                   "(0-based integers); empty: the i-th cam contact rides on cam i."},
+    {"camshaft.drive_station", "—", "The station the drive coupling acts on (0-based)."},
+    {"camshaft.drive_stiffness", "force·length/rad", "The drive coupling's torsional stiffness (chain, belt or gear "
+                                                    "train as an equivalent spring) to the crank; > 0 with a camshaft."},
+    {"camshaft.drive_damping", "force·length·time/rad", "The drive coupling's torsional damping."},
+    {"camshaft.crank_orders", "—", "The crank's speed fluctuation: θ_crank(t) = θ(t) + Σ a_k sin(n_k θ(t) + p_k), θ(t) the "
+                                   "cam angle [cam] prescribes; orders n_k per camshaft revolution (an engine's 2nd order "
+                                   "is the camshaft's 4th), each > 0."},
+    {"camshaft.crank_amplitudes_deg", "deg", "Angle amplitude a_k of each order, camshaft degrees (as many as orders)."},
+    {"camshaft.crank_phases_deg", "deg", "Phase p_k of each order (as many as orders)."},
     // [[nodes]]
     {"nodes.name", "—", "Node name: history columns `u_<name>`, `v_<name>`.", "string",
      "non-empty, unique, not \"ground\", letters, digits, '_' and '-' only", "(required)"},

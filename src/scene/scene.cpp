@@ -115,7 +115,8 @@ Field mk(const char* t, const char* k, FK kind) {
     return f;                                                                          \
   }()
 
-const char* const kTables[] = {"cam", "follower", "spring", "contact", "solver", "run", "jump", "criteria", "lubricant"};
+const char* const kTables[] = {"cam", "follower", "spring", "contact", "solver", "run", "jump", "criteria", "lubricant",
+                               "camshaft"};
 
 Field ruled(Field f, Rule r, double lo, double hi = 0, const char* note = "") {
   f.rule = r;
@@ -260,6 +261,20 @@ const std::vector<Field>& fields() {
                       "must be > 0 (or 0: no oil film computed)"));
     v.push_back(ruled(F_REAL(lubricant, pressure_viscosity), Rule::Ge, 0));
     v.push_back(ruled(F_REAL(lubricant, roughness), Rule::Ge, 0));
+    v.push_back(F_ARR(camshaft, inertias));
+    v.push_back(F_ARR(camshaft, stiffnesses));
+    v.push_back(ruled(F_REAL(camshaft, rayleigh_alpha), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(camshaft, rayleigh_beta), Rule::Ge, 0));
+    v.push_back(F_ARR(camshaft, cam_stations));
+    v.push_back(F_ARR(camshaft, cam_offsets_deg));
+    v.push_back(F_ARR(camshaft, cam_offsets_crank_deg));
+    v.push_back(F_ARR(camshaft, contact_cams));
+    v.push_back(F_INT(camshaft, drive_station, 0, 1000000));
+    v.push_back(ruled(F_REAL(camshaft, drive_stiffness), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(camshaft, drive_damping), Rule::Ge, 0));
+    v.push_back(F_ARR(camshaft, crank_orders));
+    v.push_back(F_ARR(camshaft, crank_amplitudes_deg));
+    v.push_back(F_ARR(camshaft, crank_phases_deg));
     return v;
   }();
   return kFields;
@@ -527,6 +542,9 @@ bool operator==(const CriteriaSpec& a, const CriteriaSpec& b) {
 }
 bool operator==(const LubricantSpec& a, const LubricantSpec& b) {
   return same_table(a, b, &Scene::lubricant, "lubricant");
+}
+bool operator==(const CamshaftSpec& a, const CamshaftSpec& b) {
+  return same_table(a, b, &Scene::camshaft, "camshaft");
 }
 bool operator==(const Scene& a, const Scene& b) { return same_keys(a, b, nullptr) && a.network == b.network; }
 bool operator!=(const Scene& a, const Scene& b) { return !(a == b); }

@@ -275,6 +275,7 @@ class Validator {
 
     network();
     criteria();
+    camshaft();
   }
 
   // ---- [criteria], [lubricant], run.valve_node (rules between keys)
@@ -376,6 +377,8 @@ class Validator {
   }
 
   void network() const;
+  /// [camshaft] (src/scene/validate_camshaft.cpp).
+  void camshaft() const;
 
  private:
   const Scene& s_;

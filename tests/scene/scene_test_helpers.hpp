@@ -42,7 +42,7 @@ inline const std::string kCamKeys =
     "follower_face, follower_offset, roller_radius, follower_motion, pivot_x, pivot_y, arm_length, pad_offset, "
     "valve_arm, land_on_breaks, width, youngs_modulus, poisson_ratio, "
     "follower_youngs_modulus, follower_poisson_ratio";
-inline const std::string kTopKeys = "title, cam, follower, spring, contact, solver, run, jump, nodes, elements, contacts";
+inline const std::string kTopKeys = "title, cam, follower, spring, contact, solver, run, jump, camshaft, nodes, elements, contacts";
 
 
 }  // namespace scene_test

@@ -86,10 +86,11 @@ void EventMethod::set_metric() {
     for (int i = 0; i < k; ++i) MTa_.col(i) = S_ldlt_.solve(Eigen::VectorXd(mk_.contacts()[set_[i]].t.transpose()));
     for (int i = 0; i < k; ++i)
       for (int l = 0; l < k; ++l) Waa(i, l) = mk_.contacts()[set_[i]].t.dot(MTa_.col(l));
-  } else {  // M⁻¹T_Aᵀ, W_AA
+  } else {  // M⁻¹T_Aᵀ, W_AA (a camshaft: at the state, refreshed by project())
+    const Rows R = rows_at(y_.data());
     for (int i = 0; i < k; ++i) {
-      MTa_.col(i) = mk_.MinvTt().col(set_[i]);
-      for (int l = 0; l < k; ++l) Waa(i, l) = mk_.W()(set_[i], set_[l]);
+      MTa_.col(i) = R.MinvTt.col(set_[i]);
+      for (int l = 0; l < k; ++l) Waa(i, l) = R.W(set_[i], set_[l]);
     }
   }
   if (k) Waa_.compute(Waa);
@@ -120,10 +121,23 @@ void EventMethod::project(double t, const double* y, double* corr) {
   pg_.resize(k);
   pgd_.resize(k);
   const Eigen::Map<const Eigen::VectorXd> Q(y, n_), V(y + n_, n_);
-  for (int i = 0; i < k; ++i) {
-    const MechanismContact& c = mk_.contacts()[set_[i]];
-    pg_[i] = c.t.dot(Q) + c.g0 - (c.cam ? cm.X : 0.0);
-    pgd_[i] = c.t.dot(V) - (c.cam ? cm.Xdot : 0.0);
+  if (mk_.camshaft()) {  // rows and gaps at this state (the rows depend on the shaft angle)
+    yp_ = Eigen::Map<const Eigen::VectorXd>(y, 2 * n_);
+    const Rows R = rows_at(y);
+    Eigen::MatrixXd Waa(k, k);
+    for (int i = 0; i < k; ++i) {
+      MTa_.col(i) = R.MinvTt.col(set_[i]);
+      for (int l = 0; l < k; ++l) Waa(i, l) = R.W(set_[i], set_[l]);
+      pg_[i] = gap(set_[i], yp_, cm);
+      pgd_[i] = gap_rate(set_[i], yp_, cm);
+    }
+    Waa_.compute(Waa);
+  } else {
+    for (int i = 0; i < k; ++i) {
+      const MechanismContact& c = mk_.contacts()[set_[i]];
+      pg_[i] = c.t.dot(Q) + c.g0 - (c.cam ? cm.X : 0.0);
+      pgd_[i] = c.t.dot(V) - (c.cam ? cm.Xdot : 0.0);
+    }
   }
   if (k == 1) {  // W_AA⁺g = g/W (what the 1 × 1 factorisation gives), without its temporaries
     const double w = Waa_.matrixQTZ()(0, 0);

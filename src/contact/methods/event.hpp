@@ -156,6 +156,7 @@ class EventMethod : public ContactRun {
   Eigen::MatrixXd MTa_;
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> Waa_;
   Eigen::VectorXd pg_, pgd_;
+  Eigen::VectorXd yp_;  // project()'s state (a camshaft)
 };
 
 }  // namespace detail

@@ -209,10 +209,10 @@ class LeeLocated final : public ContactRun {
         F = s.s0 + (s.s1 - s.s0) * x + s.sc * (4.0 * x * (1.0 - x));
         e.work += 0.5 * len * wg[i] * cam_power(F, cam_at(tau));
       }
-      if (dissipative) {
-        interpolate(s, tau, yq_);
-        e.dissipated += 0.5 * len * wg[i] * dissipation_power(tau, yq_);
-      }
+      if (dissipative || mk_.camshaft()) interpolate(s, tau, yq_);
+      if (dissipative) e.dissipated += 0.5 * len * wg[i] * dissipation_power(tau, yq_);
+      // a camshaft: the drive's work (its contacts work inside the mechanism)
+      if (mk_.camshaft()) e.work += 0.5 * len * wg[i] * mk_.input_power(tau, yq_.data(), yq_.data() + n_);
     }
     return e;
   }
@@ -227,7 +227,8 @@ class LeeLocated final : public ContactRun {
     g.setZero(m_);
     gd.setZero(m_);
     for (int j : s.set) g[j] = gap(j, y, cm), gd[j] = gap_rate(j, y, cm);
-    project_on_set(mk_.MinvTt(), mk_.W(), s.set, g, gd, y);
+    const Rows R = rows_at(y.data());  // a camshaft's rows at this state
+    project_on_set(R.MinvTt, R.W, s.set, g, gd, y);
   }
   Eigen::VectorXd hg_, hgd_, hf_, mg_;
   std::vector<char> in_set_;
@@ -322,7 +323,7 @@ class LeeLocated final : public ContactRun {
     Responses* R = mk_.linear() ? &responses(hs, set) : nullptr;
     // J depends on (hs, set) and the responses only: its factorisation is kept while
     // none of them changes
-    if (!(J_h_ == hs && J_gen_ == resp_gen_ && J_set_ == set)) {
+    if (!(J_h_ == hs && J_gen_ == resp_gen_ && J_set_ == set) || mk_.camshaft()) {  // a camshaft: W̃ at each start
       J_h_ = -1.0;
       factor_shape_matrix(set, hs, R);
       J_h_ = hs;
@@ -391,6 +392,7 @@ class LeeLocated final : public ContactRun {
   void factor_shape_matrix(const std::vector<int>& set, double hs, const Responses* R) {
     const int k = int(set.size());
     Eigen::MatrixXd J(2 * k, 2 * k);
+    const Eigen::MatrixXd& W = rows_at(y_.data()).W;  // a camshaft's rows at the step's start
     for (int i = 0; i < k; ++i) {
       const Eigen::RowVectorXd& ti = mk_.contacts()[set[i]].t;
       for (int l = 0; l < k; ++l) {
@@ -401,7 +403,7 @@ class LeeLocated final : public ContactRun {
           J(2 * i + 1, 2 * l) = ti.dot(R->D1[j].segment(n_, n_));
           J(2 * i + 1, 2 * l + 1) = ti.dot(R->Dc[j].segment(n_, n_));
         } else {
-          const double w = mk_.W()(set[i], j);
+          const double w = W(set[i], j);
           J(2 * i, 2 * l) = w * hs * hs / 6.0;
           J(2 * i, 2 * l + 1) = w * hs * hs / 3.0;
           J(2 * i + 1, 2 * l) = w * hs / 2.0;
@@ -478,7 +480,7 @@ class LeeLocated final : public ContactRun {
       for (int j : set) {
         ++sum_.level_a.total;
         const double Fscale = std::max(std::abs(F_[j]), std::abs(Fa[j]));
-        const double Wh2 = mk_.W()(j, j) * hs * hs;
+        const double Wh2 = rows_at(y_.data()).W(j, j) * hs * hs;
         const double tolF = rtol * Fscale + 2.0 * tol_u / Wh2;
         const double e = std::abs(Fa[j] - F1_[j]) / tolF;
         if (e > err_c) {
@@ -555,7 +557,10 @@ class LeeLocated final : public ContactRun {
         const MechanismContact& c = mk_.contacts()[j];
         const double g0 = gap(j, y_, cm0), g1 = gap(j, y1, cm1);
         const double gd0 = gap_rate(j, y_, cm0), gd1 = gap_rate(j, y1, cm1);
-        const double ga0 = c.t.dot(s.a0) - cam_acc(j, cm0), ga1 = c.t.dot(s.a1) - cam_acc(j, cm1);
+        const double ga0 = mk_.camshaft() ? rows_at(y_.data()).T.row(j).dot(s.a0) - cam_acc(j, y_, cm0)
+                                          : c.t.dot(s.a0) - cam_acc(j, cm0);
+        const double ga1 = mk_.camshaft() ? rows_at(y1.data()).T.row(j).dot(s.a1) - cam_acc(j, y1, cm1)
+                                          : c.t.dot(s.a1) - cam_acc(j, cm1);
         auto f = [&](double x) {
           double u;
           quintic(g0, gd0, ga0, g1, gd1, ga1, hs, x, &u, nullptr, nullptr);
@@ -618,7 +623,8 @@ class LeeLocated final : public ContactRun {
         for (int k = 0; k <= kSwitchSamples; ++k) {
           const CamMotion c = k == 0 ? cm0 : k == kSwitchSamples ? cm1 : cam_at(s.t0 + hs * double(k) / kSwitchSamples);
           for (int j : set)
-            if (mk_.contacts()[j].cam) s.power[k] += samples_[j][k] * c.Xdot;
+            if (mk_.contacts()[j].cam && !(mk_.camshaft() && mk_.camshaft()->contact_cam(j) >= 0))
+              s.power[k] += samples_[j][k] * c.Xdot;
         }
       }
       s.W0 = work_;

@@ -72,6 +72,7 @@ class PenaltyMethod final : public ContactRun {
  private:
   OdeEngine* eng_;
   Eigen::VectorXd yv_;
+  mutable Eigen::VectorXd pot_y_;  // contact_potential's state
   bool penetration_checked() const override { return false; }  // the law penetrates
 
   // The penalty law of contact j; its force at penetration s and its rate ŝ (el: the elastic part).
@@ -85,9 +86,11 @@ class PenaltyMethod final : public ContactRun {
   double contact_potential(double t, const double* q) const override {
     const CamMotion cm = cam_at(t);
     double V = 0.0;
+    Eigen::VectorXd& y = pot_y_;  // gap() reads q only
+    y.resize(2 * n_);
+    y.head(n_) = Eigen::Map<const Eigen::VectorXd>(q, n_);
     for (int j = 0; j < m_; ++j) {
-      const MechanismContact& c = mk_.contacts()[j];
-      const double s = -(c.t.dot(Eigen::Map<const Eigen::VectorXd>(q, n_)) + c.g0 - (c.cam ? cm.X : 0.0));
+      const double s = -gap(j, y, cm);
       if (s > 0.0) V += params(j).energy(s);
     }
     return V;
