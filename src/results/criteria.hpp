@@ -17,8 +17,9 @@ void judge_criteria(const Scene& scene, Summary& s);
 
 /// The names judge_criteria gives the criteria `scene` sets, in its order, known before a run
 /// (a sweep's columns): the force margins per contact of a network, "force_margin" for a
-/// rigid or elastic_bar follower; a user follower's force margins are not listed (its
-/// contacts are known only once built).
+/// rigid or elastic_bar follower and a one-contact user follower (a user follower with
+/// several contacts judges force_margin_<contact>, known only once it is built: its sweep
+/// column "force_margin" stays empty).
 std::vector<std::string> criterion_names(const Scene& scene);
 
 }  // namespace detail
