@@ -416,29 +416,6 @@ void ContactRun::record_event(EventKind type, int contact, double v, double impu
   if (obs_) obs_->on_event(e);
 }
 
-void collect_coil_clash(Summary& s) {
-  std::vector<CoilClashResult>& out = s.coil_clash;
-  out.clear();
-  for (const ContactResult& c : s.contacts) {
-    if (c.coil_spring.empty()) continue;
-    auto it = std::find_if(out.begin(), out.end(), [&](const CoilClashResult& r) { return r.spring == c.coil_spring; });
-    if (it == out.end()) {
-      out.emplace_back();
-      it = out.end() - 1;
-      it->spring = c.coil_spring;
-    }
-    it->impacts += c.impacts;
-    it->coils_closed += c.impacts > 0;
-    it->max_impact_velocity = std::max(it->max_impact_velocity, c.max_impact_velocity);
-  }
-  for (const ContactEvent& e : s.events) {  // the first impact in time (angles wrap)
-    if (e.type != EventKind::Impact) continue;
-    for (CoilClashResult& r : out)
-      if (std::isnan(r.first_impact_theta_deg) && e.contact.rfind(r.spring + "_coil", 0) == 0)
-        r.first_impact_theta_deg = angle_deg_mod360(e.theta);
-  }
-}
-
 void ContactRun::sample_side_loads(double theta) {
   bool any = false;
   for (int j = 0; j < m_ && !any; ++j) any = mk_.contacts()[j].cam && active_[j];
@@ -675,7 +652,6 @@ Summary ContactRun::run() {
   sum_.energy_residual = std::abs(work_ - (E - E0_) - dissipated_);
   designer_.finish(sum_);
   analysis_.finish(sum_);
-  collect_coil_clash(sum_);
   return sum_;
 }
 

@@ -39,10 +39,6 @@
 namespace camdyn {
 namespace detail {
 
-/// Summary::coil_clash from the coil contacts' results and events (each spring whose
-/// coils clash: impacts, first angle, largest closing speed).
-void collect_coil_clash(Summary& s);
-
 class ContactRun {
  public:
   ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,

@@ -18,6 +18,7 @@
 #include "results/designer_columns.hpp"
 #include "results/run_analysis.hpp"
 #include "results/verdict.hpp"
+#include "results/coil_clash.hpp"
 #include "run/initial_check.hpp"
 #include "mechanism/mechanism.hpp"
 #include "cam/format.hpp"  // detail::fmt
@@ -264,6 +265,7 @@ Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
   sum.warnings = warnings_;
   sum.verdict = detail::make_verdict(scene_, mech_->single_follower() ? nullptr : mech_.get(), sum.events);
   sum.verdict_text = detail::verdict_one_line(sum.verdict);
+  detail::collect_coil_clash(sum);
   detail::judge_criteria(scene_, sum);
   return sum;
 }

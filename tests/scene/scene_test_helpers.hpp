@@ -41,7 +41,8 @@ inline const std::string kCamKeys =
     "arc_centre_x, arc_centre_y, arc_centre_r, arc_centre_deg, arc_radius, arc_from_deg, arc_to_deg, "
     "follower_face, follower_offset, roller_radius, follower_motion, pivot_x, pivot_y, arm_length, pad_offset, "
     "valve_arm, land_on_breaks, width, youngs_modulus, poisson_ratio, "
-    "follower_youngs_modulus, follower_poisson_ratio";
+    "follower_youngs_modulus, follower_poisson_ratio, friction_coefficient, friction_static_coefficient, "
+    "friction_stribeck_speed, roller_slip";
 inline const std::string kTopKeys = "title, cam, follower, spring, contact, solver, run, jump, camshaft, nodes, elements, contacts";
 
 

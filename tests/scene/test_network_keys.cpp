@@ -113,7 +113,7 @@ const std::vector<BadKey>& bad_keys() {
        "rocker_tip, valve"},
       {"ohc_bucket_tappet.toml", "elements.valve_spring.elements=100",
        "--set: key 'elements.valve_spring.elements' = 100: not a key of a spring element; allowed keys of a "
-       "spring element: name, type, nodes, stiffness, preload, damping, mass, masses"},
+       "spring element: name, type, nodes, stiffness, preload, damping, mass, masses, free_length, solid_length, coil_gaps, coil_restitution"},
       {"ohv_pushrod_train.toml", "elements.pushrod.preload=10",
        "--set: key 'elements.pushrod.preload' = 10: not a key of a bar element; allowed keys of a bar element: "
        "name, type, nodes, mass, youngs_modulus, area, length, elements, mass_matrix, rayleigh_alpha, "
@@ -269,7 +269,7 @@ TEST_F(NetworkKeysCli, SweepKeyErrors) {
        "valve_spring\n"},
       {"elements.stem.elements",
        "camdyn: --key: key 'key' = elements.stem.elements: not a key of a spring element; allowed keys of a spring "
-       "element: name, type, nodes, stiffness, preload, damping, mass, masses\n"},
+       "element: name, type, nodes, stiffness, preload, damping, mass, masses, free_length, solid_length, coil_gaps, coil_restitution\n"},
       {"contacts.seat.side",
        "camdyn: --key: key 'key' = contacts.seat.side: is a string, not a number: only numeric keys can be swept\n"},
   };

@@ -310,14 +310,14 @@ TEST(NetworkScene, ExactMessages) {
        "net.toml:5: key 'nodes[0].mass' = \"1 kg\": must be a number"},
       {"element without type", good + "[[elements]]\nnodes = [\"a\", \"ground\"]\n",
        "net.toml:14: key 'elements[1]' = {...}: must have a key 'type' (\"spring\" | \"dashpot\" | \"bar\" | "
-       "\"lever\" | \"progressive_spring\" | \"hydraulic_lash_adjuster\")"},
+       "\"lever\" | \"progressive_spring\" | \"guide_friction\" | \"gas_load\" | \"hydraulic_lash_adjuster\")"},
       {"bad element type", good + "[[elements]]\ntype = \"rod\"\n",
        "net.toml:15: key 'elements[1].type' = \"rod\": must be one of \"spring\", \"dashpot\", \"bar\", \"lever\", "
-       "\"progressive_spring\", \"hydraulic_lash_adjuster\""},
+       "\"progressive_spring\", \"guide_friction\", \"gas_load\", \"hydraulic_lash_adjuster\""},
       {"key of another type", kHead + kNode + "[[elements]]\ntype = \"spring\"\nnodes = [\"a\", \"ground\"]\n"
                                               "stiffness = 100\nratio = 2\n" + kCam,
        "net.toml:10: key 'elements[0].ratio' = 2: not a key of a spring element; allowed keys of a spring "
-       "element: name, type, nodes, stiffness, preload, damping, mass, masses"},
+       "element: name, type, nodes, stiffness, preload, damping, mass, masses, free_length, solid_length, coil_gaps, coil_restitution"},
       {"unknown element key", kHead + kNode + "[[elements]]\ntype = \"dashpot\"\nnodes = [\"a\", \"ground\"]\n"
                                                "damping = 1\nstifness = 2\n" + kCam,
        "net.toml:10: key 'elements[0].stifness' = 2: unknown key; allowed keys of a dashpot element: "
