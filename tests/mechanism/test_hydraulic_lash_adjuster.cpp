@@ -230,7 +230,7 @@ TEST(HydraulicLashAdjuster, StateJacobianMatchesDifferenceQuotients) {
 // p(0) = F/A (at rest in equilibrium) and kicked with v₀, oscillates as u = (v₀/ω) sin ωt,
 // ω² = βA²/(V m). Amplitude 3.7e-9 m, so the chamber's volume change (Aδ/V ≈ 2e-6) leaves
 // the frequency within 1e-6. Measured max |u − (v₀/ω) sin ωt| over ten periods / amplitude:
-// event on cvode-bdf 1.3e-6, arkode-erk 1.2e-6, arkode-dirk 3.0e-6 (a 1e-4 error in ω would
+// event on cvode-bdf 1.3e-6, arkode-erk 1.2e-6, arkode-dirk 5.5e-6 (a 1e-4 error in ω would
 // show as 6e-3).
 TEST(HydraulicLashAdjuster, ClosedChamberStiffnessGivesTheOscillationFrequency) {
   const double F = 100.0, v0 = 1e-4;
@@ -273,7 +273,7 @@ TEST(HydraulicLashAdjuster, LeakDownSinkRateIsTheClosedForm) {
   EXPECT_TRUE(r.sum.contract.held);
   // mass conservation: the leaked volume is the volume the plunger swept (the chamber's
   // pressure is back at F/A), and Summary::elements reports it as the leak-down total;
-  // measured relative difference 4e-9
+  // measured relative difference 4.7e-10
   const double swept = -kArea * r.col(r.rows[4], "u_plunger");
   EXPECT_NEAR(r.col(r.rows[4], "force_hla_leaked"), swept, 1e-6 * swept);
   EXPECT_EQ(r.col(r.rows[4], "force_hla_pumped"), 0.0);
@@ -317,7 +317,8 @@ TEST(HydraulicLashAdjuster, PumpUpClosesTheLashInThePredictedTime) {
     }
   ASSERT_TRUE(std::isfinite(t_close));
   // the pump-up total at the closing: the volume the plunger's rise swept (A·lash) less the
-  // leak's inflow, to the oil's expansion V₀Δp/β = 7e-12 m³ (7e-4 of A·lash)
+  // leak's inflow, to the oil's expansion V₀Δp/β = 7e-12 m³ (7e-4 of A·lash); measured
+  // relative difference −3.1e-4
   EXPECT_NEAR(r.col(*closed, "force_hla_pumped") - r.col(*closed, "force_hla_leaked"), kArea * lash,
               2e-3 * kArea * lash);
   EXPECT_NEAR(t_close, t_est, 0.005 * t_est) << "estimate " << t_est;
@@ -333,10 +334,10 @@ struct Case {
 // the chamber, oscillates against it while the check valve and the leak exchange oil (air
 // 1 %). RK4 at h = 2e-8 s and h/2 differ by 2.7e-14 m (Richardson: RK4's own error below
 // 3e-14). Measured max |u − u_RK4| (m) / |p − p_RK4| (Pa) over 41 rows, rtol 1e-10
-// (amplitudes 1.8e-5 m, 9.8e5 Pa): erk lee 1.2e-13 / 0.013, event 1.5e-13 / 0.0061, penalty
-// 7.1e-14 / 0.0052; dirk lee 7.7e-14 / 0.0048, event 2.7e-14 / 0.0017, penalty 1.9e-13 /
-// 0.012; cvode-bdf lee 5.2e-13 / 0.042, event 4.8e-13 / 0.026, holonomic 5.2e-13 / 0.042;
-// energy residual ≤ 5.6e-12 J (the contract holds on every one).
+// (amplitudes 1.8e-5 m, 9.8e5 Pa): erk lee 9.9e-14 / 0.0082, event 3.9e-14 / 0.0023,
+// penalty 2.2e-14 / 0.0023; dirk lee 1.2e-13 / 0.0031, event 2.4e-14 / 0.0012, penalty
+// 5.6e-15 / 2.4e-4; cvode-bdf lee 9.5e-13 / 0.073, event 7.2e-13 / 0.049, holonomic
+// 9.5e-13 / 0.073; energy residual ≤ 2.4e-12 J (the contract holds on every one).
 TEST(HydraulicLashAdjuster, MassOnHlaMatchesRk4OnEveryMethodAndEngine) {
   ElementSpec e = hla(0.01, 5e-6, 2e-8);
   const double load = 20.0, t_end = 2e-3, dt = 5e-5;
