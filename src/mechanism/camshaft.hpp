@@ -88,4 +88,8 @@ class CamShaft {
   Eigen::MatrixXd Z_;
 };
 
+/// The scene's network with the camshaft's stations, segments and bearing dampers added
+/// (mechanism_camshaft.cpp). @pre scene.camshaft.present().
+NetworkSpec network_with_camshaft(const Scene& scene);
+
 }  // namespace camdyn

@@ -26,6 +26,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -230,6 +231,10 @@ class Mechanism final : public MechanicalSystem {
   /// single bar) by two O(n) passes of its LDLᵀ, any other pattern by the sparse LDLᵀ.
   void solve_mass(Eigen::Ref<Eigen::VectorXd> x) const;
   void factor_mass();  // after M_: picks the solve above; @throws std::invalid_argument
+  // A [camshaft]: the CamShaft of the built mechanism (mechanism_camshaft.cpp). red: full
+  // DOF → unknown; index: named node → full DOF.
+  void attach_camshaft(const Scene& scene, const NetworkSpec& net, const std::vector<int>& red,
+                       const std::map<std::string, int>& index);
   enum class MassPattern { Diagonal, Tridiagonal, General } mass_pattern_ = MassPattern::General;
   Eigen::VectorXd mass_dinv_, mass_l_;  // 1/D, and L's subdiagonal (tridiagonal)
   // contact_free_acceleration's linear forms (single follower): z_jᵀr₀, K z_j, C z_j
