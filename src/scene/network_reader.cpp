@@ -71,6 +71,7 @@ std::vector<std::string> element_keys(ElementKind kind) {
       break;
     case ElementKind::GasLoad:
       k.insert(k.end(), {"crank_angles_deg", "pressures", "area", "crank_ratio", "crank_offset_deg"});
+      break;
     case ElementKind::HydraulicLashAdjuster:
       k.insert(k.end(), {"area", "stiffness", "preload", "chamber_volume", "bulk_modulus", "air_fraction", "air_reference_pressure", "plunger_diameter", "leak_clearance", "leak_length", "viscosity", "supply_pressure", "check_opening_pressure", "check_area", "check_discharge_coefficient", "check_transition_pressure", "oil_density", "initial_pressure"});
       break;
@@ -179,6 +180,7 @@ std::vector<SceneEntry> element_entries(const ElementSpec& e) {
       l.real("area", e.area);
       l.real("crank_ratio", e.crank_ratio);
       l.real("crank_offset_deg", e.crank_offset_deg);
+      break;
     case ElementKind::HydraulicLashAdjuster:
       l.real("area", e.area);
       l.real("stiffness", e.stiffness);

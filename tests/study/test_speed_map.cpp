@@ -153,6 +153,36 @@ TEST(SpeedMap, BandsAgreeWithADenseSweep) {
   }
 }
 
+TEST(SpeedMap, FindsALiftOffBandClosedByAHigherSpeed) {
+  // examples/ohc_bucket_tappet.toml with a 350 N valve-spring preload lifts off on the
+  // opening flank from ≈ 58.63 rev/s and keeps contact again from ≈ 60.28 rev/s (the
+  // bisection of old found 74.66, the nose float, or 58.61 depending on its start): the
+  // separation is not monotone in speed. The map over [57, 62] rev/s (6 trials on the grid,
+  // boundaries to 1e-3) must find the band with both ends, say it is not monotone, and agree
+  // with a dense sweep of 26 trials 0.2 rev/s apart written in this test.
+  const Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_bucket_tappet.toml",
+                                  {"elements.valve_spring.preload=350"});
+  JumpOptions o;
+  o.lo_rev_s = 57;
+  o.hi_rev_s = 62;
+  o.grid_points = 6;
+  o.rel_tol = 1e-3;
+  o.jobs = 2;
+  const JumpResult r = jump_speed(s, o);
+  const SpeedBand* lift = nullptr;
+  for (const SpeedBand& b : r.bands)
+    if (b.kind == "opening_liftoff") lift = &b;
+  ASSERT_NE(lift, nullptr) << speed_map_text(r);
+  ASSERT_FALSE(std::isnan(lift->from_out)) << speed_map_text(r);
+  ASSERT_FALSE(std::isnan(lift->to_out)) << speed_map_text(r);  // closed by a higher speed
+  EXPECT_NEAR(lift->from_in, 58.63, 0.02);
+  EXPECT_NEAR(lift->to_in, 60.28, 0.02);
+  EXPECT_LE(lift->from_in - lift->from_out, 1e-3 * lift->from_in);
+  EXPECT_LE(lift->to_out - lift->to_in, 1e-3 * lift->to_out);
+  EXPECT_FALSE(r.monotone) << r.monotone_text;
+  check_against_dense(r, s, 57, 62, 26);
+}
+
 TEST(SpeedMap, RejectsBadOptions) {
   const Scene s = two_mass_train();
   JumpOptions o;
