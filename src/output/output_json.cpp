@@ -173,6 +173,22 @@ class JsonObject {
   bool first_ = true;
 };
 
+// A JSON array of objects, one per item, each filled by fill(JsonObject&, item), its lines
+// indented as the children of `o` ("[]" when empty).
+template <class T, class Fill>
+std::string object_array(const JsonObject& o, const std::vector<T>& items, Fill fill) {
+  std::string t = "[";
+  for (size_t i = 0; i < items.size(); ++i) {
+    std::string u;
+    JsonObject k(u, o.child_indent() + 2);
+    fill(k, items[i]);
+    k.close();
+    t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
+  }
+  t += items.empty() ? "]" : "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
+  return t;
+}
+
 // One scene key as a JSON member, by its kind (the tables and the network's objects).
 void put_entry(JsonObject& w, const SceneEntry& e) {
   switch (e.kind) {
@@ -409,11 +425,7 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
   }
   if (!s.contacts.empty()) {
     // per contact (issue 28; the lash take-up window: include/camdyn/simulator.hpp)
-    std::string t = "[";
-    for (size_t i = 0; i < s.contacts.size(); ++i) {
-      const ContactResult& c = s.contacts[i];
-      std::string u;
-      JsonObject k(u, o.child_indent() + 2);
+    o.raw("contacts", object_array(o, s.contacts, [](JsonObject& k, const ContactResult& c) {
       k.str("name", c.name);
       k.num("min_force", c.min_force);
       k.num("min_force_theta_deg", c.min_force_theta_deg);
@@ -426,11 +438,7 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
       k.num("max_side_load", c.max_side_load);
       k.num("max_side_load_theta_deg", c.max_side_load_theta_deg);
       if (!c.coil_spring.empty()) k.str("coil_spring", c.coil_spring);
-      k.close();
-      t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
-    }
-    t += "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
-    o.raw("contacts", t);
+    }));
   }
   // oil film, lift deviation, ramp velocity, seat landings, acceptance criteria (issue 38)
   o.num("min_film_thickness", s.min_film_thickness);
@@ -438,100 +446,54 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
   o.num("min_lambda", s.min_lambda);
   o.num("max_ramp_velocity", s.max_ramp_velocity);
   o.num("max_ramp_theta_deg", s.max_ramp_theta_deg);
-  {
-    std::string t = "[";
-    for (size_t i = 0; i < s.lift_deviation.size(); ++i) {
-      const LiftDeviationRevolution& r = s.lift_deviation[i];
-      std::string u;
-      JsonObject k(u, o.child_indent() + 2);
-      k.integer("revolution", r.revolution);
-      k.num("min", r.min);
-      k.num("min_theta_deg", r.min_theta_deg);
-      k.num("max", r.max);
-      k.num("max_theta_deg", r.max_theta_deg);
-      k.close();
-      t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
-    }
-    t += s.lift_deviation.empty() ? "]" : "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
-    o.raw("lift_deviation", t);
-  }
-  {
-    std::string t = "[";
-    for (size_t i = 0; i < s.landings.size(); ++i) {
-      const SeatLanding& L = s.landings[i];
-      std::string u;
-      JsonObject k(u, o.child_indent() + 2);
-      k.str("contact", L.contact);
-      k.num("t", L.t);
-      k.num("theta_deg", L.theta_deg);
-      k.num("velocity", L.velocity);
-      k.integer("bounces", L.bounces);
-      k.num("bounce_height", L.bounce_height);
-      k.num("bounce_height_theta_deg", L.bounce_height_theta_deg);
-      k.num("max_velocity", L.max_velocity);
-      k.num("max_velocity_theta_deg", L.max_velocity_theta_deg);
-      k.close();
-      t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
-    }
-    t += s.landings.empty() ? "]" : "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
-    o.raw("landings", t);
-  }
-  {
-    std::string t = "[";
-    for (size_t i = 0; i < s.criteria.size(); ++i) {
-      const CriterionResult& c = s.criteria[i];
-      std::string u;
-      JsonObject k(u, o.child_indent() + 2);
-      k.str("name", c.name);
-      k.str("key", c.key);
-      k.str("kind", c.is_max ? "max" : "min");
-      k.num("limit", c.limit);
-      k.num("value", c.value);
-      k.num("theta_deg", c.theta_deg);
-      k.boolean("pass", c.pass);
-      k.str("note", c.note);
-      k.close();
-      t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
-    }
-    t += s.criteria.empty() ? "]" : "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
-    o.raw("criteria", t);
-    o.boolean("criteria_pass", s.criteria_pass);
-  }
+  o.raw("lift_deviation", object_array(o, s.lift_deviation, [](JsonObject& k, const LiftDeviationRevolution& r) {
+    k.integer("revolution", r.revolution);
+    k.num("min", r.min);
+    k.num("min_theta_deg", r.min_theta_deg);
+    k.num("max", r.max);
+    k.num("max_theta_deg", r.max_theta_deg);
+  }));
+  o.raw("landings", object_array(o, s.landings, [](JsonObject& k, const SeatLanding& L) {
+    k.str("contact", L.contact);
+    k.num("t", L.t);
+    k.num("theta_deg", L.theta_deg);
+    k.num("velocity", L.velocity);
+    k.integer("bounces", L.bounces);
+    k.num("bounce_height", L.bounce_height);
+    k.num("bounce_height_theta_deg", L.bounce_height_theta_deg);
+    k.num("max_velocity", L.max_velocity);
+    k.num("max_velocity_theta_deg", L.max_velocity_theta_deg);
+  }));
+  o.raw("criteria", object_array(o, s.criteria, [](JsonObject& k, const CriterionResult& c) {
+    k.str("name", c.name);
+    k.str("key", c.key);
+    k.str("kind", c.is_max ? "max" : "min");
+    k.num("limit", c.limit);
+    k.num("value", c.value);
+    k.num("theta_deg", c.theta_deg);
+    k.boolean("pass", c.pass);
+    k.str("note", c.note);
+  }));
+  o.boolean("criteria_pass", s.criteria_pass);
   if (!s.coil_clash.empty()) {
     // springs whose coils clash (include/camdyn/simulator.hpp CoilClashResult)
-    std::string t = "[";
-    for (size_t i = 0; i < s.coil_clash.size(); ++i) {
-      const CoilClashResult& c = s.coil_clash[i];
-      std::string u;
-      JsonObject k(u, o.child_indent() + 2);
+    o.raw("coil_clash", object_array(o, s.coil_clash, [](JsonObject& k, const CoilClashResult& c) {
       k.str("spring", c.spring);
       k.integer("impacts", c.impacts);
       k.integer("coils_closed", c.coils_closed);
       k.num("first_impact_theta_deg", c.first_impact_theta_deg);
       k.num("max_impact_velocity", c.max_impact_velocity);
-      k.close();
-      t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
-    }
-    t += "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
-    o.raw("coil_clash", t);
+    }));
   }
   if (!s.elements.empty()) {
     // per reported element quantity (ElementResult)
-    std::string t = "[";
-    for (size_t i = 0; i < s.elements.size(); ++i) {
-      const ElementResult& c = s.elements[i];
-      std::string u;
-      JsonObject k(u, o.child_indent() + 2);
+    o.raw("elements", object_array(o, s.elements, [](JsonObject& k, const ElementResult& c) {
       k.str("name", c.name);
       k.num("min", c.min);
       k.num("max", c.max);
       k.num("end", c.end);
       k.num("cycle_range", c.cycle_range);
-      k.close();
-      t += (i ? ",\n" : "\n") + std::string(size_t(o.child_indent() + 2), ' ') + u;
-    }
-    t += "\n" + std::string(size_t(o.child_indent()), ' ') + "]";
-    o.raw("elements", t);
+    }));
   }
   if (!s.verdict.empty()) {
     o.raw("verdict", detail::verdict_json(s.verdict, o.child_indent()));
