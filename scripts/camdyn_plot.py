@@ -9,6 +9,9 @@
                            networks (F_<contact>, u_<node> columns) also:
                            DIR/network_motion.png     cam lift and every node vs cam angle
                            DIR/network_forces.png     every contact's force, impacts marked
+                           with run.valve_node (a lift_deviation column) also:
+                           DIR/lift_deviation.png     valve lift − kinematic lift vs cam angle,
+                                                      one line per revolution
     camdyn_plot.py cam DIR [--speed REV_S]
         DIR/cam.csv     -> DIR/cam_profile.png        the profile in the cam frame
                            DIR/cam_kinematics.png     lift, velocity, acceleration vs cam angle
@@ -178,6 +181,29 @@ def plot_run(d, zoom=None):
     save(fig, os.path.join(d, "contact_force_zoom.png"))
     if network_names(c)[0]:
         plot_network(d, c, title)
+    if "lift_deviation" in c and "theta" in c:
+        plot_lift_deviation(d, c, title)
+
+
+def plot_lift_deviation(d, c, title=""):
+    """DIR/lift_deviation.png: the valve's lift minus its kinematic lift (the cam law through
+    the levers, lashes taken up) against the cam angle, one line per camshaft revolution."""
+    deg = np.degrees(c["theta"])
+    dev = c["lift_deviation"]
+    rev = np.floor(deg / 360.0).astype(int)
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for k in np.unique(rev):
+        sel = rev == k
+        ax.plot(deg[sel] - 360.0 * k, dev[sel], "-", lw=1.0, label="revolution %d" % (k + 1))
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.set_xlim(0, 360)
+    ax.set_xlabel("cam angle [deg]")
+    ax.set_ylabel("valve lift − kinematic lift")
+    ax.set_title(("Dynamic against kinematic valve lift\n" + title).strip())
+    ax.grid(True, alpha=0.3)
+    if np.unique(rev).size <= 8:
+        ax.legend(loc="best", fontsize=8)
+    save(fig, os.path.join(d, "lift_deviation.png"))
 
 
 # ---- networks (valve trains) ----------------------------------------------------------
