@@ -232,6 +232,30 @@ def designer_html(s):
         "<tr><th>%s</th><td>%s</td></tr>" % (html.escape(k), html.escape(v)) for k, v in rows)
 
 
+def spectra_html(d):
+    """The order spectra `camdyn spectrum DIR --column NAME` wrote (DIR/spectrum_NAME.csv):
+    per column, its mean and the eight largest orders."""
+    out = []
+    for f in sorted(os.listdir(d)):
+        if not (f.startswith("spectrum_") and f.endswith(".csv")):
+            continue
+        _, rows = read_rows(os.path.join(d, f))
+        try:
+            pts = [(num(r["order"]), num(r["amplitude"])) for r in rows]
+        except (KeyError, TypeError):
+            continue
+        mean = next((a for o, a in pts if o == 0), math.nan)
+        top = sorted((p for p in pts if p[0] > 0 and math.isfinite(p[1])), key=lambda p: -p[1])[:8]
+        out.append("<tr><td>%s</td><td>%s</td><td>%s</td></tr>" % (
+            html.escape(f[len("spectrum_"):-len(".csv")]), html.escape(fmt(mean, 5)),
+            html.escape(", ".join("%s: %s" % (fmt(o, 4), fmt(a, 4)) for o, a in top))))
+    if not out:
+        return ""
+    return ("<h2>Order spectra</h2><table><tr><th>column</th><th>mean</th><th>largest orders "
+            "(order: amplitude)</th></tr>%s</table><p class='note'>From DIR/spectrum_*.csv "
+            "(camdyn spectrum DIR --column NAME).</p>" % "".join(out))
+
+
 def criteria_html(crit):
     """The acceptance criteria of a run as a traffic-light table."""
     if not isinstance(crit, list) or not crit:
@@ -258,6 +282,8 @@ def run_report(d, reuse):
     network = bool(contacts)
     figs = ["network_motion.png", "network_forces.png"] if network else []
     figs += ["displacement.png", "contact_force.png", "contact_force_zoom.png"]
+    if "lift_deviation" in c:
+        figs.append("lift_deviation.png")
     if not (reuse and all(os.path.isfile(os.path.join(d, f)) for f in figs)):
         cp.plot_run(d)
 
@@ -330,6 +356,7 @@ def run_report(d, reuse):
                              fmt(s.get("min_contact_force")), angle(s.get("min_force_theta_deg"))))
     words.append(designer_html(s))
     words.append(criteria_html(s.get("criteria")))
+    words.append(spectra_html(d))
     stats = [("steps", s.get("steps")), ("rejected steps", s.get("rejected_steps")),
              ("events", s.get("events")), ("CPU seconds", s.get("cpu_seconds")),
              ("largest penetration", s.get("max_penetration")), ("energy residual", s.get("energy_residual"))]

@@ -75,3 +75,18 @@ def test_shows_per_contact_results_and_verdict_when_present(ohc_run, tmp_path):
     (d / "summary.json").write_text(json.dumps(s))
     page = report(d, "--reuse")
     assert "<b>Verdict:</b> seat bounce" in page and "seat_bounce" in page
+
+
+def test_shows_the_order_spectra_camdyn_spectrum_wrote(ohc_run, tmp_path):
+    # issue 38 item 4: `camdyn spectrum DIR --column NAME` and in the report. The OHC cam
+    # force's largest order is 1 (one lift per revolution); the table lists what the CSV says.
+    d = tmp_path / "run"
+    shutil.copytree(ohc_run, d)
+    r = subprocess.run([CLI, "spectrum", str(d), "--column", "F_cam"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    rows = [line.split(",") for line in (d / "spectrum_F_cam.csv").read_text().splitlines()[1:]]
+    top = max((float(a), float(o)) for o, a, _ in rows if float(o) > 0)
+    page = report(d)
+    assert "<h2>Order spectra</h2>" in page
+    assert "<td>F_cam</td>" in page
+    assert page.index("largest orders") < page.index("%.4g: " % top[1])
