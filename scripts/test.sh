@@ -3,7 +3,8 @@
 #   scripts/test.sh [CTEST ARGS...]      the default suite (every test but the label "long"),
 #                                        e.g. scripts/test.sh -L stability
 #   scripts/test.sh --long [CTEST ARGS]  only the long runs (label "long": B1 for 100
-#                                        revolutions, ~5–10 min of one core)
+#                                        revolutions, the shared-library install test,
+#                                        ~10–15 min), e.g. scripts/test.sh --long -R shared
 # Installs missing Debian packages first (no apt at all when nothing is missing), builds
 # build/ (Release, Ninja) and runs ctest; exits non-zero on any failure.
 set -euo pipefail
