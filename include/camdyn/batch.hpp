@@ -42,6 +42,12 @@ std::vector<Summary> run_batch(const std::vector<Scene>& scenes, int threads = 0
                                const std::function<void(std::size_t, const Summary&)>& on_done = {},
                                const std::atomic<bool>* stop = nullptr);
 
+/// As run_batch, the scenes validated already (load_validated_scene, validated): each run's
+/// Simulator does not check its scene again.
+std::vector<Summary> run_batch(const std::vector<ValidatedScene>& scenes, int threads = 0,
+                               const std::function<void(std::size_t, const Summary&)>& on_done = {},
+                               const std::atomic<bool>* stop = nullptr);
+
 /// As run_batch, keeping every run's history rows too (RunResult, as simulate()): the
 /// rows of scene i are bitwise identical to simulate(scenes[i]).rows for any `threads`.
 /// Memory: all rows of all runs are held (one HistoryRow is 96 bytes).

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "camdyn/network.hpp"
@@ -455,6 +456,36 @@ void resolve_defaults(Scene& scene);
 /// Check every rule (errors name scene.source, no line). contact.tol_u = 0 is accepted as
 /// "not yet resolved". Cam convexity is left to Cam. @throws SceneError naming key, value and rule.
 void validate(const Scene& scene);
+/// A scene whose rules were checked after its last change, resolved (resolve_defaults) and
+/// read-only: made only by validated() and the loaders below, so whoever holds one (the
+/// Simulator, the CLI, Python) does not check it again — a run validates its scene exactly
+/// once, after every --set.
+class ValidatedScene {
+ public:
+  const Scene& scene() const& { return scene_; }
+  /// The scene itself, moved out (the ValidatedScene is spent).
+  Scene scene() && { return std::move(scene_); }
+  const Scene& operator*() const { return scene_; }
+  const Scene* operator->() const { return &scene_; }
+
+ private:
+  explicit ValidatedScene(Scene scene) : scene_(std::move(scene)) {}
+  friend ValidatedScene validated(Scene scene, const std::vector<std::string>& overrides);
+  friend ValidatedScene load_validated_scene(const std::string& path, const std::vector<std::string>& overrides);
+  friend ValidatedScene parse_validated_scene(std::string_view toml_text, const std::string& source_name,
+                                              const std::vector<std::string>& overrides);
+  Scene scene_;
+};
+/// The one validation of a scene: `overrides` applied (apply_overrides, which checks the
+/// rules once on the result) or, without overrides, resolve_defaults and validate.
+/// @throws SceneError as apply_overrides / validate.
+ValidatedScene validated(Scene scene, const std::vector<std::string>& overrides = {});
+/// load_scene_file(path, overrides) as a ValidatedScene (the loader's own check is the one
+/// validation). @throws SceneError as load_scene_file.
+ValidatedScene load_validated_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+/// parse_scene(toml_text, source_name, overrides) as a ValidatedScene. @throws SceneError as parse_scene.
+ValidatedScene parse_validated_scene(std::string_view toml_text, const std::string& source_name,
+                                     const std::vector<std::string>& overrides = {});
 /// The scene as TOML with every key written (the resolved scene; floats in shortest
 /// round-trip form). parse_scene(to_toml(s), ...) == s after resolve_defaults(s).
 std::string to_toml(const Scene& scene);

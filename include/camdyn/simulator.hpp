@@ -390,9 +390,14 @@ struct Observer {
 
 class Simulator {
  public:
+  /// Validates the scene (validated(scene)), then as Simulator(ValidatedScene).
   /// @throws SceneError on an invalid scene, or an initial state that penetrates a contact
   /// by more than contact.tol_u (camdyn/initial_state.hpp, docs/initial_state.md).
   explicit Simulator(Scene scene);
+  /// A scene validated already (load_validated_scene, validated): not checked again; the
+  /// run's own checks (tolerances, the start state) are made.
+  /// @throws SceneError on tolerances the run cannot honour or a penetrating start.
+  explicit Simulator(ValidatedScene scene);
   /// Bring your own follower (camdyn/follower_system.hpp): the scene gives the cam, the
   /// contact method, the engine and the run; `follower` replaces the scene's follower
   /// (follower.*, [spring], the network tables are not used). Runs with Lee's method,
@@ -400,6 +405,8 @@ class Simulator {
   /// @throws SceneError on an invalid scene or follower (file "<follower>"), or an initial
   /// state that penetrates a contact (camdyn/initial_state.hpp).
   Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower);
+  /// As above, the scene validated already.
+  Simulator(ValidatedScene scene, std::shared_ptr<const FollowerSystem> follower);
   ~Simulator();
   /// Run to t_end. Never throws for a simulation failure: the summary says
   /// finished = false, how (termination) and why (message). `stop` (may be null) is polled each step (Ctrl-C); once it

@@ -68,33 +68,30 @@ namespace {
 /// kind "file" (text = path), "toml" (text = TOML, named `source` in messages) or
 /// "default" (the built-in scene, paper case B2); then the overrides, validated once.
 /// @throws SceneError with the CLI's message.
-Scene build_scene(const std::string& kind, const std::string& text, const std::string& source,
-                  const std::vector<std::string>& overrides) {
-  Scene sc;
+ValidatedScene build_validated(const std::string& kind, const std::string& text, const std::string& source,
+                               const std::vector<std::string>& overrides) {
   // The file (or text) with the overrides set in it, validated once (as the CLI).
-  if (kind == "file") {
-    sc = load_scene_file(text, overrides);
-  } else if (kind == "toml") {
-    sc = parse_scene(text, source, overrides);
-  } else if (kind == "default") {
-    sc = default_scene();
-    apply_overrides(sc, overrides);
-  } else {
+  if (kind != "file" && kind != "toml" && kind != "default")
     throw std::invalid_argument("camdyn._camdyn: unknown scene kind '" + kind + "'");
-  }
+  ValidatedScene sc = kind == "file"   ? load_validated_scene(text, overrides)
+                      : kind == "toml" ? parse_validated_scene(text, source, overrides)
+                                       : validated(default_scene(), overrides);
   // Cam geometry is checked by the Cam itself; name the scene or --set, as the CLI does.
   try {
-    const Cam cam(sc.cam);
+    const Cam cam(sc->cam);
   } catch (const SceneError& e) {
     if (e.file() != "<cam>") throw;
     bool from_set = false;
     for (const auto& s : overrides)
       if (s.rfind("cam.", 0) == 0) from_set = true;
-    throw SceneError(from_set ? std::string("--set") : sc.source, 0, e.key(), e.value(),
+    throw SceneError(from_set ? std::string("--set") : sc->source, 0, e.key(), e.value(),
                      e.rule());
   }
-  resolve_defaults(sc);  // validated by the loader above
   return sc;
+}
+Scene build_scene(const std::string& kind, const std::string& text, const std::string& source,
+                  const std::vector<std::string>& overrides) {
+  return build_validated(kind, text, source, overrides).scene();
 }
 
 /// While it lives, in Python's main thread with Python's default SIGINT handler in place:
@@ -140,7 +137,7 @@ class StopOnSigint {
 };
 
 /// The Simulator of a scene; model-building failures become SceneError as in the CLI.
-std::unique_ptr<Simulator> make_simulator(const Scene& sc) {
+std::unique_ptr<Simulator> make_simulator(const ValidatedScene& sc) {
   try {
     return std::make_unique<Simulator>(sc);
   } catch (const SceneError&) {
@@ -148,7 +145,7 @@ std::unique_ptr<Simulator> make_simulator(const Scene& sc) {
   } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {
-    throw SceneError(sc.source, 0, "scene", sc.title,
+    throw SceneError(sc->source, 0, "scene", sc->title,
                      std::string("cannot build the model: ") + e.what());
   }
 }
@@ -247,11 +244,12 @@ class PyObserver : public Observer {
 py::tuple run_scene(const std::string& kind, const std::string& text, const std::string& source,
                     const std::vector<std::string>& overrides, py::object observer,
                     const py::object& follower) {
-  const Scene sc = build_scene(kind, text, source, overrides);
+  const ValidatedScene valid = build_validated(kind, text, source, overrides);
+  const Scene& sc = valid.scene();
   std::unique_ptr<Simulator> sim;
   std::shared_ptr<PyFollower> pyf;
   if (follower.is_none()) {
-    sim = make_simulator(sc);
+    sim = make_simulator(valid);
   } else {
     std::shared_ptr<const FollowerSystem> fs;
     if (py::isinstance<FollowerSystem>(follower)) {
@@ -261,7 +259,7 @@ py::tuple run_scene(const std::string& kind, const std::string& text, const std:
       fs = pyf;
     }
     try {
-      sim = std::make_unique<Simulator>(sc, fs);  // checks the follower (SceneError "<follower>")
+      sim = std::make_unique<Simulator>(valid, fs);  // checks the follower (SceneError "<follower>")
     } catch (const SceneError&) {
       throw;
     } catch (const std::exception& e) {
@@ -477,10 +475,10 @@ py::tuple on_cam(const std::string& kind, const std::string& text, const std::st
 std::vector<std::string> batch(const std::vector<std::tuple<std::string, std::string, std::string,
                                                             std::vector<std::string>>>& specs,
                                int threads) {
-  std::vector<Scene> scenes;
+  std::vector<ValidatedScene> scenes;  // validated once here, not again by the runs
   scenes.reserve(specs.size());
   for (const auto& [kind, text, source, overrides] : specs)
-    scenes.push_back(build_scene(kind, text, source, overrides));
+    scenes.push_back(build_validated(kind, text, source, overrides));
   std::atomic<bool> stop{false};
   std::vector<Summary> sums;
   {
@@ -504,8 +502,8 @@ std::vector<std::string> batch(const std::vector<std::tuple<std::string, std::st
   std::vector<std::string> out;
   out.reserve(sums.size());
   for (std::size_t i = 0; i < sums.size(); ++i) {
-    if (sums[i].scene.empty()) sums[i].scene = scenes[i].title;
-    out.push_back(summary_json(sums[i], scenes[i]));
+    if (sums[i].scene.empty()) sums[i].scene = scenes[i]->title;
+    out.push_back(summary_json(sums[i], scenes[i].scene()));
   }
   return out;
 }
@@ -538,9 +536,9 @@ PYBIND11_MODULE(_camdyn, m) {
   m.def("resolved_scene",
         [](const std::string& kind, const std::string& text, const std::string& source,
            const std::vector<std::string>& overrides) {
-          const Scene sc = build_scene(kind, text, source, overrides);
+          const ValidatedScene sc = build_validated(kind, text, source, overrides);
           make_simulator(sc);
-          return to_toml(sc);
+          return to_toml(sc.scene());
         },
         py::arg("kind"), py::arg("text"), py::arg("source"), py::arg("overrides"));
   // The scene's keys only (a base whose arrays an override replaces: it may not run alone).

@@ -25,9 +25,7 @@ namespace fs = std::filesystem;
 
 int cmd_cam(const CamOpts& o) {
   // Without a scene: the paper cam (default CamSpec) at its default speed.
-  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, Scene{});
-  resolve_defaults(sc);
-  validate(sc);
+  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, Scene{}).scene();  // validated once
   ensure_output_dir(o.out);
   if (o.synthesise) {
     if (sc.cam.profile != CamProfileKind::Law && sc.cam.profile != CamProfileKind::Table)
@@ -144,11 +142,9 @@ int cmd_scene(const SceneOpts& o) {
   }
   if (o.json) throw SceneError("scene", 0, "--json", "", "needs --keys (the scene itself is printed as TOML)");
   // The same checks as `camdyn run` (checked_simulator): what scene accepts, run starts.
-  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
-  Scene resolved = sc;
-  resolve_defaults(resolved);
-  checked_simulator(resolved);
-  if (!write_stdout(to_toml(o.resolved ? resolved : sc))) {
+  const ValidatedScene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
+  checked_simulator(sc);
+  if (!write_stdout(to_toml(sc.scene()))) {  // resolved as loaded (--resolved: the same text)
     std::fprintf(stderr, "camdyn: scene: cannot write the scene to stdout: %s\n", std::strerror(errno));
     return kExitFailed;
   }

@@ -133,10 +133,10 @@ constexpr const char* kStopPlaceholder = "interrupted (signal)";
 
 int cmd_run(const RunOpts& o) {
   // Input stage: every error here is bad input (exit 2, raised to main()).
-  Scene sc = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
-  resolve_defaults(sc);
+  const ValidatedScene validated_scene = build_scene(o.c.scene_file, o.c.case_name, o.c.sets, default_scene());
+  const Scene& sc = validated_scene.scene();
   ensure_output_dir(o.out);
-  std::unique_ptr<Simulator> sim = checked_simulator(sc);  // the checks `camdyn scene` makes
+  std::unique_ptr<Simulator> sim = checked_simulator(validated_scene);  // the checks `camdyn scene` makes
   // Implausible as a valve train (issue 28): said, not refused (also in summary.json).
   for (const std::string& w : sim->warnings()) std::fprintf(stderr, "camdyn: warning: %s\n", w.c_str());
 

@@ -73,15 +73,17 @@ class SigintGuard {
 
 std::string fmt_g(double x, int digits = 6);
 
-/// The scene a subcommand works on: file or paper case or a fallback, then overrides.
-camdyn::Scene build_scene(const std::string& file, const std::string& case_name,
-                          const std::vector<std::string>& sets, camdyn::Scene fallback);
+/// The scene a subcommand works on: file or paper case or a fallback, then overrides,
+/// validated once (after the overrides) and resolved.
+/// @throws SceneError.
+camdyn::ValidatedScene build_scene(const std::string& file, const std::string& case_name,
+                                   const std::vector<std::string>& sets, camdyn::Scene fallback);
 
 /// The Simulator of a validated scene: every check a run makes before its first step
 /// (the start state, the tolerance floors, the method on the follower). `scene` and `run`
 /// both call it, so they accept the same scenes. Model-building failures become SceneError.
 /// @throws SceneError.
-std::unique_ptr<camdyn::Simulator> checked_simulator(const camdyn::Scene& scene);
+std::unique_ptr<camdyn::Simulator> checked_simulator(const camdyn::ValidatedScene& scene);
 
 /// Print `text` (and a newline if it has none) on stdout and flush; false on a write
 /// error (e.g. stdout is /dev/full).

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,20 +61,21 @@ std::string fmt_g(double x, int digits) {
 }
 
 /// The scene a subcommand works on: file or paper case or a fallback, then overrides.
-Scene build_scene(const std::string& file, const std::string& case_name,
-                  const std::vector<std::string>& sets, Scene fallback) {
-  Scene sc;
+ValidatedScene build_scene(const std::string& file, const std::string& case_name,
+                           const std::vector<std::string>& sets, Scene fallback) {
   if (!file.empty() && !case_name.empty()) {
     throw SceneError("--case", 0, "case", case_name,
                      "give either a scene file or --case, not both");
   }
+  // The file with the overrides set in it, validated once: --set may repair the file.
+  std::optional<ValidatedScene> loaded;
+  Scene base;
   if (!file.empty()) {
-    // The file with the overrides set in it, validated once: --set may repair the file.
-    sc = load_scene_file(file, sets);
+    loaded = load_validated_scene(file, sets);
   } else if (!case_name.empty()) {
-    sc = paper_case(case_name);  // SceneError names --case, the value and what is allowed
+    base = paper_case(case_name);  // SceneError names --case, the value and what is allowed
   } else {
-    sc = std::move(fallback);
+    base = std::move(fallback);
   }
   for (const auto& s : sets) {
     const auto eq = s.find('=');
@@ -86,11 +88,12 @@ Scene build_scene(const std::string& file, const std::string& case_name,
                        "missing key before '=': expected KEY=VALUE, e.g. cam.speed_rev_s=3");
     }
   }
-  if (file.empty()) apply_overrides(sc, sets);  // all at once, validated once: their order does not matter
+  // The overrides all at once, validated once: their order does not matter.
+  ValidatedScene sc = loaded ? std::move(*loaded) : validated(std::move(base), sets);
   // Cam geometry (convexity, self-intersection) is checked by the Cam itself; name the
   // file or --set the offending key came from, not the Cam's own "<cam>".
   try {
-    const Cam cam(sc.cam);
+    const Cam cam(sc->cam);
   } catch (const SceneError& e) {
     if (e.file() != "<cam>") throw;
     bool from_set = false;
@@ -104,7 +107,7 @@ Scene build_scene(const std::string& file, const std::string& case_name,
   return sc;
 }
 
-std::unique_ptr<Simulator> checked_simulator(const Scene& sc) {
+std::unique_ptr<Simulator> checked_simulator(const ValidatedScene& sc) {
   try {
     return std::make_unique<Simulator>(sc);
   } catch (const SceneError&) {
@@ -112,7 +115,7 @@ std::unique_ptr<Simulator> checked_simulator(const Scene& sc) {
   } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {
-    throw SceneError(sc.source, 0, "scene", sc.title, std::string("cannot build the model: ") + e.what());
+    throw SceneError(sc->source, 0, "scene", sc->title, std::string("cannot build the model: ") + e.what());
   }
 }
 
@@ -225,7 +228,7 @@ int write_report(const std::string& dir, bool reuse, std::string* why) {
 Scene required_scene(const char* cmd, const CommonOpts& c) {
   if (c.scene_file.empty() && c.case_name.empty())
     throw SceneError(cmd, 0, "SCENE", "", "give a scene file (or --case A|B1|B2)");
-  return build_scene(c.scene_file, c.case_name, c.sets, default_scene());  // resolved and validated
+  return build_scene(c.scene_file, c.case_name, c.sets, default_scene()).scene();  // resolved and validated
 }
 
 }  // namespace camdyn_cli

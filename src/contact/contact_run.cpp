@@ -46,7 +46,7 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
   }
   unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
   element_force_count_ = mk_.element_force_names().size();
-  if (!mk_.linear() && !mk_.single_follower() && element_force_count_ > 0) {
+  if (!mk_.linear() && mk_.traits().named_contacts && element_force_count_ > 0) {
     element_results_ = true;
     for (const std::string& name : mk_.element_force_names()) {
       sum_.elements.emplace_back();
@@ -60,8 +60,8 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
   // The base circle, so that a cam contact's gap sees the lift X_C − X_base
   // (cam_lift_base, include/camdyn/initial_state.hpp: cam.base_radius for a lift table,
   // min over θ of X_C otherwise).
-  // A single follower's gap sees the cam's X_C itself (u_c = q₀).
-  if (!mk_.single_follower() && (sc.cam.profile == CamProfileKind::Lift || mk_.cam_contacts() > 0))
+  // A cam_lift_absolute mechanism's gap sees the cam's X_C itself (u_c = q₀).
+  if (!mk_.traits().cam_lift_absolute && (sc.cam.profile == CamProfileKind::Lift || mk_.cam_contacts() > 0))
     x_base_ = cam_lift_base(cam_, sc.cam);
   // The lash take-up window: the cam lifts from the lowest to the highest level where a
   // clearance on the path is taken up (each cam contact's own, each lash contact's reached
@@ -364,7 +364,7 @@ void ContactRun::after_step(double h, double dW, double P_prev, double P_end, do
 }
 
 double ContactRun::contact_acceleration(int p) const {
-  if (!mk_.single_follower()) {
+  if (!mk_.traits().linear_contact_acceleration) {
     Eigen::VectorXd a;
     acceleration(t_, y_, F_, a);
     return mk_.contacts()[p].t.dot(a);

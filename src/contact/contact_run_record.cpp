@@ -16,7 +16,7 @@ constexpr double kFloatLift = 0.01;  // a float: the cam above clearance + 1 % o
 
 std::vector<std::string> ContactRun::extra_columns(const MechanicalSystem& mech, bool element_forces) {
   std::vector<std::string> c;
-  if (mech.single_follower()) return c;  // the standard columns show its one contact
+  if (!mech.traits().named_contacts) return c;  // the standard columns show its one contact
   for (const MechanismContact& k : mech.contacts()) {
     c.push_back("F_" + k.name);
     c.push_back("gap_" + k.name);
@@ -59,7 +59,7 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
   r.work_cam = W;
   r.dissipated = D;
   r.extra.reserve(3 * m_ + 2 * mk_.node_names().size());
-  for (int j = 0; j < m_ && !mk_.single_follower(); ++j) {
+  for (int j = 0; j < m_ && mk_.traits().named_contacts; ++j) {
     r.extra.push_back(F[j]);
     r.extra.push_back(gap(j, y, cm));
     r.extra.push_back(active[j] ? 1.0 : 0.0);
@@ -69,7 +69,7 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
     r.extra.push_back(u[i]);
     r.extra.push_back(v[i]);
   }
-  if (sc_.run.element_forces && !mk_.single_follower()) {
+  if (sc_.run.element_forces && mk_.traits().named_contacts) {
     const std::size_t k = r.extra.size();
     r.extra.resize(k + element_force_count_);
     mk_.element_forces(t, y.data(), y.data() + n_, r.extra.data() + k, states_of(y));

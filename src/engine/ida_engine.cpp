@@ -407,8 +407,7 @@ void IdaHeldSet::init(double t0, const Eigen::VectorXd& y0, const Eigen::VectorX
   // (the tolerance sweep found case A at rtol 1e-12 stepping for minutes inside one call).
   check_flag(IDASetMaxNumSteps(mem, kStepsPerCall), "IDASetMaxNumSteps");
   check_flag(IDASetErrHandlerFn(mem, &ida_errors, &d.sundials_message), "IDASetErrHandlerFn");
-  const int max_order = !mc.single_follower() ? 4 : (n == 1 ? 5 : 2);
-  check_flag(IDASetMaxOrd(mem, max_order), "IDASetMaxOrd");
+  check_flag(IDASetMaxOrd(mem, mc.traits().ida_max_order), "IDASetMaxOrd");
   check_flag(IDASetStopTime(mem, tstop), "IDASetStopTime");
   if (d.spec.max_step > 0) check_flag(IDASetMaxStep(mem, d.spec.max_step), "IDASetMaxStep");
   if (d.spec.initial_step > 0) check_flag(IDASetInitStep(mem, d.spec.initial_step), "IDASetInitStep");

@@ -51,6 +51,13 @@ void Mechanism::build_follower(const Scene& scene) {
   ta_q_ = K_ * MinvTt_;
   if (damped()) ta_v_ = C_ * MinvTt_;
   single_follower_ = true;
+  traits_.named_contacts = false;
+  traits_.cam_lift_absolute = true;
+  traits_.one_body = true;
+  traits_.stiff_internal_modes = n_ > 1;  // an elastic bar
+  traits_.linear_contact_acceleration = true;
+  // IDA: a rigid mass takes up to order 5; a bar's stiff axial modes hold BDF to order 2.
+  traits_.ida_max_order = n_ == 1 ? 5 : 2;
   desc_ = f.description;
   desc_.sparse = true;
   desc_.contact += " (one-contact mechanism)";

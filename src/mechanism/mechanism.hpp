@@ -57,6 +57,32 @@ struct MechanismContact {
 /// What the network methods integrate: M q̈ = r(t, q, q̇) + TᵀF with constant M and contact
 /// rows T. Two kinds: the linear Mechanism assembled from a network scene, and a user's
 /// FollowerSystem (include/camdyn/follower_system.hpp) through an adapter.
+/// What a mechanism is, for the parts that run and record it: set once by the builder that
+/// makes it (the defaults are a network's and a user FollowerSystem's; a rigid or
+/// elastic_bar follower's builder, src/mechanism/follower_builder.cpp, sets its own), so no
+/// method, engine or output asks which scene kind produced it.
+struct MechanismTraits {
+  /// Its contacts and nodes are named (history columns F_/gap_/in_<contact>, u_/v_<node>,
+  /// element results, the verdict's contacts); false: one unnamed cam contact that the
+  /// history's standard columns show.
+  bool named_contacts = true;
+  /// The cam contact's gap sees the cam's X_C itself (g = q₀ − X_C, u_c = q₀); false: the
+  /// lift above the base circle, X_C − X_base.
+  bool cam_lift_absolute = false;
+  /// One body on one axis: the uniform shift of every unknown is its rigid translation (the
+  /// direction of a held contact's static correction).
+  bool one_body = false;
+  /// An elastic body whose internal modes are stiff against the contact's time scale: BDF
+  /// order ≤ 2 at loose tolerances, and a projection that moves the rigid translation
+  /// (metric γ = 10⁶·h) (methods/event.cpp).
+  bool stiff_internal_modes = false;
+  /// T a_free is a linear form in (q, q̇) stored with the mechanism: a contact's free
+  /// acceleration costs O(n), no mass solve (contact_free_acceleration).
+  bool linear_contact_acceleration = false;
+  /// IDA's largest BDF order on this mechanism.
+  int ida_max_order = 4;
+};
+
 class MechanicalSystem {
  public:
   virtual ~MechanicalSystem() = default;
@@ -81,10 +107,9 @@ class MechanicalSystem {
   const ModelDescription& description() const { return desc_; }
   /// A typical force (thresholds): the largest preload.
   double force_scale() const { return force_scale_; }
-  /// true: built from a rigid or elastic_bar scene (one cam contact on node 0, the cam's
-  /// X_C absolute: g = q₀ − X_C, u_c = q₀), whose history keeps the single follower's
-  /// standard columns (no per-contact or per-node columns).
-  bool single_follower() const { return single_follower_; }
+  /// What the mechanism is, as the methods, engines and outputs need to know it (set once
+  /// by its builder: MechanismTraits).
+  const MechanismTraits& traits() const { return traits_; }
 
   /// true: r affine in (q, q̇) with constant coefficients (Lee's step map is affine).
   virtual bool linear() const = 0;
@@ -161,7 +186,8 @@ class MechanicalSystem {
   std::vector<std::string> node_names_;
   ModelDescription desc_;
   double force_scale_ = 0.0;
-  bool single_follower_ = false;
+  bool single_follower_ = false;  // built by follower_builder.cpp (its own assembly paths)
+  MechanismTraits traits_;
   std::shared_ptr<const CamShaft> camshaft_;
 };
 

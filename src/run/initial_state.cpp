@@ -113,8 +113,9 @@ std::string rule(const std::string& contact, const std::string& bound, const std
 
 void check_start(const Scene& sc, const MechanicalSystem& mech, StartKeys keys) {
   const bool user = keys == StartKeys::User;
-  // A rigid or elastic_bar follower's gap sees the cam's X_C itself (u_c = q₀).
-  const bool absolute = mech.single_follower();
+  // A cam_lift_absolute mechanism's gap (a rigid or elastic_bar follower's) sees the cam's
+  // X_C itself (u_c = q₀).
+  const bool absolute = mech.traits().cam_lift_absolute;
   const int n = mech.n(), m = mech.m();
   const Cam cam(sc.cam);
   const CamDrive drive(sc.cam);

@@ -1,7 +1,8 @@
 // camdyn — the simulator: scene → mechanism → engine + contact method → history/summary.
 //
-//   Simulator validates the scene and builds the mechanism once (any follower kind, or the
-//   user's FollowerSystem); each run() makes the contact method the scene asks for
+//   Simulator takes a validated scene (a ValidatedScene is not checked again; a Scene is
+//   validated once) and builds the mechanism once (any follower kind, or the user's
+//   FollowerSystem); each run() makes the contact method the scene asks for
 //   (make_contact_method, src/contact/contact_run.hpp) and runs it.
 #include "camdyn/simulator.hpp"
 #include "run/contract.hpp"
@@ -208,9 +209,9 @@ void retired_keys(const Scene& sc, std::vector<std::string>& warnings) {
 
 }  // namespace
 
-Simulator::Simulator(Scene scene) : scene_(std::move(scene)) {
-  resolve_defaults(scene_);
-  validate(scene_);
+Simulator::Simulator(Scene scene) : Simulator(validated(std::move(scene))) {}
+
+Simulator::Simulator(ValidatedScene scene) : scene_(std::move(scene).scene()) {
   check_tolerances(scene_);
   detail::check_tolerance_scale(scene_);
   warnings_ = scene_warnings(scene_);
@@ -234,9 +235,11 @@ void Simulator::add_designer_columns() {
   }
 }
 
-Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower) : scene_(std::move(scene)) {
-  resolve_defaults(scene_);
-  validate(scene_);
+Simulator::Simulator(Scene scene, std::shared_ptr<const FollowerSystem> follower)
+    : Simulator(validated(std::move(scene)), std::move(follower)) {}
+
+Simulator::Simulator(ValidatedScene scene, std::shared_ptr<const FollowerSystem> follower)
+    : scene_(std::move(scene).scene()) {
   if (scene_.solver.integrator == Integrator::Ida)
     throw SceneError(scene_.source, 0, "solver.integrator", "ida",
                      "a user-defined follower runs on arkode-erk, arkode-dirk or cvode-bdf (ida needs a "
@@ -263,7 +266,7 @@ Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
   detail::describe_tolerance(scene_, sum);
   detail::check_contract(scene_, sum);
   sum.warnings = warnings_;
-  sum.verdict = detail::make_verdict(scene_, mech_->single_follower() ? nullptr : mech_.get(), sum.events);
+  sum.verdict = detail::make_verdict(scene_, mech_->traits().named_contacts ? mech_.get() : nullptr, sum.events);
   sum.verdict_text = detail::verdict_one_line(sum.verdict);
   detail::collect_coil_clash(sum);
   detail::judge_criteria(scene_, sum);

@@ -55,14 +55,6 @@ inline constexpr EnumName<LinearSolverKind> kLinSolNames[] = {
     {LinearSolverKind::Auto, "auto"}, {LinearSolverKind::Dense, "dense"}, {LinearSolverKind::Klu, "klu"}};
 inline constexpr EnumName<StackKind> kStackNames[] = {
     {StackKind::Auto, "auto"}, {StackKind::Follower, "follower"}, {StackKind::Mechanism, "mechanism"}};
-inline constexpr EnumName<ElementKind> kElementNames[] = {{ElementKind::Spring, "spring"},
-                                                   {ElementKind::Dashpot, "dashpot"},
-                                                   {ElementKind::Bar, "bar"},
-                                                   {ElementKind::Lever, "lever"},
-                                                   {ElementKind::ProgressiveSpring, "progressive_spring"},
-                                                   {ElementKind::GuideFriction, "guide_friction"},
-                                                   {ElementKind::GasLoad, "gas_load"},
-                                                   {ElementKind::HydraulicLashAdjuster, "hydraulic_lash_adjuster"}};
 inline constexpr EnumName<ContactPointKind> kContactPointNames[] = {
     {ContactPointKind::Cam, "cam"}, {ContactPointKind::Lash, "lash"}, {ContactPointKind::Stop, "stop"}};
 inline constexpr EnumName<StopSide> kStopSideNames[] = {{StopSide::Below, "below"}, {StopSide::Above, "above"}};

@@ -19,6 +19,7 @@
 #include <toml++/toml.h>
 
 #include "scene/detail.hpp"
+#include "scene/element_kinds.hpp"
 
 namespace camdyn {
 
@@ -38,7 +39,7 @@ const char* to_string(PenaltyLaw v) { return enum_to_string(kPenaltyNames, v); }
 const char* to_string(Integrator v) { return enum_to_string(kIntegratorNames, v); }
 const char* to_string(LinearSolverKind v) { return enum_to_string(kLinSolNames, v); }
 const char* to_string(StackKind v) { return enum_to_string(kStackNames, v); }
-const char* to_string(ElementKind v) { return enum_to_string(kElementNames, v); }
+const char* to_string(ElementKind v) { return element_kind(v).name; }
 const char* to_string(ContactPointKind v) { return enum_to_string(kContactPointNames, v); }
 const char* to_string(StopSide v) { return enum_to_string(kStopSideNames, v); }
 const char* to_string(BarMass v) { return enum_to_string(kBarMassNames, v); }
@@ -55,7 +56,14 @@ bool parse_enum(std::string_view s, PenaltyLaw* out) { return enum_parse(kPenalt
 bool parse_enum(std::string_view s, Integrator* out) { return enum_parse(kIntegratorNames, s, out); }
 bool parse_enum(std::string_view s, LinearSolverKind* out) { return enum_parse(kLinSolNames, s, out); }
 bool parse_enum(std::string_view s, StackKind* out) { return enum_parse(kStackNames, s, out); }
-bool parse_enum(std::string_view s, ElementKind* out) { return enum_parse(kElementNames, s, out); }
+bool parse_enum(std::string_view s, ElementKind* out) {
+  for (const ElementKindInfo& k : element_kinds())
+    if (s == k.name) {
+      *out = k.kind;
+      return true;
+    }
+  return false;
+}
 bool parse_enum(std::string_view s, ContactPointKind* out) { return enum_parse(kContactPointNames, s, out); }
 bool parse_enum(std::string_view s, StopSide* out) { return enum_parse(kStopSideNames, s, out); }
 bool parse_enum(std::string_view s, BarMass* out) { return enum_parse(kBarMassNames, s, out); }

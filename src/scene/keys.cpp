@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "camdyn/scene.hpp"
+#include "scene/element_kinds.hpp"
 #include "scene/key_table.hpp"
 
 namespace camdyn {
@@ -226,83 +227,12 @@ const KeyDoc kDocs[] = {
     // [[elements]]
     {"elements.name", "—", "Element name, for messages.", "string", "any string", "\"<type> #<index>\""},
     {"elements.type", "—", "Element type; decides the other keys allowed.", "enum",
-     "must be one of \"spring\", \"dashpot\", \"bar\", \"lever\", \"progressive_spring\", \"guide_friction\", "
-     "\"gas_load\", \"hydraulic_lash_adjuster\"", "(required)"},
+     nullptr /* the kinds' names: element_type_rule() */, "(required)"},
     {"elements.nodes", "—", "[lower, upper] (lever: [input, output], or [input, output, pivot] for a lever on a moving "
                             "pivot); \"ground\" may end a spring, dashpot, bar, progressive_spring, guide_friction "
                             "([node, guide]) or gas_load ([valve, body]).",
      "names", "two different node names (a lever: two or three)", "(required)"},
-    {"elements.stiffness", "force/length", "Spring stiffness k (hydraulic_lash_adjuster: its plunger spring).", "real", "must be >= 0"},
-    {"elements.preload", "force", "Compressive force P at q = 0 (> 0 pushes the ends apart).", "real",
-     "must be finite"},
-    {"elements.damping", "force·time/length", "Viscous damping c (spring: parallel damper).", "real",
-     "spring: must be >= 0; dashpot: must be > 0"},
-    {"elements.mass", "mass", "spring: the coil's own mass (surge); bar: total mass.", "real",
-     "spring: must be >= 0; bar: must be > 0"},
-    {"elements.masses", "—", "spring: internal surge masses N (N ≥ 1 exactly when mass > 0).", "integer",
-     "must be >= 0 and <= 100000"},
-    {"elements.youngs_modulus", "force/length²", "bar: Young's modulus E.", "real", "must be > 0"},
-    {"elements.area", "length²", "bar: cross-section area A; gas_load: the valve head's area; hydraulic_lash_adjuster: the plunger's pressure area A.", "real", "must be > 0"},
-    {"elements.length", "length", "bar: length L.", "real", "must be > 0"},
-    {"elements.elements", "—", "bar: number of two-node elements.", "integer", "must be >= 1 and <= 100000"},
-    {"elements.mass_matrix", "—", "bar: `lumped` or `consistent`.", "enum",
-     "must be one of \"lumped\", \"consistent\""},
-    {"elements.rayleigh_alpha", "1/time", "bar: Rayleigh α (C = αM + βK).", "real", "must be >= 0"},
-    {"elements.rayleigh_beta", "time", "bar: Rayleigh β.", "real", "must be >= 0"},
-    {"elements.ratio", "—", "lever: q_output = ratio · q_input (the output moves the same way as the input); with a "
-                            "pivot node q_output = ratio · q_input + (1 − ratio) · q_pivot, ratio = output arm / input arm "
-                            "(signed distances from the pivot along the lever: negative when the pivot lies between them).",
-     "real", "finite and > 0 (two nodes); finite, != 0 and != 1 (with a pivot node)"},
-    {"elements.deflections", "length", "progressive_spring: the table's deflections δ (compression of [lower, upper]).",
-     "array of reals", "at least 2, finite, strictly increasing"},
-    {"elements.forces", "force", "progressive_spring: the table's forces F(δ), one per deflection; F between them is "
-                                 "the monotone cubic (PCHIP) through the points, beyond them the end slope's line.",
-     "array of reals", "as many as deflections, finite, non-decreasing, last > first"},
-    {"elements.installed_deflection", "length", "progressive_spring: the deflection at q = 0; the preload is F there.",
-     "real", "must be finite"},
-    {"elements.free_length", "length", "spring whose coils clash: free length (the installed length is "
-                                       "free_length − preload/stiffness).",
-     "real", "finite, > solid_length + preload/stiffness", "(none)"},
-    {"elements.solid_length", "length", "spring: solid length; > 0 turns on coil clash: one unilateral coil-to-coil "
-                                        "contact per segment of the coil chain (contacts `<spring>_coil<k>`).",
-     "real", "> 0 when any coil-clash key is set", "0 (no coil clash)"},
-    {"elements.coil_gaps", "length", "spring whose coils clash: installed gap of each segment of the coil chain, "
-                                     "lower → upper (variable pitch).",
-     "array of reals", "masses + 1 entries, each >= 0, adding up to free_length − preload/stiffness − solid_length",
-     "equal gaps (uniform pitch)"},
-    {"elements.coil_restitution", "—", "spring whose coils clash: restitution of the coil-to-coil impacts.", "real",
-     "must be >= 0 and <= 1", "contact.restitution"},
-    {"elements.friction_coefficient", "—", "guide_friction: Coulomb coefficient μ.", "real", "must be >= 0", "0"},
-    {"elements.normal_load", "force", "guide_friction: constant normal load N on the guide.", "real", "must be >= 0",
-     "0"},
-    {"elements.velocity_scale", "length/time", "guide_friction: regularisation speed v_s of −μN tanh(v/v_s) (the stick "
-                                               "phase is regularised: a steep damper μN/v_s below v_s).",
-     "real", "must be > 0", "0.001"},
-    {"elements.crank_angles_deg", "deg", "gas_load: the pressure table's crank angles φ (periodic over one engine "
-                                         "cycle, 360·crank_ratio deg).",
-     "array of reals", "at least 1, strictly increasing, in [0, 360·crank_ratio)"},
-    {"elements.pressures", "force/length²", "gas_load: cylinder pressure p(φ) at each crank angle (gauge: minus the "
-                                            "port's pressure), linear between the points.",
-     "array of reals", "as many as crank_angles_deg, finite"},
-    {"elements.crank_ratio", "—", "gas_load: crank angle per cam angle (2: four-stroke); φ = crank_ratio·θ + "
-                                  "crank_offset_deg.",
-     "real", "must be > 0", "2"},
-    {"elements.crank_offset_deg", "deg", "gas_load: crank angle at cam angle 0.", "real", "must be finite", "0"},
-    {"elements.chamber_volume", "length³", "hydraulic_lash_adjuster: high-pressure chamber volume V₀ at q = 0; V(δ) = V₀ − Aδ.", "real", "must be > 0"},
-    {"elements.bulk_modulus", "force/length²", "hydraulic_lash_adjuster: bulk modulus β of the air-free oil.", "real", "must be > 0"},
-    {"elements.air_fraction", "—", "hydraulic_lash_adjuster: entrained-air volume fraction α at air_reference_pressure; β_eff(p) = (v_l + v_g)/(v_l/β + v_g/p_abs), v_l = 1 − α, v_g = α p_ref/p_abs (isothermal air in oil, Merritt 1967).", "real", "must be >= 0 and < 1"},
-    {"elements.air_reference_pressure", "force/length²", "hydraulic_lash_adjuster: absolute pressure p_ref at which air_fraction is given (the atmosphere; the default is in Pa); gauge pressures are relative to it.", "real", "must be > 0"},
-    {"elements.plunger_diameter", "length", "hydraulic_lash_adjuster: plunger diameter d of the leak-down clearance.", "real", "must be > 0"},
-    {"elements.leak_clearance", "length", "hydraulic_lash_adjuster: radial clearance c between plunger and body; leak-down Q = π d c³ (p − p_s)/(12 μ L); 0: no leak.", "real", "must be >= 0"},
-    {"elements.leak_length", "length", "hydraulic_lash_adjuster: length L of the leak-down clearance.", "real", "must be > 0"},
-    {"elements.viscosity", "force·time/length²", "hydraulic_lash_adjuster: dynamic viscosity μ of the oil.", "real", "must be > 0"},
-    {"elements.supply_pressure", "force/length²", "hydraulic_lash_adjuster: oil gallery (supply) gauge pressure p_s, behind the check valve and at the leak's exit.", "real", "must be >= 0"},
-    {"elements.check_opening_pressure", "force/length²", "hydraulic_lash_adjuster: check valve opening pressure difference Δp_open (the valve opens for p < p_s − Δp_open).", "real", "must be >= 0"},
-    {"elements.check_area", "length²", "hydraulic_lash_adjuster: check valve flow area A_v; Q = C_d A_v √(2/ρ) Δ/(Δ² + Δ_t²)^¼, Δ = p_s − p − Δp_open > 0; 0: no check valve.", "real", "must be >= 0"},
-    {"elements.check_discharge_coefficient", "—", "hydraulic_lash_adjuster: check valve discharge coefficient C_d.", "real", "must be > 0 and <= 1"},
-    {"elements.check_transition_pressure", "force/length²", "hydraulic_lash_adjuster: check valve regularisation Δ_t: the flow is the orifice law above it, linear (laminar) below it (default in Pa).", "real", "must be > 0"},
-    {"elements.oil_density", "mass/length³", "hydraulic_lash_adjuster: oil density ρ of the check valve's orifice law (default in kg/m³).", "real", "must be > 0"},
-    {"elements.initial_pressure", "force/length²", "hydraulic_lash_adjuster: chamber gauge pressure at t = 0 (the internal state's start).", "real", "must be finite and > -air_reference_pressure"},
+    // the other keys of [[elements]]: from the element kinds' tables (src/scene/element_kinds.cpp)
     // [[contacts]]
     {"contacts.name", "—", "Contact name: history columns `F_<name>`, `gap_<name>`, `in_<name>`; the `contact` column of events.csv.",
      "string", "non-empty, unique", "(required)"},
@@ -387,8 +317,20 @@ std::string md_cell(const std::string& s) {
 }  // namespace
 
 std::vector<SceneKeyInfo> scene_keys() {
-  std::map<std::string, const KeyDoc*> docs;
-  for (const KeyDoc& d : kDocs) docs[d.key] = &d;
+  std::map<std::string, KeyDoc> docs;
+  for (const KeyDoc& d : kDocs) docs[d.key] = d;
+  // The keys of the element kinds come with their documentation (src/scene/element_kinds.cpp).
+  static const std::vector<scene_detail::ElementKeyDoc> element_docs = scene_detail::element_key_docs();
+  for (const scene_detail::ElementKeyDoc& e : element_docs)
+    docs[e.key] = KeyDoc{e.key.c_str(),  e.unit.c_str(), e.text.c_str(), e.type.c_str(),
+                         e.rule.c_str(), e.fixed_default.empty() ? nullptr : e.fixed_default.c_str()};
+  static const std::string element_type_rule = [] {
+    std::string r;
+    for (const scene_detail::ElementKindInfo& k : scene_detail::element_kinds())
+      r += std::string(r.empty() ? "must be one of \"" : ", \"") + k.name + "\"";
+    return r;
+  }();
+  docs["elements.type"].rule = element_type_rule.c_str();
   const std::map<std::string, std::string> dflt = defaults();
   std::vector<SceneKeyInfo> out;
   std::set<std::string> seen;
@@ -396,7 +338,7 @@ std::vector<SceneKeyInfo> scene_keys() {
     auto it = docs.find(row.key);
     if (it == docs.end())
       throw std::logic_error("scene key '" + row.key + "' has no documentation: add it to kDocs in src/scene/keys.cpp");
-    const KeyDoc& d = *it->second;
+    const KeyDoc& d = it->second;
     SceneKeyInfo k;
     k.key = row.key;
     k.type = d.type ? d.type : row.type;

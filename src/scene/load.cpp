@@ -74,6 +74,17 @@ Scene load_scene_file(const std::string& path, const std::vector<std::string>& o
   return scene_detail::scene_from_table(root, path, overrides);
 }
 
+// The loaders check the rules on every scene they return (from_table with check_rules, after
+// the overrides): their result is a validated scene as it is.
+ValidatedScene load_validated_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  return ValidatedScene(load_scene_file(path, overrides));
+}
+
+ValidatedScene parse_validated_scene(std::string_view toml_text, const std::string& source_name,
+                                     const std::vector<std::string>& overrides) {
+  return ValidatedScene(parse_scene(toml_text, source_name, overrides));
+}
+
 // ---------------------------------------------------------------- paper cases
 
 Scene paper_case(const std::string& name) {

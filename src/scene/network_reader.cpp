@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "scene/detail.hpp"
+#include "scene/element_kinds.hpp"
 
 namespace camdyn {
 
@@ -37,45 +38,22 @@ const std::vector<std::string>& node_keys() {
   return k;
 }
 
-/// Every key an element may have (of some type), in file order.
+/// Every key an element may have (of some type): name, type, nodes, then the kinds' keys in
+/// first-appearance order over the kinds (src/scene/element_kinds.cpp).
 const std::vector<std::string>& all_element_keys() {
-  static const std::vector<std::string> k{"name",   "type",          "nodes",          "stiffness",     "preload",
-                                          "damping", "mass",         "masses",         "youngs_modulus", "area",
-                                          "length",  "elements",     "mass_matrix",    "rayleigh_alpha", "rayleigh_beta",
-                                          "ratio",   "deflections",  "forces",         "installed_deflection",
-                                          "free_length", "solid_length", "coil_gaps", "coil_restitution",
-                                          "friction_coefficient", "normal_load", "velocity_scale",
-                                          "crank_angles_deg", "pressures", "crank_ratio", "crank_offset_deg",
-                                          "chamber_volume", "bulk_modulus", "air_fraction", "air_reference_pressure", "plunger_diameter", "leak_clearance", "leak_length", "viscosity", "supply_pressure", "check_opening_pressure", "check_area", "check_discharge_coefficient", "check_transition_pressure", "oil_density", "initial_pressure"};
+  static const std::vector<std::string> k = [] {
+    std::vector<std::string> v{"name", "type", "nodes"};
+    for (const ElementKindInfo& kind : element_kinds())
+      for (const ElementField& f : kind.fields)
+        if (!contains(v, f.key)) v.emplace_back(f.key);
+    return v;
+  }();
   return k;
 }
 
 std::vector<std::string> element_keys(ElementKind kind) {
   std::vector<std::string> k{"name", "type", "nodes"};
-  switch (kind) {
-    case ElementKind::Spring:
-      k.insert(k.end(), {"stiffness", "preload", "damping", "mass", "masses", "free_length", "solid_length",
-                         "coil_gaps", "coil_restitution"});
-      break;
-    case ElementKind::Dashpot: k.insert(k.end(), {"damping"}); break;
-    case ElementKind::Bar:
-      k.insert(k.end(), {"mass", "youngs_modulus", "area", "length", "elements", "mass_matrix", "rayleigh_alpha",
-                         "rayleigh_beta"});
-      break;
-    case ElementKind::Lever: k.insert(k.end(), {"ratio"}); break;
-    case ElementKind::ProgressiveSpring:
-      k.insert(k.end(), {"deflections", "forces", "installed_deflection", "damping"});
-      break;
-    case ElementKind::GuideFriction:
-      k.insert(k.end(), {"friction_coefficient", "normal_load", "velocity_scale"});
-      break;
-    case ElementKind::GasLoad:
-      k.insert(k.end(), {"crank_angles_deg", "pressures", "area", "crank_ratio", "crank_offset_deg"});
-      break;
-    case ElementKind::HydraulicLashAdjuster:
-      k.insert(k.end(), {"area", "stiffness", "preload", "chamber_volume", "bulk_modulus", "air_fraction", "air_reference_pressure", "plunger_diameter", "leak_clearance", "leak_length", "viscosity", "supply_pressure", "check_opening_pressure", "check_area", "check_discharge_coefficient", "check_transition_pressure", "oil_density", "initial_pressure"});
-      break;
-  }
+  for (const ElementField& f : element_kind(kind).fields) k.emplace_back(f.key);
   return k;
 }
 
@@ -137,70 +115,17 @@ std::vector<SceneEntry> element_entries(const ElementSpec& e) {
   if (!e.name.empty()) l.str("name", e.name);
   l.str("type", to_string(e.kind));
   l.names("nodes", e.nodes);
-  switch (e.kind) {
-    case ElementKind::Spring:
-      l.real("stiffness", e.stiffness);
-      l.real("preload", e.preload);
-      l.real("damping", e.damping);
-      l.real("mass", e.mass);
-      l.integer("masses", e.masses);
-      if (e.solid_length > 0) {  // coil clash: written only when on
-        l.real("free_length", e.free_length);
-        l.real("solid_length", e.solid_length);
-        if (!e.coil_gaps.empty()) l.reals("coil_gaps", e.coil_gaps);
-        if (e.coil_restitution) l.real("coil_restitution", *e.coil_restitution);
-      }
-      break;
-    case ElementKind::Dashpot: l.real("damping", e.damping); break;
-    case ElementKind::Bar:
-      l.real("mass", e.mass);
-      l.real("youngs_modulus", e.youngs_modulus);
-      l.real("area", e.area);
-      l.real("length", e.length);
-      l.integer("elements", e.elements);
-      l.str("mass_matrix", to_string(e.mass_matrix));
-      l.real("rayleigh_alpha", e.rayleigh_alpha);
-      l.real("rayleigh_beta", e.rayleigh_beta);
-      break;
-    case ElementKind::Lever: l.real("ratio", e.ratio); break;
-    case ElementKind::ProgressiveSpring:
-      l.reals("deflections", e.deflections);
-      l.reals("forces", e.forces);
-      l.real("installed_deflection", e.installed_deflection);
-      l.real("damping", e.damping);
-      break;
-    case ElementKind::GuideFriction:
-      l.real("friction_coefficient", e.friction_coefficient);
-      l.real("normal_load", e.normal_load);
-      l.real("velocity_scale", e.velocity_scale);
-      break;
-    case ElementKind::GasLoad:
-      l.reals("crank_angles_deg", e.crank_angles_deg);
-      l.reals("pressures", e.pressures);
-      l.real("area", e.area);
-      l.real("crank_ratio", e.crank_ratio);
-      l.real("crank_offset_deg", e.crank_offset_deg);
-      break;
-    case ElementKind::HydraulicLashAdjuster:
-      l.real("area", e.area);
-      l.real("stiffness", e.stiffness);
-      l.real("preload", e.preload);
-      l.real("chamber_volume", e.chamber_volume);
-      l.real("bulk_modulus", e.bulk_modulus);
-      l.real("air_fraction", e.air_fraction);
-      l.real("air_reference_pressure", e.air_reference_pressure);
-      l.real("plunger_diameter", e.plunger_diameter);
-      l.real("leak_clearance", e.leak_clearance);
-      l.real("leak_length", e.leak_length);
-      l.real("viscosity", e.viscosity);
-      l.real("supply_pressure", e.supply_pressure);
-      l.real("check_opening_pressure", e.check_opening_pressure);
-      l.real("check_area", e.check_area);
-      l.real("check_discharge_coefficient", e.check_discharge_coefficient);
-      l.real("check_transition_pressure", e.check_transition_pressure);
-      l.real("oil_density", e.oil_density);
-      l.real("initial_pressure", e.initial_pressure);
-      break;
+  for (const ElementField& f : element_kind(e.kind).fields) {
+    if (f.written && !f.written(e)) continue;
+    switch (f.type) {
+      case ElementField::Type::Real: l.real(f.key, e.*f.real); break;
+      case ElementField::Type::Int: l.integer(f.key, e.*f.integer); break;
+      case ElementField::Type::Reals: l.reals(f.key, e.*f.reals); break;
+      case ElementField::Type::OptionalReal:
+        if (e.*f.optional) l.real(f.key, *(e.*f.optional));
+        break;
+      case ElementField::Type::MassMatrix: l.str(f.key, to_string(e.*f.mass_matrix)); break;
+    }
   }
   return std::move(l.v);
 }
@@ -267,6 +192,16 @@ struct NetReader {
     }
     return v;
   }
+  /// One key of an element, by its descriptor.
+  void element_value(const ElementField& f, const toml::node& n, const std::string& key, ElementSpec& e) {
+    switch (f.type) {
+      case ElementField::Type::Real: e.*f.real = real(n, key); break;
+      case ElementField::Type::Int: e.*f.integer = integer(n, key, f.imin, f.imax); break;
+      case ElementField::Type::Reals: e.*f.reals = reals(n, key); break;
+      case ElementField::Type::OptionalReal: e.*f.optional = real(n, key); break;
+      case ElementField::Type::MassMatrix: e.*f.mass_matrix = enumeration(n, key, kBarMassNames); break;
+    }
+  }
   template <class E, std::size_t N>
   E enumeration(const toml::node& n, const std::string& key, const EnumName<E> (&names)[N]) const {
     E v{};
@@ -288,6 +223,23 @@ E entry_type(const toml::table& t, const std::string& prefix, const EnumName<E> 
   }
   r.lines[prefix + ".type"] = r.line(*n);
   return r.enumeration(*n, prefix + ".type", names);
+}
+
+/// The value of the key 'type' of element `prefix`, which decides the other keys allowed;
+/// required. The kinds' names are those of element_kinds().
+ElementKind element_type(const toml::table& t, const std::string& prefix, NetReader& r) {
+  std::vector<std::string> names, quoted;
+  for (const ElementKindInfo& k : element_kinds()) {
+    names.emplace_back(k.name);
+    quoted.push_back(quote(k.name));
+  }
+  const toml::node* n = t.get("type");
+  if (!n) r.fail_missing(t, prefix, "must have a key 'type' (" + join(quoted, " | ") + ")");
+  r.lines[prefix + ".type"] = r.line(*n);
+  ElementKind kind{};
+  auto s = n->as_string();
+  if (!s || !parse_enum(s->get(), &kind)) fail(r.file, r.line(*n), prefix + ".type", fmt_node(*n), one_of(names));
+  return kind;
 }
 
 }  // namespace
@@ -330,7 +282,7 @@ void read_network_array(const std::string& array, const toml::node& node, Scene&
       s.network.nodes.push_back(std::move(n));
     } else if (array == "elements") {
       ElementSpec e;
-      e.kind = entry_type(t, prefix, kElementNames, r);
+      e.kind = element_type(t, prefix, r);
       const std::vector<std::string> allowed = element_keys(e.kind);
       for (const auto& [k, v] : sorted_entries(t)) {
         const std::string key = prefix + "." + k;
@@ -338,48 +290,7 @@ void read_network_array(const std::string& array, const toml::node& node, Scene&
         check_key(k, *v, key, std::string(" ") + to_string(e.kind) + " element", allowed, all_element_keys());
         if (k == "name") e.name = r.str(*v, key);
         else if (k == "nodes") e.nodes = r.names(*v, key);
-        else if (k == "stiffness") e.stiffness = r.real(*v, key);
-        else if (k == "preload") e.preload = r.real(*v, key);
-        else if (k == "damping") e.damping = r.real(*v, key);
-        else if (k == "mass") e.mass = r.real(*v, key);
-        else if (k == "masses") e.masses = r.integer(*v, key, 0, 100000);
-        else if (k == "youngs_modulus") e.youngs_modulus = r.real(*v, key);
-        else if (k == "area") e.area = r.real(*v, key);
-        else if (k == "length") e.length = r.real(*v, key);
-        else if (k == "elements") e.elements = r.integer(*v, key, 1, 100000);
-        else if (k == "mass_matrix") e.mass_matrix = r.enumeration(*v, key, kBarMassNames);
-        else if (k == "rayleigh_alpha") e.rayleigh_alpha = r.real(*v, key);
-        else if (k == "rayleigh_beta") e.rayleigh_beta = r.real(*v, key);
-        else if (k == "ratio") e.ratio = r.real(*v, key);
-        else if (k == "deflections") e.deflections = r.reals(*v, key);
-        else if (k == "forces") e.forces = r.reals(*v, key);
-        else if (k == "installed_deflection") e.installed_deflection = r.real(*v, key);
-        else if (k == "free_length") e.free_length = r.real(*v, key);
-        else if (k == "solid_length") e.solid_length = r.real(*v, key);
-        else if (k == "coil_gaps") e.coil_gaps = r.reals(*v, key);
-        else if (k == "coil_restitution") e.coil_restitution = r.real(*v, key);
-        else if (k == "friction_coefficient") e.friction_coefficient = r.real(*v, key);
-        else if (k == "normal_load") e.normal_load = r.real(*v, key);
-        else if (k == "velocity_scale") e.velocity_scale = r.real(*v, key);
-        else if (k == "crank_angles_deg") e.crank_angles_deg = r.reals(*v, key);
-        else if (k == "pressures") e.pressures = r.reals(*v, key);
-        else if (k == "crank_ratio") e.crank_ratio = r.real(*v, key);
-        else if (k == "crank_offset_deg") e.crank_offset_deg = r.real(*v, key);
-        else if (k == "chamber_volume") e.chamber_volume = r.real(*v, key);
-        else if (k == "bulk_modulus") e.bulk_modulus = r.real(*v, key);
-        else if (k == "air_fraction") e.air_fraction = r.real(*v, key);
-        else if (k == "air_reference_pressure") e.air_reference_pressure = r.real(*v, key);
-        else if (k == "plunger_diameter") e.plunger_diameter = r.real(*v, key);
-        else if (k == "leak_clearance") e.leak_clearance = r.real(*v, key);
-        else if (k == "leak_length") e.leak_length = r.real(*v, key);
-        else if (k == "viscosity") e.viscosity = r.real(*v, key);
-        else if (k == "supply_pressure") e.supply_pressure = r.real(*v, key);
-        else if (k == "check_opening_pressure") e.check_opening_pressure = r.real(*v, key);
-        else if (k == "check_area") e.check_area = r.real(*v, key);
-        else if (k == "check_discharge_coefficient") e.check_discharge_coefficient = r.real(*v, key);
-        else if (k == "check_transition_pressure") e.check_transition_pressure = r.real(*v, key);
-        else if (k == "oil_density") e.oil_density = r.real(*v, key);
-        else if (k == "initial_pressure") e.initial_pressure = r.real(*v, key);
+        else if (const ElementField* f = element_field(e.kind, k)) r.element_value(*f, *v, key, e);
       }
       s.network.elements.push_back(std::move(e));
     } else {
@@ -434,13 +345,20 @@ const std::string& entry_name(const Scene& s, const std::string& array, std::siz
   return array == "nodes" ? n.nodes[i].name : array == "elements" ? n.elements[i].name : n.contacts[i].name;
 }
 
-SceneEntry::Kind network_key_kind(const std::string& array, const std::string& key) {
+SceneEntry::Kind network_key_kind(const std::string& array, const std::string& key, const Scene& scene,
+                                  std::size_t index) {
   if (key == "nodes") return SceneEntry::Kind::Names;
-  if (array == "elements" && (key == "deflections" || key == "forces" || key == "coil_gaps" ||
-                              key == "crank_angles_deg" || key == "pressures"))
-    return SceneEntry::Kind::Array;
-  if (key == "name" || key == "type" || key == "side" || key == "mass_matrix") return SceneEntry::Kind::Str;
-  if (array == "elements" && (key == "masses" || key == "elements")) return SceneEntry::Kind::Int;
+  if (key == "name" || key == "type" || key == "side") return SceneEntry::Kind::Str;
+  if (array == "elements")
+    if (const ElementField* f = element_field(scene.network.elements[index].kind, key)) {
+      switch (f->type) {
+        case ElementField::Type::Int: return SceneEntry::Kind::Int;
+        case ElementField::Type::Reals: return SceneEntry::Kind::Array;
+        case ElementField::Type::MassMatrix: return SceneEntry::Kind::Str;
+        case ElementField::Type::Real:
+        case ElementField::Type::OptionalReal: break;
+      }
+    }
   return SceneEntry::Kind::Real;
 }
 
@@ -528,7 +446,7 @@ NetworkKey resolve_network_key(const Scene& scene, const std::string& key, const
     fail(file, 0, key, value,
          (known ? "not a key of a" + what + "; " : std::string("unknown key; ")) + "allowed keys of a" + what + ": " +
              join(allowed, ", "));
-  r.kind = network_key_kind(r.array, r.key);
+  r.kind = network_key_kind(r.array, r.key, scene, r.index);
   return r;
 }
 

@@ -27,6 +27,7 @@
 
 #include "camdyn/cam.hpp"
 #include "scene/detail.hpp"
+#include "scene/element_kinds.hpp"
 #include "scene/fields.hpp"
 
 namespace camdyn {
@@ -40,24 +41,7 @@ bool operator==(const NodeSpec& a, const NodeSpec& b) {
          a.initial_velocity == b.initial_velocity;
 }
 bool operator==(const ElementSpec& a, const ElementSpec& b) {
-  return a.name == b.name && a.kind == b.kind && a.nodes == b.nodes && a.stiffness == b.stiffness &&
-         a.preload == b.preload && a.damping == b.damping && a.mass == b.mass && a.masses == b.masses &&
-         a.youngs_modulus == b.youngs_modulus && a.area == b.area && a.length == b.length &&
-         a.elements == b.elements && a.mass_matrix == b.mass_matrix && a.rayleigh_alpha == b.rayleigh_alpha &&
-         a.rayleigh_beta == b.rayleigh_beta && a.ratio == b.ratio && a.deflections == b.deflections &&
-         a.forces == b.forces && a.installed_deflection == b.installed_deflection &&
-         a.coil_gaps == b.coil_gaps && a.free_length == b.free_length && a.solid_length == b.solid_length &&
-         a.coil_restitution == b.coil_restitution && a.friction_coefficient == b.friction_coefficient &&
-         a.normal_load == b.normal_load && a.velocity_scale == b.velocity_scale &&
-         a.crank_angles_deg == b.crank_angles_deg && a.pressures == b.pressures &&
-         a.crank_ratio == b.crank_ratio && a.crank_offset_deg == b.crank_offset_deg &&
-         a.chamber_volume == b.chamber_volume && a.bulk_modulus == b.bulk_modulus && a.air_fraction == b.air_fraction &&
-         a.air_reference_pressure == b.air_reference_pressure && a.plunger_diameter == b.plunger_diameter &&
-         a.leak_clearance == b.leak_clearance && a.leak_length == b.leak_length && a.viscosity == b.viscosity &&
-         a.supply_pressure == b.supply_pressure && a.check_opening_pressure == b.check_opening_pressure &&
-         a.check_area == b.check_area && a.check_discharge_coefficient == b.check_discharge_coefficient &&
-         a.check_transition_pressure == b.check_transition_pressure && a.oil_density == b.oil_density &&
-         a.initial_pressure == b.initial_pressure;
+  return a.name == b.name && a.kind == b.kind && a.nodes == b.nodes && element_fields_equal(a, b);
 }
 bool operator==(const ContactPointSpec& a, const ContactPointSpec& b) {
   return a.name == b.name && a.kind == b.kind && a.nodes == b.nodes && a.clearance == b.clearance &&

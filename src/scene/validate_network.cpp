@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/element_kinds.hpp"
+
 namespace camdyn {
 namespace scene_detail {
 
@@ -85,14 +87,28 @@ void Validator::network() const {
           net_fail(p + ".nodes", quoted_names(e.nodes),
                    std::string(e.nodes.size() == 3 ? "must name three" : "must name two") + " different nodes (" +
                        who + ")");
+    // Each key's own rule (the kind's table, src/scene/element_kinds.cpp), then the rules
+    // between its keys.
+    for (const ElementField& f : element_kind(e.kind).fields) {
+      const std::string key = p + "." + f.key;
+      if (f.type == ElementField::Type::Int) {
+        const int v = e.*f.integer;
+        if (f.rule == ElementField::Rule::IntRange && (v < f.imin || v > f.imax))
+          net_fail(key, std::to_string(v), range_rule(f.imin, f.imax) + " (" + who + ")");
+        continue;
+      }
+      if (f.type != ElementField::Type::Real) continue;
+      const double v = e.*f.real;
+      switch (f.rule) {
+        case ElementField::Rule::Finite: net_finite(key, v, who); break;
+        case ElementField::Rule::Ge: net_ge(key, v, f.lo, who); break;
+        case ElementField::Rule::Gt: net_gt(key, v, f.lo, who); break;
+        case ElementField::Rule::IntRange:
+        case ElementField::Rule::Custom: break;
+      }
+    }
     switch (e.kind) {
       case ElementKind::Spring:
-        net_ge(p + ".stiffness", e.stiffness, 0.0, who);
-        net_finite(p + ".preload", e.preload, who);
-        net_ge(p + ".damping", e.damping, 0.0, who);
-        net_ge(p + ".mass", e.mass, 0.0, who);
-        if (e.masses < 0 || e.masses > 100000)
-          net_fail(p + ".masses", std::to_string(e.masses), range_rule(0, 100000) + " (" + who + ")");
         if (e.mass > 0 && e.masses < 1)
           net_fail(p + ".masses", std::to_string(e.masses),
                    "must be >= 1 for a spring with mass (" + p + ".mass = " + fmt_num(e.mass) + ") (" + who + ")");
@@ -100,17 +116,9 @@ void Validator::network() const {
           net_fail(p + ".masses", std::to_string(e.masses), "needs " + p + ".mass > 0 (" + who + ")");
         coil_clash(e, p, who);
         break;
-      case ElementKind::Dashpot: net_gt(p + ".damping", e.damping, 0.0, who); break;
+      case ElementKind::Dashpot:
       case ElementKind::Bar:
-        net_gt(p + ".mass", e.mass, 0.0, who);
-        net_gt(p + ".youngs_modulus", e.youngs_modulus, 0.0, who);
-        net_gt(p + ".area", e.area, 0.0, who);
-        net_gt(p + ".length", e.length, 0.0, who);
-        if (e.elements < 1 || e.elements > 100000)
-          net_fail(p + ".elements", std::to_string(e.elements), range_rule(1, 100000) + " (" + who + ")");
-        net_ge(p + ".rayleigh_alpha", e.rayleigh_alpha, 0.0, who);
-        net_ge(p + ".rayleigh_beta", e.rayleigh_beta, 0.0, who);
-        break;
+      case ElementKind::GuideFriction: break;
       case ElementKind::Lever:
         if (e.nodes.size() == 2) {
           // A two-node lever's output moves ratio times its input, the same way: a ratio
@@ -158,40 +166,15 @@ void Validator::network() const {
         if (!(y.back() > y.front()))
           net_fail(p + ".forces", fmt_num(y.back()),
                    "must rise somewhere: the last force must be > the first (" + who + ")");
-        net_finite(p + ".installed_deflection", e.installed_deflection, who);
-        net_ge(p + ".damping", e.damping, 0.0, who);
         break;
       }
-      case ElementKind::GuideFriction:
-        net_ge(p + ".friction_coefficient", e.friction_coefficient, 0.0, who);
-        net_ge(p + ".normal_load", e.normal_load, 0.0, who);
-        net_gt(p + ".velocity_scale", e.velocity_scale, 0.0, who);
-        break;
       case ElementKind::GasLoad: gas_load(e, p, who); break;
       case ElementKind::HydraulicLashAdjuster: {
-        net_gt(p + ".area", e.area, 0.0, who);
-        net_ge(p + ".stiffness", e.stiffness, 0.0, who);
-        net_finite(p + ".preload", e.preload, who);
-        net_gt(p + ".chamber_volume", e.chamber_volume, 0.0, who);
-        net_gt(p + ".bulk_modulus", e.bulk_modulus, 0.0, who);
-        net_ge(p + ".air_fraction", e.air_fraction, 0.0, who);
         if (!(e.air_fraction < 1.0))
           net_fail(p + ".air_fraction", fmt_num(e.air_fraction), "must be < 1 (a volume fraction in [0, 1)) (" + who + ")");
-        net_gt(p + ".air_reference_pressure", e.air_reference_pressure, 0.0, who);
-        net_gt(p + ".plunger_diameter", e.plunger_diameter, 0.0, who);
-        net_ge(p + ".leak_clearance", e.leak_clearance, 0.0, who);
-        net_gt(p + ".leak_length", e.leak_length, 0.0, who);
-        net_gt(p + ".viscosity", e.viscosity, 0.0, who);
-        net_ge(p + ".supply_pressure", e.supply_pressure, 0.0, who);
-        net_ge(p + ".check_opening_pressure", e.check_opening_pressure, 0.0, who);
-        net_ge(p + ".check_area", e.check_area, 0.0, who);
-        net_gt(p + ".check_discharge_coefficient", e.check_discharge_coefficient, 0.0, who);
         if (!(e.check_discharge_coefficient <= 1.0))
           net_fail(p + ".check_discharge_coefficient", fmt_num(e.check_discharge_coefficient),
                    "must be <= 1 (" + who + ")");
-        net_gt(p + ".check_transition_pressure", e.check_transition_pressure, 0.0, who);
-        net_gt(p + ".oil_density", e.oil_density, 0.0, who);
-        net_finite(p + ".initial_pressure", e.initial_pressure, who);
         if (!(e.initial_pressure > -e.air_reference_pressure))
           net_fail(p + ".initial_pressure", fmt_num(e.initial_pressure),
                    "must be > -air_reference_pressure (" + fmt_num(-e.air_reference_pressure) +
@@ -407,9 +390,6 @@ void Validator::coil_clash(const ElementSpec& e, const std::string& p, const std
 }
 
 void Validator::gas_load(const ElementSpec& e, const std::string& p, const std::string& who) const {
-  net_gt(p + ".crank_ratio", e.crank_ratio, 0.0, who);
-  net_finite(p + ".crank_offset_deg", e.crank_offset_deg, who);
-  net_gt(p + ".area", e.area, 0.0, who);
   const std::vector<double>& x = e.crank_angles_deg;
   const std::vector<double>& y = e.pressures;
   if (x.empty()) net_fail(p + ".crank_angles_deg", "0 points", "must have at least 1 point (" + who + ")");

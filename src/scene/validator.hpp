@@ -335,7 +335,7 @@ class Validator {
   }
   /// A spring's coil-clash keys (free_length, solid_length, coil_gaps, coil_restitution).
   void coil_clash(const ElementSpec& e, const std::string& p, const std::string& who) const;
-  /// A gas_load element's table and keys.
+  /// A gas_load element's pressure table (each key's own rule is in its kind's table).
   void gas_load(const ElementSpec& e, const std::string& p, const std::string& who) const;
   [[noreturn]] void net_fail(const std::string& key, const std::string& value, const std::string& rule) const {
     throw SceneError(file_, net_line(key), key, value, rule);

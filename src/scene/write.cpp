@@ -20,6 +20,7 @@
 
 #include "scene/key_table.hpp"
 #include "scene/detail.hpp"
+#include "scene/element_kinds.hpp"
 #include "scene/fields.hpp"
 
 namespace camdyn {
@@ -74,8 +75,10 @@ std::vector<KeyTableRow> key_table() {
       rows.push_back(std::move(r));
     }
   };
-  typed("elements", all_element_keys(), enum_names(kElementNames),
-        [](std::size_t i) { return element_keys(kElementNames[i].value); });
+  std::vector<std::string> element_types;
+  for (const ElementKindInfo& k : element_kinds()) element_types.emplace_back(k.name);
+  typed("elements", all_element_keys(), element_types,
+        [](std::size_t i) { return element_keys(element_kinds()[i].kind); });
   typed("contacts", all_contact_keys(), enum_names(kContactPointNames),
         [](std::size_t i) { return contact_keys(kContactPointNames[i].value); });
   return rows;

@@ -28,7 +28,12 @@ struct Collector : Observer {
 
 // One run of the batch: never throws (a scene that fails to build becomes its Summary).
 // With a follower factory, the run uses the follower it returns (never the scene's).
-Summary run_one(const Scene& scene, std::vector<HistoryRow>* rows, const std::atomic<bool>* stop,
+const Scene& scene_of(const Scene& s) { return s; }
+const Scene& scene_of(const ValidatedScene& s) { return s.scene(); }
+
+// A ValidatedScene is not checked again (the Simulator takes it as it is).
+template <class SceneT>
+Summary run_one(const SceneT& scene, std::vector<HistoryRow>* rows, const std::atomic<bool>* stop,
                 const FollowerFactory* follower = nullptr) {
   Summary s;
   const double c0 = thread_cpu_seconds();
@@ -46,7 +51,7 @@ Summary run_one(const Scene& scene, std::vector<HistoryRow>* rows, const std::at
     s = sim->run(rows ? &c : nullptr, stop);
   } catch (const std::exception& e) {
     s = Summary{};
-    s.scene = scene.title;
+    s.scene = scene_of(scene).title;
     s.finished = false;
     s.termination = dynamic_cast<const SceneError*>(&e) ? Termination::InvalidScene : Termination::Error;
     s.message = e.what();
@@ -112,6 +117,13 @@ std::vector<RunResult> simulate_batch(const std::vector<Scene>& scenes, int thre
     r.summary = run_one(scenes[i], &r.rows, stop);
     return r;
   });
+}
+
+std::vector<Summary> run_batch(const std::vector<ValidatedScene>& scenes, int threads,
+                               const std::function<void(std::size_t, const Summary&)>& on_done,
+                               const std::atomic<bool>* stop) {
+  return batch<Summary>(scenes.size(), threads, on_done, stop,
+                        [&](std::size_t i) { return run_one(scenes[i], nullptr, stop); });
 }
 
 }  // namespace camdyn

@@ -131,6 +131,13 @@ const std::vector<std::string>& bench_columns();
 /// work_precision.csv text.
 std::string bench_csv(const std::vector<BenchRow>& rows);
 
+namespace bench_detail {
+/// The headline of `scene` against `versus` (src/study/bench_tables.cpp): the cheapest
+/// finished Lee run and the cheapest `versus` run with err_force <= 1e-3, their CPU ratio
+/// and the goal's verdict.
+BenchHeadline headline(const std::vector<BenchRow>& rows, const std::string& scene, const std::string& versus);
+}  // namespace bench_detail
+
 /// Run the sweep and write DIR/work_precision.csv and DIR/work_precision.md.
 /// @throws SceneError on a bad option or unwritable directory.
 BenchResult run_bench(const BenchOptions& options);

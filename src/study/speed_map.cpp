@@ -83,7 +83,7 @@ std::shared_ptr<const MechanicalSystem> verdict_system(const Scene& scene,
                                                        const std::shared_ptr<const FollowerSystem>& follower) {
   if (follower) {
     auto m = make_user_system(scene, follower);
-    return m->single_follower() ? nullptr : m;
+    return m->traits().named_contacts ? m : nullptr;
   }
   if (scene.follower.kind == FollowerKind::Network) return std::make_shared<const Mechanism>(scene);
   return nullptr;

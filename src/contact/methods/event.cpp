@@ -59,7 +59,7 @@ EventMethod::EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem
 void EventMethod::bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys) {
   sys.max_order = network_order;
   sys.stability_limit_detection = false;
-  if (!mech.single_follower() || mech.n() == 1) return;
+  if (!mech.traits().stiff_internal_modes) return;
   const bool tight = sc.solver.rtol <= 1e-8;
   sys.max_order = tight ? 5 : 2;
   sys.stability_limit_detection = tight;

@@ -40,9 +40,9 @@ inline double cam_x_scale(const Cam& cam) {
 
 class EventMethod : public ContactRun {
  public:
-  /// max_order: cvode-bdf's largest BDF order on a network (0: CVODE's default 5). A
-  /// single follower (MechanicalSystem::single_follower()) has its own order policy
-  /// instead (methods/event.cpp: EventMethod::bdf_order).
+  /// max_order: cvode-bdf's largest BDF order on a network (0: CVODE's default 5). An
+  /// elastic body with stiff internal modes (MechanismTraits::stiff_internal_modes) has its
+  /// own order policy instead (methods/event.cpp: EventMethod::bdf_order).
   EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                const std::atomic<bool>* stop, int max_order = 0);
 
@@ -89,13 +89,13 @@ class EventMethod : public ContactRun {
   // amplified it (error test failures at 1.7 ms). In S the modes faster than 1/γ — those
   // BDF treats as quasi-static — follow the correction statically (no strain added in
   // the stiff elements), the slow ones by their inertia.
-  // A single elastic follower (a one-contact mechanism) takes γ = 10⁶·h: every mode follows
+  // An elastic body with stiff internal modes (a one-contact bar) takes γ = 10⁶·h: every mode follows
   // statically, the correction that changes the least strain (the rigid translation of
   // the bar). With γ = h the bar's slow modes follow by their inertia, the corrections
   // strain the first element and the held force carries that strain (measured:
   // docs/background/method_notes.md, "The projection's metric on cvode-bdf").
   void stiff_metric(double h);
-  const double metric_scale_ = mk_.single_follower() && mk_.n() > 1 ? 1e6 : 1.0;
+  const double metric_scale_ = mk_.traits().stiff_internal_modes ? 1e6 : 1.0;
   bool stiff_metric_ = sc_.solver.integrator == Integrator::CvodeBdf && dynamic_cast<const Mechanism*>(&mk_);
   double gamma_p_ = 0.0;  // 0: the metric M
   Eigen::SimplicialLDLT<SparseMatrix> S_ldlt_;

@@ -132,12 +132,12 @@ class PenaltyMethod final : public ContactRun {
     const int k = int(set.size());
     const CamMotion cm0 = cam_at(0.0);
     const Eigen::VectorXd q0 = y_.head(n_), v0 = y_.segment(n_, n_);
-    const bool single = mk_.single_follower();
+    const bool one_body = mk_.traits().one_body;  // its static correction: the rigid translation
     Eigen::MatrixXd P(n_, k), TP(k, k), Wss(k, k);
     Eigen::VectorXd g0(k), sd(k), mu(k), s_static(k), Fs(k);
     for (int i = 0; i < k; ++i) {
       const int j = set[i];
-      P.col(i) = single ? Eigen::VectorXd::Ones(n_) : Eigen::VectorXd(mk_.MinvTt().col(j));
+      P.col(i) = one_body ? Eigen::VectorXd::Ones(n_) : Eigen::VectorXd(mk_.MinvTt().col(j));
       g0[i] = gap(j, y_, cm0);
       Fs[i] = F_[j];
       sd[i] = -gap_rate(j, y_, cm0);
@@ -149,7 +149,7 @@ class PenaltyMethod final : public ContactRun {
     // g̈_S of the free motion at q − Pμ (its T a_free part)
     Eigen::VectorXd Ta, q(n_);
     auto free_acc = [&](const Eigen::VectorXd& m, Eigen::VectorXd& out) {
-      if (!single) {  // the network's: the forces of the unshifted state, r = W_SS(F(s) − F_S)
+      if (!one_body) {  // the network's: the forces of the unshifted state, r = W_SS(F(s) − F_S)
         out = -Wss * Fs;
         return;
       }
@@ -163,7 +163,7 @@ class PenaltyMethod final : public ContactRun {
     Eigen::VectorXd b0, b1, s, F(k), dF(k), r;
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(k, k), J(k, k);
     free_acc(mu, b0);
-    for (int i = 0; single && i < k; ++i) {  // ∂(T_S a_free)/∂μ by columns (exact for a linear mechanism)
+    for (int i = 0; one_body && i < k; ++i) {  // ∂(T_S a_free)/∂μ by columns (exact for a linear mechanism)
       const double d = std::max(std::abs(mu[i]), 1e-12 * (1.0 + q0.cwiseAbs().maxCoeff()));
       Eigen::VectorXd m1 = mu;
       m1[i] += d;
