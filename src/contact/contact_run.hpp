@@ -187,6 +187,19 @@ class ContactRun {
   StepEnergy step_energy(double t0, double t1, const std::function<void(double, Eigen::VectorXd&)>& state,
                          const std::function<void(double, const Eigen::VectorXd&, const CamMotion&,
                                                   Eigen::VectorXd&)>& forces) const;
+  /// The accepted step [t0, t1] before the events at its end, on its own dense state
+  /// state(τ, y) and contact forces forces(τ, y, cm, F) (as step_energy); `set` the
+  /// contacts held over it. The designer extremes located inside the step
+  /// (results/step_extremes.hpp; contact_run_trace.cpp): each contact's least force and side
+  /// load, DesignerStats::step_inside, RunAnalysis::step_inside. Once a method traces its
+  /// steps, the rows add no extreme (the output grid changes no result).
+  using StateFn = std::function<void(double, Eigen::VectorXd&)>;
+  using ForcesFn = std::function<void(double, const Eigen::VectorXd&, const CamMotion&, Eigen::VectorXd&)>;
+  void trace_step(double t0, double t1, const StateFn& state, const ForcesFn& forces, const std::vector<int>& set);
+  bool traced_ = false;
+  Eigen::VectorXd trace_y_, trace_F_;
+  std::vector<char> trace_in_;
+  std::vector<StepSample> trace_samples_;
   /// The check after every accepted step (issue 28): a contact carrying force across an
   /// open gap, or a gap below −kCheckGaps·tol_u (not for penalty: its law penetrates),
   /// stops the run with a StepFailure naming the contact, the time and the cam angle.

@@ -104,7 +104,7 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
       if (mk_.contacts()[j].cam) Fc += F[j];
     design_cols_.append_friction(cam_.evaluate(r.theta), Fc, drive_.omega(t), r.extra);
   }
-  if (!in_take_up(t))
+  if (!traced_ && !in_take_up(t))
     for (int j = 0; j < m_; ++j)
       if (active[j]) sample_contact(j, F[j], angle_deg_mod360(r.theta));
   last_row_t_ = t;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "results/designer_stats.hpp"
+#include "results/step_extremes.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -22,31 +23,92 @@ void DesignerStats::geometry_init(const Scene& scene, const Cam& cam) {
   geo_min_rho_ = cam.min_radius_of_curvature();
 }
 
-void DesignerStats::geometry_sample(double t, double theta, double F) {
+DesignerStats::Design DesignerStats::design_at(double theta, double F, double omega) const {
   if (!(F > 0.0)) F = 0.0;
   const CamPoint cp = cam_->evaluate(theta);
-  const double omega = drive_.omega(t);
   const ContactDesign d = cols_->eval(cp, F, omega);
-  const double T = d.torque, P = d.power, side = std::fabs(d.side);
+  Design r;
+  r.hertz = d.stress;
+  r.side = std::fabs(d.side);
+  r.torque = d.torque;
+  r.power = d.power;
   if (cols_->friction()) {
     const CamFriction f = cols_->friction_at(cp, F, omega);
-    if (std::isnan(Ff_max_) || f.force > Ff_max_) Ff_max_ = f.force;
-    if (std::isnan(Pf_peak_) || f.power > Pf_peak_) Pf_peak_ = f.power;
-    if (t == pend_t1_) {
+    r.friction = f.force;
+    r.friction_power = f.power;
+  }
+  return r;
+}
+
+void DesignerStats::keep_extremes(double theta, const Design& d) {
+  if (!std::isnan(d.friction) && (std::isnan(Ff_max_) || d.friction > Ff_max_)) Ff_max_ = d.friction;
+  if (!std::isnan(d.friction_power) && (std::isnan(Pf_peak_) || d.friction_power > Pf_peak_))
+    Pf_peak_ = d.friction_power;
+  if (!std::isnan(d.side) && (std::isnan(max_side_) || d.side > max_side_)) max_side_ = d.side;
+  if (!std::isnan(d.torque) && (std::isnan(T_peak_) || std::fabs(d.torque) > std::fabs(T_peak_))) T_peak_ = d.torque;
+  if (!std::isnan(d.power) && (std::isnan(P_peak_) || std::fabs(d.power) > std::fabs(P_peak_))) P_peak_ = d.power;
+  if (!std::isnan(d.hertz) && (std::isnan(max_hertz_) || d.hertz > max_hertz_)) {
+    max_hertz_ = d.hertz;
+    max_hertz_theta_ = angle_deg_mod360(theta);
+  }
+}
+
+void DesignerStats::geometry_sample(double t, double theta, double F) {
+  const double omega = drive_.omega(t);
+  const Design d = design_at(theta, F, omega);
+  keep_extremes(theta, d);
+  if (t == pend_t1_) {  // the current step end: its value for the time averages
+    pend_T1_ = d.torque;
+    pend_P1_ = d.power;
+    if (cols_->friction()) {
+      const CamFriction f = cols_->friction_at(cam_->evaluate(theta), F > 0 ? F : 0.0, omega);
       pend_Tf1_ = f.torque;
       pend_Pf1_ = f.power;
     }
   }
-  if (!std::isnan(side) && (std::isnan(max_side_) || side > max_side_)) max_side_ = side;
-  if (std::isnan(T_peak_) || std::fabs(T) > std::fabs(T_peak_)) T_peak_ = T;
-  if (std::isnan(P_peak_) || std::fabs(P) > std::fabs(P_peak_)) P_peak_ = P;
-  if (!std::isnan(d.stress) && (std::isnan(max_hertz_) || d.stress > max_hertz_)) {
-    max_hertz_ = d.stress;
-    max_hertz_theta_ = angle_deg_mod360(theta);
+}
+
+void DesignerStats::step_inside(const std::vector<StepSample>& s, const StepProbe& probe) {
+  const int n = int(s.size());
+  if (n < 2 || !s[0].held) return;
+  const double t0 = s.front().t, h = s.back().t - t0;
+  double x[kStepSamples], q[kStepSamples];
+  StepSample tmp;
+  // the least held force (the force margin), located inside the step
+  for (int k = 0; k < n; ++k) x[k] = s[k].x, q[k] = std::max(s[k].F, 0.0);
+  const LocatedExtreme lf = locate_extreme(x, q, n, -1, min_F_, [&](double xx) {
+    probe(xx, tmp);
+    return std::max(tmp.F, 0.0);
+  });
+  if (lf.found && (std::isnan(min_F_) || lf.value < min_F_)) {
+    min_F_ = lf.value;
+    min_F_theta_ = angle_deg_mod360(drive_.theta(t0 + lf.x * h));
   }
-  if (t == pend_t1_) {  // the current step end: its value for the time averages
-    pend_T1_ = T;
-    pend_P1_ = P;
+  if (!cam_) return;
+  Design d[kStepSamples];
+  for (int k = 0; k < n; ++k) d[k] = design_at(s[k].theta, s[k].F, s[k].omega);
+  // each quantity: its samples, its record, and where it is located
+  auto locate = [&](double Design::*m, int sign, double record, bool absolute) {
+    for (int k = 0; k < n; ++k) q[k] = absolute ? std::fabs(d[k].*m) : d[k].*m;
+    const LocatedExtreme e = locate_extreme(x, q, n, sign, absolute ? std::fabs(record) : record, [&](double xx) {
+      probe(xx, tmp);
+      const double v = design_at(tmp.theta, tmp.F, tmp.omega).*m;
+      return absolute ? std::fabs(v) : v;
+    });
+    if (!e.found) return;
+    for (int k = 0; k < n; ++k)
+      if (e.x == x[k]) return;  // a sample: kept already
+    probe(e.x, tmp);  // the located point: every quantity there is a sample too
+    keep_extremes(tmp.theta, design_at(tmp.theta, tmp.F, tmp.omega));
+  };
+  for (int k = 0; k < n; ++k) keep_extremes(s[k].theta, d[k]);
+  locate(&Design::hertz, 1, max_hertz_, false);
+  locate(&Design::side, 1, max_side_, false);
+  locate(&Design::torque, 1, T_peak_, true);
+  locate(&Design::power, 1, P_peak_, true);
+  if (cols_->friction()) {
+    locate(&Design::friction, 1, Ff_max_, false);
+    locate(&Design::friction_power, 1, Pf_peak_, false);
   }
 }
 

@@ -17,6 +17,7 @@
 #include "camdyn/scene.hpp"
 #include "camdyn/simulator.hpp"
 #include "results/designer_columns.hpp"
+#include "results/step_extremes.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -38,6 +39,12 @@ class DesignerStats {
   void event(const ContactEvent& e);
   /// An accepted step end (state of the contact face). The first call is the start.
   void step(double t, double theta, double u, double v, double a, double gap);
+  /// One accepted step (step_extremes.hpp: its kStepSamples samples and its interpolant):
+  /// while the primary contact is held over it, the least force and the cam-geometry
+  /// extremes (Hertz stress, side load, torque, power, friction force and power) located
+  /// inside the step. The step ends' values come from here too (sample_force at a step end
+  /// only adds the value after an event there).
+  void step_inside(const std::vector<StepSample>& s, const StepProbe& probe);
   /// Fill the designer fields of `s`.
   void finish(Summary& s) const;
 
@@ -77,6 +84,13 @@ class DesignerStats {
   void geometry_sample(double t, double theta, double F);
   void geometry_step(double t);
   void geometry_finish(Summary& s) const;
+  // the force-dependent extremes at one (θ, F, ω): the record keeping of sample_force and
+  // step_inside
+  struct Design {
+    double hertz = NAN, side = NAN, torque = NAN, power = NAN, friction = NAN, friction_power = NAN;
+  };
+  Design design_at(double theta, double F, double omega) const;
+  void keep_extremes(double theta, const Design& d);
 };
 
 }  // namespace detail

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "camdyn/hertz.hpp"
+#include "cam/follower_oscillating.hpp"
 #include "results/designer_stats.hpp"  // angle_deg_mod360
 
 namespace camdyn {
@@ -47,6 +48,11 @@ RunAnalysis::RunAnalysis(const Scene& sc, const std::vector<std::string>& contac
     width_ = c.width;
     roller_ = c.follower_face == FollowerFace::Roller;
     rr_ = c.roller_radius;
+    if (!roller_ && c.follower_motion == FollowerMotion::Oscillating) {
+      pad_ = std::make_shared<const OscillatingGeometry>(c);
+      pivot_x_ = c.pivot_x;
+      pivot_y_ = c.pivot_y;
+    }
   }
   if (!sc.run.valve_node.empty()) {
     for (std::size_t i = 0; i < nodes.size(); ++i)
@@ -81,6 +87,7 @@ double RunAnalysis::film(const CamPoint& p, double omega, double Fc) const {
 }
 
 double RunAnalysis::entrainment(const CamPoint& p, double omega) const {
+  if (pad_) return pad_entrainment(p.theta, omega);
   if (!roller_ || !cam_) return std::abs(flat_face_entrainment(omega, p.X_C, 0.0, p.d2X_dtheta2));
   // the contact point in the cam's frame, c(θ) = r (cos(β − θ), sin(β − θ)): its speed
   // over the cam's surface is the roller's rolling speed
@@ -91,6 +98,44 @@ double RunAnalysis::entrainment(const CamPoint& p, double omega) const {
   return std::abs(omega) * std::hypot(dx, dy) / (2 * d);
 }
 
+// The flat pad of an oscillating follower (a finger or rocker pad; the kinematics of
+// cam/follower_oscillating.hpp). The pad is the line {Z : n(α)·(Z − P) = f} of the arm at
+// angle α about the pivot P, u(α) = (cos α, sin α) along it; it touches the cam at Q(θ),
+// which is on both surfaces: the common tangent is u(α). The surfaces' velocities relative
+// to the contact point along u (the mean of which entrains the oil; Hamrock, Schmid,
+// Jacobson, "Fundamentals of Machine Elements", §8.8: ũ = ½(u_a + u_b) with u_a, u_b the
+// surface velocities relative to the conjunction) are minus the contact point's velocity
+// over each surface:
+//   over the pad: Q − P = e u + f n, so the point travels along the pad at ė = ω de/dθ,
+//     e(θ) = u(α)·(Q − P);
+//   over the cam: in the cam's frame (the cam turning counter-clockwise by θ) the point is
+//     c(θ) = Rot(−θ) Q(θ) and travels at ω dc/dθ, in the fixed frame ω Rot(θ) dc/dθ, whose
+//     component along u is ω (Rot(θ) dc/dθ)·u;
+//   ũ = −½ ω (de/dθ + (Rot(θ) dc/dθ)·u).
+// A translating flat face is the limit of a pivot at infinity (α fixed): then e = X_C′,
+// de/dθ = X_C″ and (Rot(θ) dc/dθ)·u = X_C + X_C″, the −½ω(X_C + 2X_C″) of
+// flat_face_entrainment (Norton, "Cam Design and Manufacturing Handbook", 2nd ed., ch. 13,
+// derives that case the same way). Central differences δθ = 1e-6 of the exact kinematics.
+double RunAnalysis::pad_entrainment(double theta, double omega) const {
+  const double d = 1e-6;
+  const OscillatingState a = pad_->eval(theta - d), b = pad_->eval(theta + d), m = pad_->eval(theta);
+  auto e_of = [&](const OscillatingState& s) {
+    return std::cos(s.alpha) * (s.f.cx - pivot_x_) + std::sin(s.alpha) * (s.f.cy - pivot_y_);
+  };
+  auto cam_frame = [](const OscillatingState& s, double th, double* x, double* y) {
+    *x = std::cos(th) * s.f.cx + std::sin(th) * s.f.cy;
+    *y = -std::sin(th) * s.f.cx + std::cos(th) * s.f.cy;
+  };
+  double ax, ay, bx, by;
+  cam_frame(a, theta - d, &ax, &ay);
+  cam_frame(b, theta + d, &bx, &by);
+  const double dcx = (bx - ax) / (2 * d), dcy = (by - ay) / (2 * d);  // dc/dθ, cam frame
+  // Rot(θ) dc/dθ · u(α) = dc/dθ · u(α − θ)
+  const double along_cam = dcx * std::cos(m.alpha - theta) + dcy * std::sin(m.alpha - theta);
+  const double de = (e_of(b) - e_of(a)) / (2 * d);
+  return std::abs(0.5 * omega * (de + along_cam));
+}
+
 void RunAnalysis::row(double t, double theta, const CamPoint& p, double X, double Xdot, double omega, double Fc,
                       const std::vector<double>& gaps, const std::vector<double>& u, std::vector<double>& out) {
   if (std::isnan(theta0_)) theta0_ = theta;
@@ -99,7 +144,7 @@ void RunAnalysis::row(double t, double theta, const CamPoint& p, double X, doubl
     const double h = film(p, omega, Fc);
     out.push_back(h);
     if (lambda_) out.push_back(h / oil_.composite_roughness);
-    if (!std::isnan(h) && (std::isnan(min_h_) || h < min_h_)) {
+    if (!traced_ && !std::isnan(h) && (std::isnan(min_h_) || h < min_h_)) {
       min_h_ = h;
       min_h_theta_ = th_deg;
       min_lambda_ = lambda_ ? h / oil_.composite_roughness : NAN;
@@ -131,9 +176,68 @@ void RunAnalysis::row(double t, double theta, const CamPoint& p, double X, doubl
   prev_Xdot_ = Xdot;
   prev_theta_ = theta;
   for (Seat& s : seats_) {
+    if (traced_) break;
     s.t.push_back(t);
     s.gap.push_back(gaps[std::size_t(s.contact)]);
     s.X.push_back(X);
+  }
+}
+
+void RunAnalysis::step_inside(const std::vector<StepSample>& s, const StepProbe& probe) {
+  traced_ = true;
+  const int n = int(s.size());
+  if (n < 2) return;
+  const double t0 = s.front().t, h = s.back().t - t0;
+  StepSample tmp;
+  double x[kStepSamples], q[kStepSamples];
+  for (int k = 0; k < n; ++k) x[k] = s[k].x;
+  if (film_ && s[0].Fc > 0) {
+    auto h_at = [&](const StepSample& p) { return film(cam_->evaluate(p.theta), p.omega, p.Fc); };
+    for (int k = 0; k < n; ++k) q[k] = h_at(s[k]);
+    const LocatedExtreme e = locate_extreme(x, q, n, -1, min_h_, [&](double xx) {
+      probe(xx, tmp);
+      return h_at(tmp);
+    });
+    if (e.found && (std::isnan(min_h_) || e.value < min_h_)) {
+      min_h_ = e.value;
+      probe(e.x, tmp);
+      min_h_theta_ = angle_deg_mod360(tmp.theta);
+      min_lambda_ = lambda_ ? e.value / oil_.composite_roughness : NAN;
+    }
+  }
+  for (Seat& seat : seats_) {
+    const std::size_t c = std::size_t(seat.contact);
+    if (s[0].in_set[c]) continue;  // on its seat over the step
+    double gmax = 0.0, Xmax = -INFINITY;
+    for (int k = 0; k < n; ++k) {
+      gmax = std::max(gmax, s[k].gaps[c]);
+      Xmax = std::max(Xmax, s[k].X);
+    }
+    // the apex: the gap rate falls through zero between two samples
+    for (int k = 0; k + 1 < n; ++k) {
+      const double r0 = s[k].gap_rates[c], r1 = s[k + 1].gap_rates[c];
+      if (!(r0 > 0.0 && r1 <= 0.0) || !(std::max(s[k].gaps[c], s[k + 1].gaps[c]) > 0.0)) continue;
+      const double xa = falling_root(
+          [&](double xx) {
+            probe(xx, tmp);
+            return tmp.gap_rates[c];
+          },
+          x[k], r0, x[k + 1], r1);
+      probe(xa, tmp);
+      gmax = std::max(gmax, tmp.gaps[c]);
+    }
+    if (!(gmax > 0.0) && !(Xmax > seat.opened_at)) continue;
+    // one entry per run of steps between two impacts (strictly inside the step: after the
+    // impact the step starts from, before one it ends on)
+    if (!seat.t.empty() && seat.merged_impacts == seat.impacts.size()) {
+      seat.gap.back() = std::max(seat.gap.back(), gmax);
+      seat.X.back() = std::max(seat.X.back(), Xmax);
+    } else {
+      seat.t.push_back(t0 + 0.5 * h);
+      seat.gap.push_back(gmax);
+      seat.X.push_back(Xmax);
+      seat.merged_impacts = seat.impacts.size();
+    }
   }
 }
 

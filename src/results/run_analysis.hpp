@@ -11,10 +11,13 @@
 //   seat landings  every impact on a seat (stop contact, side "below"): a landing when the
 //                cam lifted the seat's node past its take-up since the previous impact on that
 //                seat, else a bounce of the current landing, its height the largest seat gap
-//                over the output rows strictly between the two impacts;
+//                between the two impacts: the apex of the flight located inside the step
+//                (the root of the gap rate on the step's interpolant; the rows for a method
+//                that does not trace its steps);
 //   ramp velocity  the cam's |Ẋ| where its lift crosses a take-up level > 0 (linear between rows).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,9 +26,12 @@
 #include "camdyn/simulator.hpp"
 #include "results/kinematic_path.hpp"
 #include "results/oil_film.hpp"
+#include "results/step_extremes.hpp"
 
 namespace camdyn {
 namespace detail {
+
+class OscillatingGeometry;
 
 class RunAnalysis {
  public:
@@ -48,6 +54,10 @@ class RunAnalysis {
   /// Appends the columns of columns() to `out`.
   void row(double t, double theta, const CamPoint& p, double X, double Xdot, double omega, double Fc,
            const std::vector<double>& gaps, const std::vector<double>& u, std::vector<double>& out);
+  /// One accepted step (step_extremes.hpp): the least film located inside it, and each
+  /// open seat's highest gap (the apex: the root of its gap rate inside the step). Once a
+  /// method traces its steps, these come from the steps only, not from the rows.
+  void step_inside(const std::vector<StepSample>& s, const StepProbe& probe);
   /// An event of contact `j`.
   void event(const ContactEvent& e, int j);
   /// Film, lift deviation, ramp velocity and landings into `s`.
@@ -62,6 +72,9 @@ class RunAnalysis {
   /// differences (δθ = 1e-6) on the cam: any roller follower, translating with an offset or
   /// oscillating.
   double entrainment(const CamPoint& p, double omega) const;
+  /// The flat pad of an oscillating follower: |ũ| at cam angle θ from the contact point's
+  /// travel over the cam and along the pad (run_analysis.cpp; exposed for tests).
+  double pad_entrainment(double theta, double omega) const;
 
  private:
   const Scene& sc_;
@@ -71,10 +84,13 @@ class RunAnalysis {
   Lubricant oil_;
   double Ep_ = 0, width_ = 0, rr_ = 0;
   bool roller_ = false;
+  std::shared_ptr<const OscillatingGeometry> pad_;  // an oscillating flat pad's kinematics
+  double pivot_x_ = 0, pivot_y_ = 0;
   int valve_ = -1;  // index in the nodes
   KinematicNode valve_path_;
   double band_ = 0;  // 1 % of the cam's lift
   double theta0_ = NAN;
+  bool traced_ = false;  // step_inside has run: the rows add no extreme
   // results
   double min_h_ = NAN, min_h_theta_ = NAN, min_lambda_ = NAN;
   std::vector<LiftDeviationRevolution> dev_;
@@ -85,8 +101,9 @@ class RunAnalysis {
     int contact = -1;
     std::string name;
     double opened_at = 0;  // the cam lift past which the seat's node is lifted
-    std::vector<double> t, gap, X;
+    std::vector<double> t, gap, X;  // per row, or per run of traced steps between impacts
     std::vector<ContactEvent> impacts;
+    std::size_t merged_impacts = std::size_t(-1);  // impacts when the last traced entry was made
   };
   std::vector<Seat> seats_;
 };

@@ -299,11 +299,6 @@ class Validator {
       if (c.follower_face != FollowerFace::Flat && c.follower_face != FollowerFace::Roller)
         fail_at("lubricant.viscosity", fmt_num(l.viscosity),
                 "the oil film needs cam.follower_face = \"flat\" or \"roller\" (a line contact)", "cam.follower_face");
-      if (c.follower_motion != FollowerMotion::Translating && c.follower_face == FollowerFace::Flat)
-        fail_at("lubricant.viscosity", fmt_num(l.viscosity),
-                "the oil film's sliding entrainment velocity is modelled for a translating flat face and for "
-                "rollers (a flat pad on an oscillating follower is not)",
-                "cam.follower_motion");
     }
     if (k.min_film_thickness > 0 && !(l.viscosity > 0))
       fail_at("criteria.min_film_thickness", fmt_num(k.min_film_thickness),

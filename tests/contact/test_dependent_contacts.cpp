@@ -277,12 +277,16 @@ TEST(ContactResults, OhcMatchTheRowsAndEvents) {
     const std::string name = s.network.contacts[j].name;
     const ContactResult& cr = sum.contacts[j];
     EXPECT_EQ(cr.name, name);
-    double minF = NAN, vmax = 0, first_imp = NAN, first_sep = NAN;
+    double minF = NAN, vmax = 0, first_imp = NAN, first_sep = NAN, dF = 0, Fprev = NAN;
     long imp = 0, sep = 0;
     for (const HistoryRow& r : obs.rows)
       if (col(cols, r, "in_" + name) == 1.0 && !in_window(r.theta)) {
         const double F = col(cols, r, "F_" + name);
         if (std::isnan(minF) || F < minF) minF = F;
+        if (!std::isnan(Fprev)) dF = std::max(dF, std::abs(F - Fprev));  // between neighbouring rows
+        Fprev = F;
+      } else {
+        Fprev = NAN;
       }
     for (const ContactEvent& e : sum.events) {
       if (e.contact != name) continue;
@@ -301,7 +305,11 @@ TEST(ContactResults, OhcMatchTheRowsAndEvents) {
     EXPECT_DOUBLE_EQ(cr.max_impact_velocity, vmax) << name;
     EXPECT_NEAR(cr.first_impact_theta_deg, first_imp, 1e-9) << name;
     EXPECT_NEAR(cr.first_separation_theta_deg, first_sep, 1e-9) << name;
-    EXPECT_NEAR(cr.min_force, minF, 1e-9 * std::abs(minF)) << name;
+    // the least force is located inside the steps (not at the rows): at most every row's,
+    // and within one row-to-row change of the least row (measured 0.85 N below it on the
+    // cam, at the take-up window's edge, where the rows 10 µs apart change by up to dF)
+    EXPECT_LE(cr.min_force, minF + 1e-9 * std::abs(minF)) << name;
+    EXPECT_GE(cr.min_force, minF - dF) << name;
   }
   // the cam's margin on the lobe, not the lash take-up's 1.7 N: the valve spring's
   // preload less the inertia on the nose is hundreds of newtons here

@@ -152,7 +152,12 @@ max_bounce_count = 2
   EXPECT_EQ(s.criteria[0].name, "seating_velocity");
   EXPECT_DOUBLE_EQ(s.criteria[0].value, vmax);
   EXPECT_EQ(s.criteria[1].name, "bounce_height");
-  EXPECT_DOUBLE_EQ(s.criteria[1].value, hmax);
+  // the bounce height is the flight's apex located inside its step: at least every row's
+  // seat gap (the rows are the same interpolant), the criterion the landings' largest
+  EXPECT_GE(s.criteria[1].value * (1 + 1e-12), hmax);
+  double lmax = 0;
+  for (const SeatLanding& L : s.landings) lmax = std::max(lmax, L.bounce_height);
+  EXPECT_DOUBLE_EQ(s.criteria[1].value, lmax);
   EXPECT_EQ(s.criteria[2].name, "bounce_count");
   EXPECT_EQ(s.criteria[2].value, double(most));
   ASSERT_EQ(s.landings.size(), 1u);
@@ -166,10 +171,12 @@ max_bounce_count = 2
   EXPECT_NEAR(s.criteria[0].value, v0, 1e-9 * v0);
   // The first bounce: up at e·v₀ against the preload P and the spring k (no damping):
   // q(t) = (P/k)(cos wt − 1) + (e v₀/w) sin wt, highest −P/k + √((P/k)² + (e v₀/w)²)
-  // (1.287 µm); the rows (1 µs apart, ~50 per bounce) catch it to 1.6e-5 (measured).
+  // (1.287 µm); the apex located in the flight's step (the root of the gap rate) matches it
+  // to 6.0e-6 (measured; the rows 1 µs apart caught it to 1.6e-5): the cubic Hermite state
+  // of the flight's steps bounds it.
   const double P = 200, k = 30000, m = 0.05, w = std::sqrt(k / m), e = 0.6;
   const double h1 = -P / k + std::sqrt(P / k * P / k + (e * v0 / w) * (e * v0 / w));
-  EXPECT_NEAR(s.landings[0].bounce_height, h1, 2e-4 * h1);
+  EXPECT_NEAR(s.landings[0].bounce_height, h1, 2e-5 * h1);
   // 1.29 µm > 1 µm: fails; 0.169 m/s ≤ 0.5: passes
   EXPECT_TRUE(s.criteria[0].pass);
   EXPECT_FALSE(s.criteria[1].pass);

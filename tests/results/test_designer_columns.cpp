@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -180,10 +181,12 @@ TEST(DesignerColumns, NetworkCamContactRowsAndSideLoad) {
   ASSERT_TRUE(r.sum.finished) << r.sum.message;
   check_rows(r, "F_cam");
   check_work(r);
-  // The per-contact side load: the largest |F tan φ| at the step ends. With one row per
-  // step end (output_dt = 0) it is the largest row value of the side_load column against
-  // the closed form F_cam·tan φ(θ).
-  const NetRun s = run_keeping_rows(network_scene(true, 0.0));
+  // The per-contact side load: the largest |F tan φ| located inside the steps. Against rows
+  // 20 µs apart (0.0072° of cam) of the closed form F_cam·tan φ(θ): at least every row's
+  // value and above the largest by less than the rows' own resolution (measured 3.8e-10
+  // relative, the angle 1.9e-3°); the step ends alone (rows at output_dt = 0) were 1.1e-4
+  // low and 1.0° off.
+  const NetRun s = run_keeping_rows(network_scene(true, 2e-5));
   ASSERT_TRUE(s.sum.finished) << s.sum.message;
   ASSERT_EQ(s.sum.contacts.size(), 1u);
   double best = 0, best_th = NAN;
@@ -194,7 +197,8 @@ TEST(DesignerColumns, NetworkCamContactRowsAndSideLoad) {
       best_th = std::fmod(row.theta * 180 / kPi, 360.0);
     }
   }
-  EXPECT_NEAR(s.sum.contacts[0].max_side_load, best, 1e-9 * best);
-  EXPECT_NEAR(s.sum.contacts[0].max_side_load_theta_deg, best_th, 1e-9);
-  EXPECT_NEAR(s.sum.max_side_load, best, 1e-9 * best);
+  EXPECT_GE(s.sum.contacts[0].max_side_load, best * (1 - 1e-12));
+  EXPECT_LE(s.sum.contacts[0].max_side_load, best * (1 + 1e-8));
+  EXPECT_NEAR(s.sum.contacts[0].max_side_load_theta_deg, best_th, 0.0072);
+  EXPECT_DOUBLE_EQ(s.sum.max_side_load, s.sum.contacts[0].max_side_load);
 }

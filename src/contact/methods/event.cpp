@@ -265,6 +265,21 @@ void EventMethod::run_method() {
     // the cam's work and the dissipated energy over the step: 3-point Gauss–Legendre on
     // the engine's own dense output (issue 25: each step's own quadrature)
     const StepEnergy dE = advance_energy(t_ - h, t_);
+    trace_step(
+        t_ - h, t_,
+        [this](double tau, Eigen::VectorXd& y) {
+          eng_->dense(tau, y);
+          if (!set_.empty()) {
+            rc_.resize(ny_);
+            project(tau, y.data(), rc_.data());
+            y += rc_;
+          }
+        },
+        [this](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
+          if (set_.empty()) F.setZero(m_);
+          else held_forces_into(tau, y, c, set_, F);
+        },
+        set_);
     after_advance(t_ - h, P_prev);
     const double P_end = dissipation_power(t_, y_);
     bool changed = false, released_only = false;

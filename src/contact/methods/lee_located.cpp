@@ -204,6 +204,12 @@ void LeeLocated::run_method() {
       for (int j : set) least_force_inside(s, j);
     else
       for (int j : set) first_tensile_inside(s, j);
+    trace_step(
+        s.t0, t1, [&](double tau, Eigen::VectorXd& y) { held_state_at(s, tau, y); },
+        [&](double tau, const Eigen::VectorXd& y, const CamMotion& c, Eigen::VectorXd& F) {
+          held_forces_into(tau, y, c, set, F);
+        },
+        set);
     s.power.clear();
     if (unilateral_ && !set.empty()) {
       s.power.assign(kSwitchSamples + 1, 0.0);

@@ -212,6 +212,10 @@ class PenaltyMethod final : public ContactRun {
       const StepEnergy dE = step_energy(
           t_ - h, t_, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
           [this](double tau, const Eigen::VectorXd& y, const CamMotion&, Eigen::VectorXd& F) { forces(tau, y, F); });
+      trace_step(
+          t_ - h, t_, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
+          [this](double tau, const Eigen::VectorXd& y, const CamMotion&, Eigen::VectorXd& F) { forces(tau, y, F); },
+          active_list());
       const CamMotion cm = cam_at(t_);
       for (int j = 0; j < m_; ++j) {
         const bool now = F_[j] > 0.0 || (eng_->hit_root() && eng_->root_info()[j] < 0);
