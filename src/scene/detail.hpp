@@ -55,6 +55,8 @@ inline constexpr EnumName<LinearSolverKind> kLinSolNames[] = {
     {LinearSolverKind::Auto, "auto"}, {LinearSolverKind::Dense, "dense"}, {LinearSolverKind::Klu, "klu"}};
 inline constexpr EnumName<StackKind> kStackNames[] = {
     {StackKind::Auto, "auto"}, {StackKind::Follower, "follower"}, {StackKind::Mechanism, "mechanism"}};
+inline constexpr EnumName<CamshaftDrive> kCamshaftDriveNames[] = {{CamshaftDrive::Compliant, "compliant"},
+                                                                 {CamshaftDrive::Prescribed, "prescribed"}};
 inline constexpr EnumName<ElementKind> kElementNames[] = {{ElementKind::Spring, "spring"},
                                                    {ElementKind::Dashpot, "dashpot"},
                                                    {ElementKind::Bar, "bar"},
