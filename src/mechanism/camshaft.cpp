@@ -44,15 +44,16 @@ CamShaft::CamShaft(const Scene& scene, std::vector<int> station_dof, std::vector
 // θ_c = θ + Σ a sin(nθ + p): θ̇_c = ω(1 + Σ a n cos), θ̈_c = ω̇(1 + Σ a n cos) − ω² Σ a n² sin.
 void CamShaft::crank(double t, double* theta, double* omega, double* acc) const {
   const double th = drive_.theta(t), w = drive_.omega(t);
-  double a = th, c = 1.0, s2 = 0.0;
+  double a = th, ad = w, c = 1.0, s2 = 0.0;
   for (std::size_t k = 0; k < order_.size(); ++k) {
     const double arg = order_[k] * th + phase_[k];
     a += amp_[k] * std::sin(arg);
+    ad += amp_[k] * order_[k] * w * std::cos(arg);
     c += amp_[k] * order_[k] * std::cos(arg);
     s2 += amp_[k] * order_[k] * order_[k] * std::sin(arg);
   }
   *theta = a;
-  *omega = w * c;
+  *omega = ad;
   if (acc) *acc = drive_.omega_dot(t) * c - w * w * s2;
 }
 

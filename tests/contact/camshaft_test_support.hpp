@@ -49,7 +49,7 @@ theta0_deg = 180.0
 kind = "network"
 [contact]
 model = ")" + p.model + R"("
-restitution = )" + (p.model == "penalty" ? "0.0" : "0.3") + R"(
+restitution = )" + (p.model == "penalty" || p.model == "holonomic" ? "0.0" : "0.3") + R"(
 penalty_stiffness = )" + std::to_string(p.kp) + R"(
 penalty_damping = )" + std::to_string(p.cp) + R"(
 tol_u = 1e-9
