@@ -12,6 +12,8 @@
 //     Ẍ_C = −r ω² cos β − r ω̇ sin β − 2ω²/x_yy + (ω/(y_α x_yy))² x_αα.
 #pragma once
 
+#include <cmath>
+
 #include <array>
 #include <functional>
 #include <limits>
@@ -56,6 +58,10 @@ struct CamPoint {
 /// camdyn/initial_state.hpp).
 struct CamMotion {
   double X = 0, Xdot = 0, Xddot = 0;
+  /// The time this motion is at, where a run evaluates the cam (a camshaft's cams on a
+  /// prescribed drive station are evaluated at the crank's angle at that time); NaN from
+  /// Cam::motion, which knows only the angle.
+  double t = NAN;
 };
 
 /// A convex cam profile. Construction validates it; evaluation tracks the contact point

@@ -32,6 +32,7 @@ enum class PenaltyLaw { Linear, HuntCrossley };
 enum class Integrator { ArkodeErk, ArkodeDirk, CvodeBdf, Ida };
 enum class LinearSolverKind { Auto, Dense, Klu };
 enum class StackKind { Auto, Follower, Mechanism };
+enum class CamshaftDrive { Compliant, Prescribed };
 
 const char* to_string(CamProfileKind v);    // "points" | "lift" | "circle" | "law" | "arc"
 const char* to_string(FollowerFace v);      // "flat" | "knife_edge" | "roller" | "point"
@@ -45,6 +46,7 @@ const char* to_string(PenaltyLaw v);        // "linear" | "hunt_crossley"
 const char* to_string(Integrator v);        // "arkode-erk" | "arkode-dirk" | "cvode-bdf" | "ida"
 const char* to_string(LinearSolverKind v);  // "auto" | "dense" | "klu"
 const char* to_string(StackKind v);         // "auto" | "follower" | "mechanism"
+const char* to_string(CamshaftDrive v);     // "compliant" | "prescribed"
 
 bool parse_enum(std::string_view s, CamProfileKind* out);
 bool parse_enum(std::string_view s, FollowerFace* out);
@@ -58,6 +60,7 @@ bool parse_enum(std::string_view s, PenaltyLaw* out);
 bool parse_enum(std::string_view s, Integrator* out);
 bool parse_enum(std::string_view s, LinearSolverKind* out);
 bool parse_enum(std::string_view s, StackKind* out);
+bool parse_enum(std::string_view s, CamshaftDrive* out);
 
 /// The cam: profile and drive.
 struct CamSpec {
@@ -354,8 +357,13 @@ struct CamshaftSpec {
   std::vector<double> contact_cams;
   /// The drive station (0-based, < N) [0].
   long drive_station = 0;
-  /// The drive coupling's torsional stiffness [force·length/rad], > 0, and damping
-  /// [force·length·time/rad], ≥ 0.
+  /// How the drive station turns: "compliant" (default) through the drive coupling below;
+  /// "prescribed": the drive station's angle is the crank's law θ_crank(t) exactly (the
+  /// station is no unknown: its neighbours' segments are driven by it, its cams are
+  /// prescribed cams at θ_crank(t) − offset), without drive_stiffness or drive_damping.
+  CamshaftDrive drive = CamshaftDrive::Compliant;
+  /// The drive coupling's torsional stiffness [force·length/rad], > 0 (drive = "compliant"),
+  /// and damping [force·length·time/rad], ≥ 0.
   double drive_stiffness = 0.0;
   double drive_damping = 0.0;
   /// The crank's speed fluctuation: orders n_k (per camshaft revolution, > 0), angle

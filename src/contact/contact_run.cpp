@@ -162,6 +162,7 @@ CamMotion ContactRun::cam_at(double t) const {
   if (!on_joint && !(side && one_sided_motion(cam_, drive_, break_angles_, t, side, &m)))
     m = cam_.motion(drive_.theta(t), drive_.omega(t), drive_.omega_dot(t));
   m.X -= x_base_;
+  m.t = t;
   cam_cache_[cam_next_] = {t, side, m};
   cam_next_ = (cam_next_ + 1) % kCamCache;
   return m;
@@ -169,13 +170,13 @@ CamMotion ContactRun::cam_at(double t) const {
 double ContactRun::gap(int j, const Eigen::VectorXd& y, const CamMotion& cm) const {
   const MechanismContact& c = mk_.contacts()[j];
   if (const CamShaft* cs = mk_.camshaft(); cs && cs->contact_cam(j) >= 0)  // the cam at its station's angle
-    return c.t.dot(y.head(n_)) + c.g0 - cs->lift(j, y.data()).X;
+    return c.t.dot(y.head(n_)) + c.g0 - cs->lift(j, shaft_time(j, cm), y.data()).X;
   return c.t.dot(y.head(n_)) + c.g0 - (c.cam ? cm.X : 0.0);
 }
 double ContactRun::gap_rate(int j, const Eigen::VectorXd& y, const CamMotion& cm) const {
   const MechanismContact& c = mk_.contacts()[j];
   if (const CamShaft* cs = mk_.camshaft(); cs && cs->contact_cam(j) >= 0)  // T̃_j v = T_j v − X_L′ φ̇_s
-    return c.t.dot(y.segment(n_, n_)) - cs->lift(j, y.data()).dX * y[n_ + cs->contact_dof(j)];
+    return c.t.dot(y.segment(n_, n_)) - cs->contact_cam_motion(j, shaft_time(j, cm), y.data(), y.data() + n_).Xdot;
   return c.t.dot(y.segment(n_, n_)) - (c.cam ? cm.Xdot : 0.0);
 }
 double ContactRun::cam_acc(int j, const CamMotion& cm) const {
@@ -279,10 +280,22 @@ double ContactRun::dissipation_power(double t, const Eigen::VectorXd& y) const {
 }
 double ContactRun::cam_power(const Eigen::VectorXd& F, const CamMotion& cm) const {
   double p = 0.0;
-  const CamShaft* cs = mk_.camshaft();
-  for (int j = 0; j < m_; ++j)  // a camshaft's contacts work inside the mechanism
-    if (mk_.contacts()[j].cam && !(cs && cs->contact_cam(j) >= 0)) p += F[j] * cm.Xdot;
+  for (int j = 0; j < m_; ++j)
+    if (F[j] != 0.0) p += F[j] * driven_cam_speed(j, cm);
   return p;
+}
+double ContactRun::driven_cam_speed(int j, const CamMotion& cm) const {
+  if (!mk_.contacts()[j].cam) return 0.0;
+  const CamShaft* cs = mk_.camshaft();
+  if (!cs || cs->contact_cam(j) < 0) return cm.Xdot;
+  if (cs->on_free_station(j)) return 0.0;  // works inside the mechanism
+  return cs->contact_cam_motion(j, shaft_time(j, cm), nullptr, nullptr).Xdot;  // the prescribed station's
+}
+double ContactRun::shaft_time(int j, const CamMotion& cm) const {
+  const CamShaft* cs = mk_.camshaft();
+  if (cs && cs->on_prescribed_station(j) && std::isnan(cm.t))
+    throw std::logic_error("ContactRun: a cam on the prescribed drive station evaluated without the time");
+  return cm.t;
 }
 
 ContactRun::StepEnergy ContactRun::step_energy(
@@ -420,6 +433,7 @@ Summary ContactRun::run() {
     if (gap(j, y_, cm0) <= gtol && gap_rate(j, y_, cm0) <= gtol) active_[j] = 1;
   settle_active(cm0);
   prepare_start();
+  note_shaft_frequencies();
   for (int j = 0; j < m_; ++j)  // the start's forces are samples of the least force too
     if (active_[j]) sample_held_force(j, 0.0, F_[j]);
   sample_elements();

@@ -76,6 +76,16 @@ class ContactRun {
   /// null for a user's FollowerSystem (dense Jacobian). The method adds its contact
   /// derivatives or held set.
   std::shared_ptr<SparseNewton> sparse_newton() const;
+  /// A camshaft (shaft_rows.cpp): the state-dependent rows T̃ of its cam contacts in the
+  /// implicit engines' Newton structure, with their stiffness at the method's forces:
+  /// forces(t, y, F, dFdgd) writes the contact forces at (t, y) (m entries) and their
+  /// ∂F/∂ġ (zero where F does not depend on ġ). No camshaft: nothing.
+  using ShaftForceFn = std::function<void(double t, const Eigen::VectorXd& y, Eigen::VectorXd& F,
+                                          Eigen::VectorXd& dFdgd)>;
+  void shaft_newton(SparseNewton& sn, ShaftForceFn forces);
+  /// A camshaft: the shaft's natural frequencies with its trains attached (held_frequencies_hz
+  /// at the start state, the contacts active there held) into the run's model description.
+  void note_shaft_frequencies();
   /// A user's follower: the dense Jacobian J = [0 I; P ∂a/∂q P ∂a/∂v] of the native system
   /// from its acceleration_jacobian (empty if it has none). `held` (read at every call; null:
   /// none): the contacts held at the acceleration level inside f, a = a_free + M⁻¹T_SᵀF_S with
@@ -153,8 +163,14 @@ class ContactRun {
   // ---- energies
   double potential(double t, const Eigen::VectorXd& y) const;
   double dissipation_power(double t, const Eigen::VectorXd& y) const;
-  /// Σ over cam contacts F_j Ẋ_C.
+  /// Σ over cam contacts F_j Ẋ_C: the work of the cams the run drives (the prescribed cam,
+  /// a camshaft's cams on a prescribed drive station; not the cams on the shaft's unknowns).
   double cam_power(const Eigen::VectorXd& F, const CamMotion& cm) const;
+  /// Contact j's Ẋ in cam_power (0: it does no work on the driver).
+  double driven_cam_speed(int j, const CamMotion& cm) const;
+  /// cm.t, the time a camshaft's cam on the prescribed station is evaluated at (cam_at sets it).
+  /// @throws std::logic_error for such a contact when cm has no time.
+  double shaft_time(int j, const CamMotion& cm) const;
 
   // ---- output and bookkeeping
   void emit_row();
@@ -254,6 +270,8 @@ class ContactRun {
   mutable Eigen::VectorXd hf_a_;   // held_forces' a_free (a camshaft)
   mutable Eigen::VectorXd rows_q_;  // rows_at's state and rows (a camshaft)
   mutable Eigen::MatrixXd rows_T_, rows_MT_, rows_W_;
+  SparseMatrix shaft_kr_pattern_;                // shaft_newton's stiffness pattern
+  Eigen::VectorXd shaft_y_, shaft_F_, shaft_dF_;  // shaft_newton's state and forces
   mutable Eigen::VectorXd se_y_, se_F_;  // step_energy's state and forces
   double x_base_ = 0.0;     // the base circle's X_C: cam_at() returns the lift X_C − x_base_
   bool unilateral_ = true;

@@ -75,18 +75,29 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
     mk_.element_forces(t, y.data(), y.data() + n_, r.extra.data() + k, states_of(y));
   }
   if (const CamShaft* cs = mk_.camshaft()) {
-    const int d = cs->drive_dof();
+    const int d = cs->drive_station();
     double th = 0.0, w = 0.0;
     cs->crank(t, &th, &w);
-    r.extra.push_back(cs->drive_torque(t, y[d], y[n_ + d]));
-    r.extra.push_back(th - y[d]);
-    for (int i = 0; i < cs->cams(); ++i) r.extra.push_back(y[d] - y[cs->station_dof(cs->cam_station(i))]);
+    const double phi_d = cs->station_angle(d, t, y.data());
+    r.extra.push_back(cs->drive_torque(t, y.data(), y.data() + n_, F.data(), m_));
+    r.extra.push_back(th - phi_d);
+    for (int i = 0; i < cs->cams(); ++i) r.extra.push_back(phi_d - cs->station_angle(cs->cam_station(i), t, y.data()));
   }
   if (sc_.run.designer_columns) {
     double Fc = 0.0;  // the cam's force: Σ over the cam contacts (their axial components)
-    for (int j = 0; j < m_; ++j)
-      if (mk_.contacts()[j].cam) Fc += F[j];
-    design_cols_.append(cam_.evaluate(r.theta), Fc, drive_.omega(t), r.extra);
+    const CamShaft* cs = mk_.camshaft();
+    const int pc = cs ? cs->contact_cam(p) : -1;
+    if (pc >= 0) {  // a camshaft: the primary contact's cam at its own angle and speed, its contacts' force
+      for (int j = 0; j < m_; ++j)
+        if (cs->contact_cam(j) == pc) Fc += F[j];
+      const int st = cs->cam_station(pc);
+      design_cols_.append(cam_.evaluate(cs->cam_angle(pc, t, y.data())), Fc, cs->station_speed(st, t, y.data() + n_),
+                          r.extra);
+    } else {
+      for (int j = 0; j < m_; ++j)
+        if (mk_.contacts()[j].cam) Fc += F[j];
+      design_cols_.append(cam_.evaluate(r.theta), Fc, drive_.omega(t), r.extra);
+    }
   }
   if (analysis_.per_row()) {
     double Fc = 0.0;
@@ -113,7 +124,13 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
 
 void ContactRun::record_event(EventKind type, int contact, double v, double impulse, double t_event) {
   const double te = std::isnan(t_event) ? t_ : t_event;
-  ContactEvent e{te, v, drive_.theta(te), impulse, mk_.contacts()[contact].name, type};
+  // a camshaft's cam contact: the angle of its own cam, its station's angle − its offset (the
+  // state's: events are recorded at the state they happen at)
+  const CamShaft* shaft = mk_.camshaft();
+  const double theta = shaft && shaft->contact_cam(contact) >= 0
+                           ? shaft->cam_angle(shaft->contact_cam(contact), te, y_.data())
+                           : drive_.theta(te);
+  ContactEvent e{te, v, theta, impulse, mk_.contacts()[contact].name, type};
   // The designer results follow the primary contact (the cam's). A cam contact with lash
   // opens at the end of every lift event as the cam returns to its base circle, a few µm
   // above the clearance (the chain's deflection under load): only a separation while the
@@ -122,7 +139,7 @@ void ContactRun::record_event(EventKind type, int contact, double v, double impu
   if (contact == mk_.primary()) {
     const MechanismContact& c = mk_.contacts()[contact];
     const CamShaft* cs = mk_.camshaft();
-    const double X = cs && cs->contact_cam(contact) >= 0 ? cs->lift(contact, y_.data()).X : cam_at(te).X;
+    const double X = cs && cs->contact_cam(contact) >= 0 ? cs->lift(contact, te, y_.data()).X : cam_at(te).X;
     const bool on_lift = !c.cam || X > c.g0 + kFloatLift * cam_.lift();
     if (e.type != EventKind::Separation || on_lift) designer_.event(e);
   }

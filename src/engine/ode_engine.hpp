@@ -26,6 +26,7 @@
 #include <functional>
 #include <memory>
 #include <vector>
+#include <utility>
 
 #include "mechanism/sparse_matrix.hpp"
 #include "camdyn/scene.hpp"
@@ -74,6 +75,16 @@ struct SparseNewton {
   std::function<void(double t, const double* y, SparseMatrix& Rs, SparseMatrix& Gq, SparseMatrix& Gv,
                      Eigen::MatrixXd& Gs)>
       state_blocks;
+  /// State-dependent contact rows (a camshaft's cam contacts, src/mechanism/camshaft.hpp:
+  /// T̃ = T − X_L′ e_sᵀ). rows(t, y, T, Kr) writes the rows at (t, y) into T (m × n, non-zero
+  /// only on T's pattern and row_entries) and into Kr (on Kr_pattern) the part of K̃ the rows'
+  /// dependence on q gives: −∂(T(q)ᵀF)/∂q at the method's forces F, and −T(q)ᵀ ∂F/∂ġ ∂ġ/∂q
+  /// beyond ġ = T v (a penalty law's damping through the row's moving column). K̃ gains Kr;
+  /// the contact derivatives' outer products and the held set's border use the rows at (t, y).
+  /// Called before contact_derivatives. Empty: T is constant.
+  std::vector<std::pair<int, long>> row_entries;  ///< (contact, unknown) entries beyond T's
+  const SparseMatrix* Kr_pattern = nullptr;        ///< required with rows
+  std::function<void(double t, const double* y, Eigen::MatrixXd& T, SparseMatrix& Kr)> rows;
 };
 
 /// The system an OdeEngine integrates.

@@ -60,13 +60,23 @@ SparseNewtonSolver::SparseNewtonSolver(const SparseNewton& sys, bool dense, Engi
     Gq_ = Gq_f_ = Gv_ = Gv_f_ = *sys.Gq_pattern;
     Gs_ = Gs_f_ = Eigen::MatrixXd::Zero(ns_, ns_);
   }
-  std::vector<std::vector<std::pair<long, double>>> rows(static_cast<std::size_t>(m_));
+  T_ = T_f_ = sys.T;
+  if (sys.rows) {  // state-dependent rows: their stiffness's pattern
+    if (!sys.Kr_pattern) throw std::invalid_argument("SparseNewton: rows needs Kr_pattern");
+    pattern(*sys.Kr_pattern);
+    Kr_ = Kr_f_ = *sys.Kr_pattern;
+  }
+  std::vector<std::vector<long>> rows(static_cast<std::size_t>(m_));  // each row's pattern
   if (sys.contact_derivatives) {
-    for (int j = 0; j < m_; ++j) {
+    for (int j = 0; j < m_; ++j)
       for (long i = 0; i < n_; ++i)
-        if (sys.T(j, i) != 0.0) rows[std::size_t(j)].emplace_back(i, sys.T(j, i));
-      for (const auto& a : rows[std::size_t(j)])
-        for (const auto& b : rows[std::size_t(j)]) t.emplace_back(a.first, b.first, 0.0);
+        if (sys.T(j, i) != 0.0) rows[std::size_t(j)].push_back(i);
+    for (const auto& [j, i] : sys.row_entries) rows[std::size_t(j)].push_back(i);
+    for (auto& r : rows) {
+      std::sort(r.begin(), r.end());
+      r.erase(std::unique(r.begin(), r.end()), r.end());
+      for (long a : r)
+        for (long b : r) t.emplace_back(a, b, 0.0);
     }
   }
   S_.resize(n_, n_);
@@ -83,14 +93,16 @@ SparseNewtonSolver::SparseNewtonSolver(const SparseNewton& sys, bool dense, Engi
       pos_ce_ = positions(S_, Ce_);
     }
   }
+  if (sys.rows) pos_kr_ = positions(S_, Kr_);
   for (int j = 0; j < m_; ++j)
-    for (const auto& a : rows[std::size_t(j)])
-      for (const auto& b : rows[std::size_t(j)]) outer_.push_back({position(S_, a.first, b.first), j, a.second * b.second});
+    for (long a : rows[std::size_t(j)])
+      for (long b : rows[std::size_t(j)]) outer_.push_back({position(S_, a, b), j, a, b});
   dFdg_ = dFdgd_ = Eigen::VectorXd::Zero(m_);
 }
 
 void SparseNewtonSolver::prepare(double t, const double* y, double gamma) {
   gamma_ = gamma;
+  if (sys_.rows) sys_.rows(t, y, T_, Kr_);
   if (sys_.contact_derivatives) sys_.contact_derivatives(t, y, dFdg_, dFdgd_);
   if (sys_.element_tangent) sys_.element_tangent(t, y, Ke_, Ce_);
   if (ns_) sys_.state_blocks(t, y, Rs_, Gq_, Gv_, Gs_);
@@ -105,7 +117,8 @@ bool same_values(const SparseMatrix& a, const SparseMatrix& b) {
 void SparseNewtonSolver::setup() {
   if (factored_ && gamma_ == gamma_f_ && dFdg_ == dFdg_f_ && dFdgd_ == dFdgd_f_ &&
       (!sys_.element_tangent || (same_values(Ke_, Ke_f_) && same_values(Ce_, Ce_f_))) &&
-      (!ns_ || (same_values(Rs_, Rs_f_) && same_values(Gq_, Gq_f_) && same_values(Gv_, Gv_f_) && Gs_ == Gs_f_)))
+      (!ns_ || (same_values(Rs_, Rs_f_) && same_values(Gq_, Gq_f_) && same_values(Gv_, Gv_f_) && Gs_ == Gs_f_)) &&
+      (!sys_.rows || (T_ == T_f_ && same_values(Kr_, Kr_f_))))
     return;  // S unchanged
   const double g = gamma_;
   double* x = S_.valuePtr();
@@ -118,7 +131,13 @@ void SparseNewtonSolver::setup() {
     v = sys_.C->valuePtr();
     for (std::size_t p = 0; p < pos_c_.size(); ++p) x[pos_c_[p]] += g * v[p];
   }
-  for (const Outer& o : outer_) x[o.pos] -= (g * dFdgd_[o.j] + g * g * dFdg_[o.j]) * o.w;
+  for (const Outer& o : outer_) x[o.pos] -= (g * dFdgd_[o.j] + g * g * dFdg_[o.j]) * T_(o.j, o.a) * T_(o.j, o.b);
+  if (sys_.rows) {
+    v = Kr_.valuePtr();
+    for (std::size_t p = 0; p < pos_kr_.size(); ++p) x[pos_kr_[p]] += g * g * v[p];
+    T_f_ = T_;
+    Kr_f_ = Kr_;
+  }
   if (sys_.element_tangent) {
     v = Ke_.valuePtr();
     for (std::size_t p = 0; p < pos_ke_.size(); ++p) x[pos_ke_[p]] += g * g * v[p];
@@ -155,6 +174,7 @@ void SparseNewtonSolver::solve(double* b) {
   rhs_.noalias() = *sys_.M * V;
   rhs_.noalias() -= g * (*sys_.K * U);
   if (sys_.element_tangent) rhs_.noalias() -= g * (Ke_f_ * U);
+  if (sys_.rows) rhs_.noalias() -= g * (Kr_f_ * U);
   Eigen::Map<Eigen::VectorXd> Bs(b + 2 * n_, ns_);
   if (ns_) {  // + γ R_s H (b_s + γ G_q b_u)
     w_ = Bs;
@@ -163,7 +183,7 @@ void SparseNewtonSolver::solve(double* b) {
   }
   if (sys_.contact_derivatives)
     for (int j = 0; j < m_; ++j)
-      if (dFdg_f_[j] != 0.0) rhs_.noalias() += (g * dFdg_f_[j] * sys_.T.row(j).dot(U)) * sys_.T.row(j).transpose();
+      if (dFdg_f_[j] != 0.0) rhs_.noalias() += (g * dFdg_f_[j] * T_f_.row(j).dot(U)) * T_f_.row(j).transpose();
   lu_.solve(rhs_.data());
   const std::vector<int>* held = sys_.held;
   if (held && !held->empty()) {
@@ -173,16 +193,16 @@ void SparseNewtonSolver::solve(double* b) {
       Z_.resize(n_, k);
       Eigen::MatrixXd G(k, k);
       for (int i = 0; i < k; ++i) {
-        Z_.col(i) = sys_.T.row((*held)[std::size_t(i)]).transpose();
+        Z_.col(i) = T_f_.row((*held)[std::size_t(i)]).transpose();
         lu_.solve(Z_.col(i).data());
       }
-      for (int i = 0; i < k; ++i) G.row(i) = sys_.T.row((*held)[std::size_t(i)]) * Z_;
+      for (int i = 0; i < k; ++i) G.row(i) = T_f_.row((*held)[std::size_t(i)]) * Z_;
       G_.compute(G);
     }
     Eigen::VectorXd& r = r_;
     r.resize(k);
     for (int i = 0; i < k; ++i) {
-      const auto t = sys_.T.row((*held)[std::size_t(i)]);
+      const auto t = T_f_.row((*held)[std::size_t(i)]);
       r[i] = t.dot(V) - t.dot(rhs_);
     }
     if (k == 1)  // G⁻¹r = r/G (what the 1 × 1 LU gives), without its temporaries

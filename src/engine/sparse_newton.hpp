@@ -37,8 +37,13 @@ class SparseNewtonSolver {
   SparseMatrix S_;
   // positions in S_ of the entries of M, K, C and of the contacts' tⱼᵀtⱼ (row, col pairs)
   std::vector<long> pos_m_, pos_k_, pos_c_;
-  struct Outer { long pos; int j; double w; };  // S(pos) += coefficient_j · w
+  struct Outer { long pos; int j; long a, b; };  // S(pos) += coefficient_j · T(j, a) T(j, b)
   std::vector<Outer> outer_;
+  // the contact rows: prepared (T_) and factorised (T_f_); state-dependent rows' stiffness
+  // (Kr_, Kr_f_) and its positions in S_
+  Eigen::MatrixXd T_, T_f_;
+  SparseMatrix Kr_, Kr_f_;
+  std::vector<long> pos_kr_;
   Eigen::VectorXd dFdg_, dFdgd_, dFdg_f_, dFdgd_f_;  // prepared / factorised
   // the elements' tangent: prepared (Ke_, Ce_) and factorised (Ke_f_, Ce_f_); positions in S_
   SparseMatrix Ke_, Ce_, Ke_f_, Ce_f_;

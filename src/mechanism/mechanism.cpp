@@ -166,7 +166,8 @@ Mechanism::Mechanism(const Scene& scene) {
     }
     desc_.network.push_back(d.str());
   }
-  if (shaft) {  // the drive coupling: −k_d φ_d − c_d φ̇_d here, the crank's part in acceleration()
+  if (shaft && scene.camshaft.drive == CamshaftDrive::Compliant) {
+    // the drive coupling: −k_d φ_d − c_d φ̇_d here, the crank's part in acceleration()
     const CamshaftSpec& c = scene.camshaft;
     links.push_back({index.at("shaft_" + std::to_string(c.drive_station)), -1, c.drive_stiffness,
                      c.drive_damping, 0.0});
@@ -472,7 +473,7 @@ void Mechanism::acceleration(double t, const double* q, const double* v, const E
     if (damped()) r.noalias() -= C_ * V;
     if (!elements_.empty() && !homogeneous) elements_.add_force(t, q, v, r.data(), s);
     if (camshaft_) {  // the crank's part of the drive, the contacts' torques on the shaft
-      if (!homogeneous) r[camshaft_->drive_dof()] += camshaft_->drive_forcing(t);
+      if (!homogeneous) camshaft_->add_crank_forcing(t, r.data());
       if (F.size()) camshaft_->add_contact_torques(q, F.data(), int(F.size()), r.data());
     }
     A = Mldlt_.solve(r);
@@ -525,26 +526,19 @@ double Mechanism::kinetic_energy(const double* v) const {
 double Mechanism::potential_energy(const double* q, const double* s) const {
   Eigen::Map<const Eigen::VectorXd> Q(q, n_);
   double V = 0.5 * Q.dot(K_ * Q) - f0_.dot(Q) + (elements_.empty() ? 0.0 : elements_.stored_energy(q, s));
-  if (camshaft_) {  // the drive coupling is the driver, not stored energy (camshaft.hpp)
-    const double p = q[camshaft_->drive_dof()];
-    V -= 0.5 * camshaft_->drive_stiffness() * p * p;
-  }
+  if (camshaft_) V -= camshaft_->coupling_energy(q);  // the drive's couplings are the driver's (camshaft.hpp)
   return V;
 }
 double Mechanism::damping_power(const double* v) const {
   if (!damped()) return 0.0;
   Eigen::Map<const Eigen::VectorXd> V(v, n_);
   double P = V.dot(C_ * V);
-  if (camshaft_) {  // the drive coupling's damper is the driver's (camshaft.hpp)
-    const double w = v[camshaft_->drive_dof()];
-    P -= camshaft_->drive_damping() * w * w;
-  }
+  if (camshaft_) P -= camshaft_->coupling_dissipation(v);  // the drive's couplings' dampers are the driver's
   return P;
 }
 double Mechanism::input_power(double t, const double* q, const double* v) const {
   if (!camshaft_) return 0.0;
-  const int d = camshaft_->drive_dof();
-  return camshaft_->drive_torque(t, q[d], v[d]) * v[d];
+  return camshaft_->coupling_power(t, q, v);
 }
 double Mechanism::damping_power(double t, const double* q, const double* v, const double* s) const {
   double P = damping_power(v);

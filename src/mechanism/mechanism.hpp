@@ -206,8 +206,9 @@ class Mechanism final : public MechanicalSystem {
   bool damped() const { return C_.size() > 0; }
   const Eigen::VectorXd& f0() const { return f0_; }
 
-  /// true without nonlinear elements and without a camshaft.
-  bool linear() const override { return elements_.empty() && !camshaft_; }
+  /// true without nonlinear elements and without cams on a camshaft's unknowns (a cam on a
+  /// prescribed drive station is a prescribed cam).
+  bool linear() const override { return elements_.empty() && (!camshaft_ || !camshaft_->rows_depend_on_state()); }
   void acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
                     bool homogeneous = false, const double* s = nullptr) const override;
   void state_rate(double t, const double* q, const double* v, const double* s, double* sdot) const override;

@@ -128,7 +128,7 @@ void check_start(const Scene& sc, const MechanicalSystem& mech, StartKeys keys) 
     const MechanismContact& c = mech.contacts()[j];
     const CamShaft* shaft = mech.camshaft();
     const bool on_shaft = shaft && shaft->contact_cam(j) >= 0;  // the cam at its station's angle
-    const double lift = on_shaft ? shaft->lift(j, q.data()).X : c.cam ? cm.X - base : 0.0;
+    const double lift = on_shaft ? shaft->lift(j, 0.0, q.data()).X : c.cam ? cm.X - base : 0.0;
     const double gap = c.t.dot(q) + c.g0 - lift;
     if (gap >= -sc.contact.tol_u) continue;
     double depth = 0.0;
@@ -138,8 +138,8 @@ void check_start(const Scene& sc, const MechanicalSystem& mech, StartKeys keys) 
                          mech.states() ? mech.s0().data() : nullptr);
         have_a0 = true;
       }
-      const double w = on_shaft ? mech.v0()[shaft->contact_dof(j)] : 0.0;
-      const double Xdd = on_shaft ? shaft->lift(j, q.data()).ddX * w * w : c.cam ? cm.Xddot : 0.0;
+      const double Xdd =
+          on_shaft ? shaft->contact_cam_motion(j, 0.0, q.data(), mech.v0().data()).Xddot : c.cam ? cm.Xddot : 0.0;
       const double F = (Xdd - c.t.dot(a0)) / mech.W()(j, j);
       depth = c.law.penalty.depth_at(F);
       if (gap >= -(depth + sc.contact.tol_u)) continue;

@@ -55,6 +55,8 @@ inline constexpr EnumName<LinearSolverKind> kLinSolNames[] = {
     {LinearSolverKind::Auto, "auto"}, {LinearSolverKind::Dense, "dense"}, {LinearSolverKind::Klu, "klu"}};
 inline constexpr EnumName<StackKind> kStackNames[] = {
     {StackKind::Auto, "auto"}, {StackKind::Follower, "follower"}, {StackKind::Mechanism, "mechanism"}};
+inline constexpr EnumName<CamshaftDrive> kCamshaftDriveNames[] = {{CamshaftDrive::Compliant, "compliant"},
+                                                                 {CamshaftDrive::Prescribed, "prescribed"}};
 inline constexpr EnumName<ContactPointKind> kContactPointNames[] = {
     {ContactPointKind::Cam, "cam"}, {ContactPointKind::Lash, "lash"}, {ContactPointKind::Stop, "stop"}};
 inline constexpr EnumName<StopSide> kStopSideNames[] = {{StopSide::Below, "below"}, {StopSide::Above, "above"}};

@@ -39,6 +39,7 @@ const char* to_string(PenaltyLaw v) { return enum_to_string(kPenaltyNames, v); }
 const char* to_string(Integrator v) { return enum_to_string(kIntegratorNames, v); }
 const char* to_string(LinearSolverKind v) { return enum_to_string(kLinSolNames, v); }
 const char* to_string(StackKind v) { return enum_to_string(kStackNames, v); }
+const char* to_string(CamshaftDrive v) { return enum_to_string(kCamshaftDriveNames, v); }
 const char* to_string(ElementKind v) { return element_kind(v).name; }
 const char* to_string(ContactPointKind v) { return enum_to_string(kContactPointNames, v); }
 const char* to_string(StopSide v) { return enum_to_string(kStopSideNames, v); }
@@ -56,6 +57,7 @@ bool parse_enum(std::string_view s, PenaltyLaw* out) { return enum_parse(kPenalt
 bool parse_enum(std::string_view s, Integrator* out) { return enum_parse(kIntegratorNames, s, out); }
 bool parse_enum(std::string_view s, LinearSolverKind* out) { return enum_parse(kLinSolNames, s, out); }
 bool parse_enum(std::string_view s, StackKind* out) { return enum_parse(kStackNames, s, out); }
+bool parse_enum(std::string_view s, CamshaftDrive* out) { return enum_parse(kCamshaftDriveNames, s, out); }
 bool parse_enum(std::string_view s, ElementKind* out) {
   for (const ElementKindInfo& k : element_kinds())
     if (s == k.name) {

@@ -218,6 +218,10 @@ const KeyDoc kDocs[] = {
                                    "is the camshaft's 4th), each > 0."},
     {"camshaft.crank_amplitudes_deg", "deg", "Angle amplitude a_k of each order, camshaft degrees (as many as orders)."},
     {"camshaft.crank_phases_deg", "deg", "Phase p_k of each order (as many as orders)."},
+    {"camshaft.drive", "—", "How the drive station turns: `compliant` (default) through the drive coupling "
+                           "(camshaft.drive_stiffness, camshaft.drive_damping) from the crank; `prescribed`: the "
+                           "drive station's angle is θ_crank(t) exactly (no unknown: its cams are prescribed cams at "
+                           "θ_crank(t) − offset, its segments drive the neighbouring stations), without the coupling's keys."},
     // [[nodes]]
     {"nodes.name", "—", "Node name: history columns `u_<name>`, `v_<name>`.", "string",
      "non-empty, unique, not \"ground\", letters, digits, '_' and '-' only", "(required)"},

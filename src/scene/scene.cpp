@@ -260,6 +260,7 @@ const std::vector<Field>& fields() {
     v.push_back(F_ARR(camshaft, crank_orders));
     v.push_back(F_ARR(camshaft, crank_amplitudes_deg));
     v.push_back(F_ARR(camshaft, crank_phases_deg));
+    v.push_back(F_ENUM(camshaft, drive, kCamshaftDriveNames));
     return v;
   }();
   return kFields;

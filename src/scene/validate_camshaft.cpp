@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 #include <vector>
+#include <utility>
 
 #include "scene/validator.hpp"
 
@@ -36,6 +37,7 @@ void Validator::camshaft() const {
         {"camshaft.rayleigh_alpha", c.rayleigh_alpha != 0.0},
         {"camshaft.rayleigh_beta", c.rayleigh_beta != 0.0},
         {"camshaft.drive_station", c.drive_station != 0},
+        {"camshaft.drive", c.drive != CamshaftDrive::Compliant},
     };
     for (const auto& [key, given] : set)
       if (given) fail_at("camshaft.inertias", "[]", std::string(no_shaft) + "; " + key + " is given", key);
@@ -53,19 +55,10 @@ void Validator::camshaft() const {
             std::string("a camshaft needs follower.kind = \"network\" (follower.kind is \"") +
                 to_string(s_.follower.kind) + "\"): its cam contacts are the network's",
             "follower.kind");
-  if (s_.contact.model == ContactModel::Holonomic)
-    fail_at("contact.model", "\"holonomic\"",
-            "a [camshaft] runs on contact.model = \"lee\", \"event\" or \"penalty\" (the holonomic method does not "
-            "carry the shaft angle in its contact rows yet)",
-            "camshaft.inertias");
-  if (s_.solver.integrator != Integrator::ArkodeErk)
-    fail_at("solver.integrator", std::string("\"") + to_string(s_.solver.integrator) + "\"",
-            "a [camshaft] runs on solver.integrator = \"arkode-erk\" (the implicit engines' Newton matrices do not "
-            "carry the shaft angle's column of the contact rows yet)",
-            "camshaft.inertias");
-  if (s_.run.designer_columns)
-    fail_at("run.designer_columns", "true",
-            "not with a [camshaft] yet (the designer columns evaluate the cam at its prescribed angle)",
+  if (s_.solver.integrator == Integrator::Ida)
+    fail_at("solver.integrator", "\"ida\"",
+            "a [camshaft] runs on \"arkode-erk\", \"arkode-dirk\" or \"cvode-bdf\" (holonomic contact too: its "
+            "DAE on ida does not carry the shaft angle in its contact rows)",
             "camshaft.inertias");
   if (c.stiffnesses.size() != N - 1)
     fail_at("camshaft.stiffnesses", array_text(c.stiffnesses),
@@ -98,7 +91,17 @@ void Validator::camshaft() const {
   if (c.drive_station < 0 || std::size_t(c.drive_station) >= N)
     fail_at("camshaft.drive_station", std::to_string(c.drive_station),
             "must be a station of camshaft.inertias (>= 0 and < " + std::to_string(N) + ")");
-  gt("camshaft.drive_stiffness", c.drive_stiffness, 0.0);
+  if (c.drive == CamshaftDrive::Compliant) {
+    gt("camshaft.drive_stiffness", c.drive_stiffness, 0.0);
+  } else {
+    for (const auto& [key, v] : {std::pair<const char*, double>{"camshaft.drive_stiffness", c.drive_stiffness},
+                                 {"camshaft.drive_damping", c.drive_damping}})
+      if (v != 0.0)
+        fail_at(key, fmt_num(v),
+                "not with camshaft.drive = \"prescribed\" (the drive station follows the crank's law exactly: no "
+                "coupling)",
+                "camshaft.drive");
+  }
   if (c.crank_amplitudes_deg.size() != c.crank_orders.size())
     fail_at("camshaft.crank_amplitudes_deg", array_text(c.crank_amplitudes_deg),
             "must have one entry per order of camshaft.crank_orders (" + std::to_string(c.crank_orders.size()) + ")");

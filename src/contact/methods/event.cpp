@@ -40,6 +40,10 @@ EventMethod::EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem
   // without one, SUNDIALS' difference quotients.
   if (auto sn = sparse_newton()) {
     sn->held = &set_;
+    // a camshaft: the held rows at the state, their stiffness at the held forces
+    shaft_newton(*sn, [this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& F, Eigen::VectorXd&) {
+      held_forces_into(t, y, cam_at(t), set_, F);
+    });
     sys.newton = sn;
   } else {
     sys.jacobian = dense_jacobian(&set_);

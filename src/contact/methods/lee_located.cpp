@@ -215,9 +215,7 @@ void LeeLocated::run_method() {
       s.power.assign(kSwitchSamples + 1, 0.0);
       for (int k = 0; k <= kSwitchSamples; ++k) {
         const CamMotion c = k == 0 ? cm0 : k == kSwitchSamples ? cm1 : cam_at(s.t0 + hs * double(k) / kSwitchSamples);
-        for (int j : set)
-          if (mk_.contacts()[j].cam && !(mk_.camshaft() && mk_.camshaft()->contact_cam(j) >= 0))
-            s.power[k] += samples_[j][k] * c.Xdot;
+        for (int j : set) s.power[k] += samples_[j][k] * driven_cam_speed(j, c);
       }
     }
     s.W0 = work_;

@@ -52,7 +52,14 @@ class LeeLocated final : public ContactRun {
     sys.rhs = [this](double t, const double* y, double* yd) { rhs(t, y, yd); };
     // The mechanism's sparse Newton structure (the force shape does not depend on the
     // state); a user's follower: its dense Jacobian, without one difference quotients.
-    sys.newton = sparse_newton();
+    if (auto sn = sparse_newton()) {
+      // a camshaft: the rows at the state, their stiffness at the step's force shape
+      shaft_newton(*sn, [this](double t, const Eigen::VectorXd&, Eigen::VectorXd& F, Eigen::VectorXd&) {
+        const double x = (t - s_t0_) / s_h_;
+        for (int j = 0; j < m_; ++j) F[j] = F0_[j] + (F1_[j] - F0_[j]) * x + Fc_[j] * 4.0 * x * (1.0 - x);
+      });
+      sys.newton = sn;
+    }
     if (!sys.newton) sys.jacobian = dense_jacobian(nullptr);
     sys.linear = mk_.linear() && (sys.jacobian || sys.newton);
     if (sc.solver.integrator == Integrator::CvodeBdf)

@@ -42,6 +42,17 @@ class PenaltyMethod final : public ContactRun {
               dFdgd[j] = -dv;
             }
           };
+      // a camshaft: the cam contacts' rows at the state and their stiffness at the laws' forces
+      shaft_newton(*sn, [this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& F, Eigen::VectorXd& dFdgd) {
+        const CamMotion cm = cam_at(t);
+        for (int j = 0; j < m_; ++j) {
+          double dq = 0, dv = 0;
+          const double s = -gap(j, y, cm), sd = -gap_rate(j, y, cm);
+          F[j] = law(j, s, sd);
+          params(j).derivatives(s, sd, &dq, &dv);
+          dFdgd[j] = -dv;
+        }
+      });
     } else if (mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq0, dv0))
       sys.jacobian = [this](double t, const double* y, Eigen::MatrixXd& J) {
         const Eigen::Map<const Eigen::VectorXd> Y(y, ny_);
