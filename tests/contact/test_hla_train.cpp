@@ -117,8 +117,15 @@ class HlaTrainConvergence : public ::testing::TestWithParam<Case> {};
 // Measured max |lift − lift_ref| (m) / max |t_event − t_ref| (s) over the 22 events up to
 // the chatter (1 separation of the seat at the rise, then the seat's and the lash's
 // closing bounces):
-//   cvode-bdf lee    1e-6 4.8e-9 / —, 1e-8 1.2e-10 / 3e-9, 1e-10 2.5e-12 / 1e-10
-//   (the others: the Long instantiation prints them)
+//   cvode-bdf   lee    1e-6 4.8e-9 / 2.4e-7, 1e-8 1.2e-10 / 1.2e-9, 1e-10 2.5e-12 / 2.0e-11
+//   cvode-bdf   event  1e-6 1.0e-8 / 4.4e-7, 1e-8 2.5e-10 / 8.6e-9, 1e-10 5.9e-12 / 2.3e-10
+//   arkode-erk  lee    1e-6 2.8e-10 / 9.6e-9, 1e-8 3.7e-12 / 1.5e-10
+//   arkode-erk  event  1e-6 1.1e-9 / 4.4e-8,  1e-8 1.1e-11 / 1.5e-9
+//   arkode-dirk lee    1e-6 5.1e-11 / 1.3e-9, 1e-8 4.6e-13 / 9.7e-12
+//   arkode-dirk event  1e-6 4.4e-11 / 6.8e-9, 1e-8 5.7e-13 / 2.0e-9
+// the same event sequence on every one; Lee on cvode-bdf at 1e-10 against the event method
+// on arkode-erk at 1e-11: 2.5e-12 m, 2.0e-11 s. The default run keeps the cheapest case
+// (Lee on cvode-bdf, the example's engine, at 1e-6 and 1e-8: 0.9 s CPU); the rest is Long/.
 TEST_P(HlaTrainConvergence, EventSequenceAndValveLiftConvergeAsRtolFalls) {
   const Case c = GetParam();
   const Result& ref = reference(c.model);
