@@ -18,7 +18,17 @@
 //     F_ġ = T_S v − Ẋ_C(t)·[cam]                 = 0   (k, multipliers λ)
 //     F_W = Ẇ − Σ_{j ∈ S, cam} λ_j Ẋ_C(t)        = 0   (1, the cam's work W)
 //
-//   y = [q; v; λ; μ; W], N = 2n + 2k + 1. On the exact solution μ = 0 and λ are the held
+//   With nonlinear elements r = f₀ − Kq − Cv + r_e(t, q, v, s) and their internal states s
+//   (ns of them, element.hpp) add F_s = ṡ − g(t, q, v, s) = 0 (ns, differential, in the
+//   error test), y = [q; v; λ; μ; W; s; D], N = 2n + 2k + 2 + ns; their blocks in the Newton
+//   matrix: ∂F_v/∂q += K_e, ∂F_v/∂v += C_e, ∂F_v/∂s = −R_s, ∂F_s/∂q = −G_q, ∂F_s/∂v = −G_v,
+//   ∂F_s/∂s = c_j I − G_s (ElementSet::state_tangent; G_s dense over the states). The
+//   energy the mechanism dissipates, F_D = Ḋ − P(t, q, v, s) (its damping and elements'
+//   power), is one more differential unknown D in the error test, so that the energy
+//   ledger gets it to IDA's tolerance (the trapezoid on the rows missed the chamber's
+//   throttling power between them); D feeds nothing back, its row of the Newton matrix is
+//   c_j on the diagonal alone.
+//   y = [q; v; λ; μ; W; D], N = 2n + 2k + 2 without states. On the exact solution μ = 0 and λ are the held
 //   forces; λ and μ are index-2 algebraic unknowns: IDASetId gives them 0 and
 //   IDASetSuppressAlg(SUNTRUE) leaves them out of the local error test, which then
 //   controls q, v and W (W is an ordinary differential unknown; left out of the test it
@@ -117,8 +127,8 @@ Row row_of(const MechanismContact& c) {
 struct IdaHeldSet::Impl {
   const Mechanism& mech;
   IdaHeldSet::CamFn cam;
-  int n, k, N;
-  int iL, iU, iW;  // first indices of λ, μ; index of W
+  int n, k, ns, N;
+  int iL, iU, iW, iS, iD;  // first indices of λ, μ; index of W; first index of s; index of D
   std::vector<Row> held, open;
   std::vector<int> open_ids;
   SolverSpec spec;
@@ -129,6 +139,11 @@ struct IdaHeldSet::Impl {
   // nonlinear elements: their tangent's values and positions in J0 (rows n + i)
   SparseMatrix Ke, Ce;
   std::vector<long> p_ke, p_ce;
+  // the internal states' blocks: R_s, G_q, G_v (sparse) and G_s (dense), their positions in J0
+  SparseMatrix Rs, Gq, Gv;
+  Eigen::MatrixXd Gs;
+  std::vector<long> p_rs, p_gq, p_gv, p_gs;
+  Eigen::VectorXd sdot;
   Eigen::VectorXd r, Mvp, dq;
   std::vector<double> jx;  // the Jacobian's values on the pattern
   bool tensile_on = true;
@@ -145,9 +160,10 @@ struct IdaHeldSet::Impl {
 
   Impl(const Mechanism& mc, const std::vector<int>& held_ids, const Scene& scene, IdaHeldSet::CamFn c,
        bool dense_ls)
-      : mech(mc), cam(std::move(c)), n(mc.n()), k(int(held_ids.size())), N(2 * mc.n() + 2 * k + 1),
-        iL(2 * n), iU(2 * n + k), iW(2 * n + 2 * k), spec(scene.solver), dense(dense_ls), q0(mc.q0()),
-        r(mc.n()), Mvp(mc.n()), dq(mc.n()) {
+      : mech(mc), cam(std::move(c)), n(mc.n()), k(int(held_ids.size())), ns(mc.states()),
+        N(2 * mc.n() + 2 * k + 2 + ns), iL(2 * n), iU(2 * n + k), iW(2 * n + 2 * k), iS(2 * n + 2 * k + 1),
+        iD(2 * n + 2 * k + 1 + ns),
+        spec(scene.solver), dense(dense_ls), q0(mc.q0()), sdot(mc.states()), r(mc.n()), Mvp(mc.n()), dq(mc.n()) {
     std::vector<char> is_held(std::size_t(mech.m()), 0);
     for (int j : held_ids) {
       held.push_back(row_of(mech.contacts()[std::size_t(j)]));
@@ -206,6 +222,22 @@ struct IdaHeldSet::Impl {
       if (held[std::size_t(c)].cam) add0(iW, iL + c, 1.0);  // F_W: −Ẋ_C λ_c (value per Jacobian)
     }
     add1(iW, iW, 1.0);  // F_W: Ẇ
+    add1(iD, iD, 1.0);  // F_D: Ḋ
+    if (ns > 0) {  // F_v: −R_s s; F_s = ṡ − g: −G_q, −G_v, c_j I − G_s (values per Jacobian)
+      Rs = el.rs_pattern();
+      Gq = el.gq_pattern();
+      for (long j = 0; j < Rs.outerSize(); ++j)
+        for (SparseMatrix::InnerIterator it(Rs, j); it; ++it) add0(n + it.row(), iS + j, 0.0);
+      for (long j = 0; j < Gq.outerSize(); ++j)
+        for (SparseMatrix::InnerIterator it(Gq, j); it; ++it) {
+          add0(iS + it.row(), j, 0.0);
+          add0(iS + it.row(), n + j, 0.0);
+        }
+      for (long l = 0; l < ns; ++l) {
+        for (long c = 0; c < ns; ++c) add0(iS + l, iS + c, 0.0);
+        add1(iS + l, iS + l, 1.0);
+      }
+    }
     SparseMatrix P(N, N), A0(N, N), A1(N, N);
     P.setFromTriplets(tp.begin(), tp.end());
     A0.setFromTriplets(t0.begin(), t0.end());
@@ -225,6 +257,15 @@ struct IdaHeldSet::Impl {
       for (SparseMatrix::InnerIterator it(Ke, j); it; ++it) p_ke.push_back(position(n + it.row(), j));
     for (long j = 0; j < Ce.outerSize(); ++j)
       for (SparseMatrix::InnerIterator it(Ce, j); it; ++it) p_ce.push_back(position(n + it.row(), n + j));
+    for (long j = 0; j < Rs.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(Rs, j); it; ++it) p_rs.push_back(position(n + it.row(), iS + j));
+    for (long j = 0; j < Gq.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(Gq, j); it; ++it) {
+        p_gq.push_back(position(iS + it.row(), j));
+        p_gv.push_back(position(iS + it.row(), n + j));
+      }
+    for (long c = 0; c < ns; ++c)
+      for (long l = 0; l < ns; ++l) p_gs.push_back(position(iS + l, iS + c));
     p_wl.assign(std::size_t(k), -1);
     for (int c = 0; c < k; ++c)
       for (long p = J0.outerIndexPtr()[iL + c]; p < J0.outerIndexPtr()[iL + c + 1]; ++p)
@@ -240,7 +281,8 @@ struct IdaHeldSet::Impl {
     dq = Eigen::Map<const Eigen::VectorXd>(q, n) - q0;
     r.noalias() = r0 - mech.K() * dq;
     if (mech.damped()) r.noalias() -= mech.C() * Eigen::Map<const Eigen::VectorXd>(v, n);
-    if (!mech.elements().empty()) mech.elements().add_force(t, q, v, r.data());
+    const double* s = ns > 0 ? y + iS : nullptr;
+    if (!mech.elements().empty()) mech.elements().add_force(t, q, v, r.data(), s);
     double Pw = 0.0;
     for (int j = 0; j < k; ++j) {
       const Row& h = held[std::size_t(j)];
@@ -256,6 +298,11 @@ struct IdaHeldSet::Impl {
     Mvp.noalias() = mech.M() * Eigen::Map<const Eigen::VectorXd>(dy + n, n);
     for (int i = 0; i < n; ++i) F[n + i] = Mvp[i] - r[i];
     F[iW] = dy[iW] - Pw;
+    if (ns > 0) {
+      mech.elements().state_rate(t, q, v, s, sdot.data());
+      for (int l = 0; l < ns; ++l) F[iS + l] = dy[iS + l] - sdot[l];
+    }
+    F[iD] = dy[iD] - mech.damping_power(t, q, v, s);
   }
 
   // J = J0 + c_j J1 (with ∂F_W/∂λ_j = −Ẋ_C(t)).
@@ -269,10 +316,19 @@ struct IdaHeldSet::Impl {
     for (long p = 0; p < nnz; ++p) x[std::size_t(p)] = a0[p] + cj * a1[p];
     for (long p : p_wl)
       if (p >= 0) x[std::size_t(p)] = wl;
+    const double* s = ns > 0 ? y + iS : nullptr;
     if (!p_ke.empty()) {
-      mech.elements().tangent(t, y, y + n, Ke, Ce);
+      mech.elements().tangent(t, y, y + n, Ke, Ce, s);
       for (std::size_t p = 0; p < p_ke.size(); ++p) x[std::size_t(p_ke[p])] += Ke.valuePtr()[p];
       for (std::size_t p = 0; p < p_ce.size(); ++p) x[std::size_t(p_ce[p])] += Ce.valuePtr()[p];
+    }
+    if (ns > 0) {
+      mech.elements().state_tangent(t, y, y + n, s, Rs, Gq, Gv, Gs);
+      for (std::size_t p = 0; p < p_rs.size(); ++p) x[std::size_t(p_rs[p])] -= Rs.valuePtr()[p];
+      for (std::size_t p = 0; p < p_gq.size(); ++p) x[std::size_t(p_gq[p])] -= Gq.valuePtr()[p];
+      for (std::size_t p = 0; p < p_gv.size(); ++p) x[std::size_t(p_gv[p])] -= Gv.valuePtr()[p];
+      for (long c = 0, p = 0; c < ns; ++c)
+        for (long l = 0; l < ns; ++l, ++p) x[std::size_t(p_gs[std::size_t(p)])] -= Gs(l, c);
     }
     if (dense) {
       SUNMatZero(Jac);
@@ -345,12 +401,12 @@ struct IdaHeldSet::Impl {
 
 IdaHeldSet::IdaHeldSet(const Mechanism& mech, std::vector<int> held, const Scene& scene, CamFn cam)
     : held_(std::move(held)) {
-  const int n = mech.n(), k = int(held_.size());
-  N_ = 2 * n + 2 * k + 1;
+  const int n = mech.n(), k = int(held_.size()), ns = mech.states();
+  N_ = 2 * n + 2 * k + 2 + ns;
   // "auto": KLU when the unknowns besides W exceed 16 (resolve_linear_solver counts 2·nodes + 2)
-  lsk_ = resolve_linear_solver(scene.solver, n + k - 1);
+  lsk_ = resolve_linear_solver(scene.solver, n + k - 1 + (ns + 1) / 2);
   impl_ = std::make_unique<Impl>(mech, held_, scene, std::move(cam), lsk_ == LinearSolverKind::Dense);
-  y_.resize(2 * n);
+  y_.resize(2 * n + ns);
   lambda_ = Eigen::VectorXd::Zero(k);
 }
 
@@ -362,7 +418,10 @@ void IdaHeldSet::init(double t0, const Eigen::VectorXd& y0, const Eigen::VectorX
   const int n = d.n, k = d.k;
   double* y = N_VGetArrayPointer(d.yy.get());
   double* dy = N_VGetArrayPointer(d.yp.get());
+  const int ns = d.ns;
   std::copy(y0.data(), y0.data() + 2 * n, y);
+  if (ns > 0) std::copy(y0.data() + 2 * n, y0.data() + 2 * n + ns, y + d.iS);
+  const double* s = ns > 0 ? y + d.iS : nullptr;
   const CamMotion c = d.cam(t0);
   Eigen::VectorXd F = Eigen::VectorXd::Zero(mc.m());
   double Pw = 0.0, Fmax = 0.0;
@@ -375,9 +434,12 @@ void IdaHeldSet::init(double t0, const Eigen::VectorXd& y0, const Eigen::VectorX
   }
   y[d.iW] = 0.0;
   std::copy(y + n, y + 2 * n, dy);  // q̇ = v
-  mc.acceleration(t0, y, y + n, F, dy + n);  // v̇ = M⁻¹(f₀ − Kq − Cv + T_Sᵀλ)
+  mc.acceleration(t0, y, y + n, F, dy + n, false, s);  // v̇ = M⁻¹(r(t, q, v, s) + T_Sᵀλ)
+  if (ns > 0) mc.state_rate(t0, y, y + n, s, dy + d.iS);  // ṡ = g
   for (int j = 0; j < 2 * k; ++j) dy[d.iL + j] = 0.0;
   dy[d.iW] = Pw;
+  y[d.iD] = 0.0;
+  dy[d.iD] = mc.damping_power(t0, y, y + n, s);
 
   // Differential (1): q, v, W. Algebraic (0): λ, μ (index 2: out of the error test).
   N_VConst(1.0, d.id.get());
@@ -394,6 +456,7 @@ void IdaHeldSet::init(double t0, const Eigen::VectorXd& y0, const Eigen::VectorX
     av[d.iU + j] = std::max(atol, rtol * std::max(std::abs(c.Xdot), 1.0));
   }
   av[d.iW] = std::max(atol, rtol * Fmax * std::abs(c.X));
+  av[d.iD] = av[d.iW];
 
   d.mem.reset(not_null(IDACreate(d.ctx), "IDACreate"));
   void* mem = d.mem.get();
@@ -421,9 +484,10 @@ void IdaHeldSet::init(double t0, const Eigen::VectorXd& y0, const Eigen::VectorX
   check_flag(IDASetLinearSolver(mem, d.ls.get(), d.A.get()), "IDASetLinearSolver");
   check_flag(IDASetJacFn(mem, &Impl::jac_cb), "IDASetJacFn");
   d.set_roots();
-  y_ = Eigen::Map<const Eigen::VectorXd>(y, 2 * n);
+  y_.head(2 * n) = Eigen::Map<const Eigen::VectorXd>(y, 2 * n);
+  y_.tail(ns) = Eigen::Map<const Eigen::VectorXd>(y + d.iS, ns);
   lambda_ = lam;
-  work_ = 0.0;
+  work_ = dissipated_ = 0.0;
 }
 
 void IdaHeldSet::stop_tensile_roots() {
@@ -456,9 +520,11 @@ double IdaHeldSet::advance(double tout, bool one_step) {
       if (d.roots_found[std::size_t(i)] != 0 && closing_ < 0) closing_ = d.open_ids[o];
   }
   const double* y = N_VGetArrayPointer(d.yy.get());
-  y_ = Eigen::Map<const Eigen::VectorXd>(y, 2 * d.n);
+  y_.head(2 * d.n) = Eigen::Map<const Eigen::VectorXd>(y, 2 * d.n);
+  y_.tail(d.ns) = Eigen::Map<const Eigen::VectorXd>(y + d.iS, d.ns);
   for (int j = 0; j < d.k; ++j) lambda_[j] = y[d.iL + j];
   work_ = y[d.iW];
+  dissipated_ = y[d.iD];
   return tret;
 }
 

@@ -19,7 +19,8 @@ namespace camdyn {
 /// TᵀF), g_S(q, t) = T_S q + g₀,S − X_C(t)·[cam] = 0, integrated by IDA (variable-order
 /// BDF) as a stabilised index-2 (GGL) DAE in y = [q; v; λ; μ; W]: λ the held contacts'
 /// forces (compressive > 0), μ the GGL multipliers (0 on the exact solution), W = Σ over
-/// held cam contacts ∫ λ_j Ẋ_C dt the cam's work. Native stepping with IDA's own error
+/// held cam contacts ∫ λ_j Ẋ_C dt the cam's work; with the nonlinear elements' internal
+/// states s (ṡ = g(t, q, v, s), element.hpp) y = [q; v; λ; μ; W; s]. Native stepping with IDA's own error
 /// control on q, v, W (λ, μ are excluded from the error test). Rootfinding: λ_j
 /// decreasing through 0 (a held contact turns tensile) and, for the contacts not held,
 /// their gaps decreasing through 0 (an open contact closes). Every SUNDIALS flag is
@@ -38,7 +39,7 @@ class IdaHeldSet {
   IdaHeldSet(const IdaHeldSet&) = delete;
   IdaHeldSet& operator=(const IdaHeldSet&) = delete;
 
-  /// Start at t0 from y = [q; v] on g_S = ġ_S = 0 and the held forces `lambda` (k entries,
+  /// Start at t0 from y = [q; v; s] (s: the mechanism's states() entries) on g_S = ġ_S = 0 and the held forces `lambda` (k entries,
   /// the acceleration level's), μ = 0, W = 0, with the consistent derivatives q̇ = v,
   /// v̇ = M⁻¹(f₀ − Kq − Cv + T_Sᵀλ), Ẇ = Σ λ_j Ẋ_C. @param tstop IDA never steps past it.
   void init(double t0, const Eigen::VectorXd& y, const Eigen::VectorXd& lambda, double tstop);
@@ -53,12 +54,14 @@ class IdaHeldSet {
   /// Stop watching for tensile held forces (after the first tensile time).
   void stop_tensile_roots();
 
-  /// [q; v] at the time reached.
+  /// [q; v; s] at the time reached.
   const Eigen::VectorXd& state() const { return y_; }
   /// λ over the held contacts (in the order of `held`).
   const Eigen::VectorXd& lambda() const { return lambda_; }
   const std::vector<int>& held() const { return held_; }
   double work() const { return work_; }
+  /// The energy the mechanism dissipated (its damping and elements) since init().
+  double dissipated() const { return dissipated_; }
   /// Steps, residual evaluations (rhs_evals), linear-solver setups, symbolic analyses.
   EngineStats stats() const;
   /// Error-test plus convergence failures.
@@ -73,7 +76,7 @@ class IdaHeldSet {
   LinearSolverKind lsk_;
   int N_ = 0;
   Eigen::VectorXd y_, lambda_;
-  double work_ = 0;
+  double work_ = 0, dissipated_ = 0;
   int tensile_ = -1, closing_ = -1;
 };
 

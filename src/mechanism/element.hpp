@@ -19,7 +19,7 @@
 // linear() and its implicit engines add the element tangent K_e = −∂r_e/∂q, C_e = −∂r_e/∂q̇
 // to their Newton matrix (SparseNewton::element_tangent, IDA's residual Jacobian). Internal
 // states s are carried by the ODE engines after q and v (y = [q; v; s], element_set.hpp);
-// IDA does not carry them (a scene with a stateful element on "ida" is refused).
+// IDA carries them after its multipliers and the cam's work (y = [q; v; λ; μ; W; s]).
 #pragma once
 
 #include <memory>

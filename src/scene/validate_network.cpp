@@ -179,10 +179,6 @@ void Validator::network() const {
           net_fail(p + ".initial_pressure", fmt_num(e.initial_pressure),
                    "must be > -air_reference_pressure (" + fmt_num(-e.air_reference_pressure) +
                        "): a gauge pressure above vacuum (" + who + ")");
-        if (s.solver.integrator == Integrator::Ida)
-          net_fail("solver.integrator", "\"ida\"",
-                   "cannot run " + who + ": IDA does not carry an element's internal states (the chamber "
-                   "pressure); use arkode-erk, arkode-dirk or cvode-bdf with contact.model = \"holonomic\"");
         break;
       }
     }

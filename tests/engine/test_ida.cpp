@@ -117,7 +117,7 @@ TEST(Ida, B1HeldBarAgreesWithErkAndUsesKlu) {
   const RunResult ri = simulate(si);
   ASSERT_TRUE(ri.summary.finished) << ri.summary.message;
   EXPECT_EQ(ri.summary.model.linear_solver, "klu");  // 2·41 + 2 = 84 > 16
-  EXPECT_EQ(ri.summary.model.unknowns, 2 * 41 + 3);
+  EXPECT_EQ(ri.summary.model.unknowns, 2 * 41 + 4);  // [q; v; λ; μ; W; D]
   const RunResult re = simulate(s);  // holonomic on arkode-erk: the held bar as an ODE
   ASSERT_TRUE(re.summary.finished) << re.summary.message;
   ASSERT_EQ(ri.rows.size(), re.rows.size());

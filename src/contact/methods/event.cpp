@@ -179,7 +179,7 @@ ContactRun::StepEnergy EventMethod::advance_energy(double t0, double t1) {
   // dense states are not needed
   if (set_.empty() && !mk_.dissipative()) return StepEnergy{};
   // A step longer than kScanDeg of cam rotation (held contacts carried it across part of
-  // a lift, scan_closing): composite panels of at most kScanDeg, on the interpolant put on
+  // a lift, scan_switches): composite panels of at most kScanDeg, on the interpolant put on
   // the held manifold (the raw one leaves the cam there: its held forces and the cam's
   // work were 6e-5 J off on examples/ohc_roller_finger.toml with one row per revolution)
   const double turn = std::abs(drive_.theta(t1) - drive_.theta(t0)) * (180.0 / 3.141592653589793);
@@ -245,7 +245,7 @@ void EventMethod::run_method() {
     const double P_prev = dissipation_power(t_, y_);
     double t1 = eng_->advance(tout, y1);
     int scanned = -1;
-    if (unilateral_ && !eng_->hit_root()) scan_closing(t_, t1, y1, scanned);
+    if (unilateral_ && !eng_->hit_root()) scan_switches(t_, t1, y1, scanned);
     const bool hit = eng_->hit_root() || scanned >= 0;
     auto root_info = [&](int j) { return scanned >= 0 ? (j == scanned ? -1 : 0) : eng_->root_info()[j]; };
     const double h = t1 - t_;
@@ -328,7 +328,7 @@ void EventMethod::run_method() {
     }
     for (int j : set_)
       if (active_[j] && unilateral_) F_[j] = std::max(F_[j], 0.0);
-    if (changed && released_only && continue_on_release_) {
+    if (changed && released_only && continue_on_release_ && scanned < 0) {
       // A release alone: the contact leaves where its force has reached zero, so the
       // right-hand side is continuous there and CVODE's history stays valid: it goes on
       // from its own step end (the next advance returns it) with the smaller held set.
@@ -345,11 +345,15 @@ void EventMethod::run_method() {
   }
 }
 
-bool EventMethod::scan_closing(double t0, double& t1, Eigen::VectorXd& y1, int& who) {
+bool EventMethod::scan_switches(double t0, double& t1, Eigen::VectorXd& y1, int& who) {
   const double turn = std::abs(drive_.theta(t1) - drive_.theta(t0)) * (180.0 / 3.141592653589793);
   const int K = int(std::min(std::ceil(turn / kScanDeg), 4096.0));
   if (K < 2) return false;
-  // the smallest open gap function at τ (on the held manifold), its contact in j
+  // the smallest switching function at τ (on the held manifold), its contact in j: an open
+  // contact's gap over the gap tolerance, a held contact's separation margin (the root
+  // function's, run_method) over the force scale
+  const double F_thr = 1e-12 * std::max(F_ref_, mk_.force_scale());
+  const double F_scale = std::max(F_ref_, mk_.force_scale());
   auto lowest = [&](double tau, int& j) {
     eng_->dense(tau, yg_);
     if (!set_.empty()) {
@@ -358,12 +362,12 @@ bool EventMethod::scan_closing(double t0, double& t1, Eigen::VectorXd& y1, int& 
       yg_ += rc_;
     }
     const CamMotion cm = cam_at(tau);
+    if (!set_.empty()) held_forces_into(tau, yg_, cm, set_, rFh_, &rF_);
     double lo = INFINITY;
-    for (int i = 0; i < m_; ++i)
-      if (!active_[i]) {
-        const double g = gap(i, yg_, cm) + gap_thr_;
-        if (g < lo) lo = g, j = i;
-      }
+    for (int i = 0; i < m_; ++i) {
+      const double g = active_[i] ? (rF_[i] + F_thr) / F_scale : (gap(i, yg_, cm) + gap_thr_) / gap_tol_;
+      if (g < lo) lo = g, j = i;
+    }
     return lo;
   };
   double a = t0;

@@ -132,11 +132,17 @@ class EventMethod : public ContactRun {
   // cvode-bdf with cam.land_on_breaks = false and one output row per revolution took one
   // step over the whole valve event, the lash closed for 160° unseen) is therefore scanned:
   // the open contacts' gap functions on the interpolant put on the held manifold, at
-  // samples at most kScanDeg of cam rotation apart. The first sample below zero is
-  // bisected to its root, which then acts as the engine's root would (its index in who,
-  // t1/y1 the root's time and state). Returns false when nothing closed inside the step.
+  // samples at most kScanDeg of cam rotation apart, and so are the held contacts'
+  // separation margins: a held set that fixes every unknown (a finger on a rigid pivot
+  // held on the cam, at the lash and on the seat through a dwell) leaves CVODE's error test
+  // nothing to see, so its step after the dwell ran to the next cam breakpoint with the
+  // seat's margin negative inside it and positive again at its end (the rise's
+  // acceleration back at zero): the valve never left its seat and the cam contact ended
+  // 3.2 mm deep. The first sample below zero is bisected to its root, which then acts as
+  // the engine's root would (its index in who, t1/y1 the root's time and state). Returns
+  // false when nothing closed or separated inside the step.
   static constexpr double kScanDeg = 1.0;
-  bool scan_closing(double t0, double& t1, Eigen::VectorXd& y1, int& who);
+  bool scan_switches(double t0, double& t1, Eigen::VectorXd& y1, int& who);
   Eigen::VectorXd yv_, yg_, rc_, rF_, rFh_;
   // An open contact's root is its gap at −10⁻³ tol_e, tol_e = min(tol_u, rtol·X) (X: the
   // cam's largest X_C), at least 1000 ulps of X: an impact is located to the integrator's

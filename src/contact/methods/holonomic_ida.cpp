@@ -8,6 +8,7 @@
 // contact would open). A contact open at the start that closes (a root of its gap) takes
 // the Newton impact law of the network methods (contact_run.cpp: resolve_impact); held
 // from then on (holonomic contacts never release), IDA restarts on the larger held set.
+#include <cmath>
 #include <memory>
 
 #include "engine/ida_engine.hpp"
@@ -54,7 +55,7 @@ class HolonomicIda final : public ContactRun {
     start();
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
       const double tout = next_stop_time();
-      const double P_prev = dissipation_power(t_, y_), t_prev = t_, W_prev = ida->work();
+      const double P_prev = dissipation_power(t_, y_), t_prev = t_, W_prev = ida->work(), D_prev = ida->dissipated();
       t_ = ida->advance(tout, out_dt() <= 0.0);  // output_dt = 0: one row per IDA step
       y_ = ida->state();
       // The rows' forces: the acceleration level on IDA's state (W_SS F_S = Ẍ_C,S − T_S a_free).
@@ -67,14 +68,14 @@ class HolonomicIda final : public ContactRun {
         record_event(EventKind::Tensile, ida->tensile_contact(), 0.0);
         ida->stop_tensile_roots();
       }
-      const double dW = ida->work() - W_prev;
+      const double dW = ida->work() - W_prev, dD = ida->dissipated() - D_prev;
       const int closing = ida->closing_contact();
       if (closing >= 0) {  // an open contact closes: the Newton impact law, then the new held set
         const CamMotion cm = cam_at(t_);
         resolve_impact({closing}, cm);
         settle_active(cm);
       }
-      after_step(t_ - t_prev, dW, P_prev);
+      after_step(t_ - t_prev, dW, P_prev, NAN, dD);
       sum_.steps = st.steps + ida->stats().steps;  // after_step counts output intervals: IDA's steps
       if (closing >= 0) start();
     }
