@@ -166,6 +166,31 @@ struct VerdictItem {
   std::string text;                 ///< in words, e.g. "float on the nose: contact 'cam' at 159.2 deg, 70 rev/s"
 };
 
+/// The surge of one spring with coil masses (summary.json "surge"): how far its coils move
+/// from the quasi-static (linear) deflection shape, max over the inner coil masses of
+/// |x_i − x_i,static| with x_i,static the two ends' displacements interpolated linearly, at
+/// the accepted step ends.
+struct SurgeResult {
+  std::string spring;
+  double amplitude = 0;              ///< largest over the run [length]
+  double theta_deg = NAN;            ///< cam angle of that largest [deg, 0..360)
+  /// The largest in each camshaft revolution from the start angle (the last one partial).
+  std::vector<double> per_revolution;
+  std::vector<double> per_revolution_theta_deg;  ///< their cam angles [deg, 0..360)
+};
+
+/// The flights of one contact (RunContract::flights): separation → next impact, and those
+/// the gap tolerance cannot resolve (apex ≤ contact.tol_u, or a duration below the
+/// rootfinder's time resolution; docs/tolerances.md "Flights below the gap tolerance").
+struct FlightCount {
+  std::string contact;
+  long flights = 0;                    ///< separation → impact pairs
+  long unresolved = 0;                 ///< of them, below what the tolerance resolves
+  double min_apex = NAN;               ///< least apex (largest gap) of a flight [length]
+  double max_unresolved_apex = 0;      ///< largest apex among the unresolved ones
+  double max_unresolved_duration = 0;  ///< longest duration among the unresolved ones [s]
+};
+
 /// What a finished run checks about itself before it calls its result good (issue 35;
 /// docs/tolerances.md "The run's contract"). Checked only for runs that reached t_end.
 struct RunContract {
@@ -178,6 +203,11 @@ struct RunContract {
   double energy_scale = 0;
   /// The energy residual the contract allows: min(max(100·rtol, 1e-5), 0.01)·energy_scale.
   double energy_bound = 0;
+  /// Warnings of a finished run (the contract still holds): one line per contact with
+  /// flights the gap tolerance cannot resolve, naming contact.tol_u and the numbers.
+  std::vector<std::string> warnings;
+  /// Per contact with flights (contacts without any are left out).
+  std::vector<FlightCount> flights;
 };
 
 /// One acceptance criterion of a run ([criteria]; Summary::criteria): its measured value,
@@ -303,6 +333,8 @@ struct Summary {
   double cam_friction_power_mean = NAN, cam_friction_power_peak = NAN, cam_friction_work = NAN;
   /// Springs whose coils clash (empty when the scene has none).
   std::vector<CoilClashResult> coil_clash;
+  /// Springs with coil masses: their surge amplitude (empty when the scene has none).
+  std::vector<SurgeResult> surge;
   /// Motion law (cam.profile = "law"): continuity order at each joint, "C2 at 0°, …".
   std::string cam_continuity;
   double cpu_seconds = 0, wall_seconds = 0;

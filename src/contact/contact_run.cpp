@@ -33,7 +33,9 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
                        const std::atomic<bool>* stop)
     : sc_(sc), mech_(std::move(mech)), mk_(*mech_), cam_(sc.cam), drive_(sc.cam), obs_(obs),
       stop_(stop), n_(mk_.n()), m_(mk_.m()), ns_(mk_.states()), ny_(2 * n_ + ns_), designer_(sc, cam_),
-      analysis_(sc, contact_names(*mech_), mech_->node_names(), cam_.lift(), &cam_) {
+      analysis_(sc, contact_names(*mech_), mech_->node_names(), cam_.lift(), &cam_),
+      flights_(contact_names(*mech_), sc.contact.model == ContactModel::Penalty ? 0.0 : sc.contact.tol_u),
+      surge_(mech_->surge_names(), drive_.theta(0.0)), surge_buf_(mech_->surge_names().size(), 0.0) {
   sum_.scene = sc.title;
   sum_.integrator = to_string(sc.solver.integrator);
   sum_.contact_model = to_string(sc.contact.model);
@@ -333,8 +335,13 @@ void ContactRun::after_step(double h, double dW, double P_prev, double P_end, do
     sum_.min_gap = std::min(sum_.min_gap, g);
     sum_.max_penetration = std::max(sum_.max_penetration, -g);
     sum_.max_contact_force = std::max(sum_.max_contact_force, F_[j]);
+    if (!active_[j]) flights_.sample(j, g);
   }
   check_complementarity(cm);
+  if (!surge_.empty()) {
+    mk_.surge(y_.data(), surge_buf_.data());
+    surge_.sample(drive_.theta(t_), surge_buf_.data());
+  }
   if (obs_) {
     StepInfo info;
     info.t0 = t_ - h;
@@ -432,6 +439,7 @@ Summary ContactRun::run() {
   for (int j = 0; j < m_; ++j)
     if (gap(j, y_, cm0) <= gtol && gap_rate(j, y_, cm0) <= gtol) active_[j] = 1;
   settle_active(cm0);
+  close_creeping_contacts(cm0, gtol);
   prepare_start();
   note_shaft_frequencies();
   for (int j = 0; j < m_; ++j)  // the start's forces are samples of the least force too
@@ -477,6 +485,8 @@ Summary ContactRun::run() {
   sum_.energy_residual = std::abs(work_ - (E - E0_) - dissipated_);
   designer_.finish(sum_);
   analysis_.finish(sum_);
+  flights_.finish(sum_);
+  surge_.finish(sum_);
   return sum_;
 }
 

@@ -31,6 +31,8 @@
 #include "camdyn/simulator.hpp"
 #include "results/designer_stats.hpp"
 #include "results/run_analysis.hpp"
+#include "contact/flight_log.hpp"
+#include "results/surge.hpp"
 #include "mechanism/mechanism.hpp"
 #include "engine/ode_engine.hpp"
 #include "contact/run_failure.hpp"
@@ -147,6 +149,14 @@ class ContactRun {
   /// event) every contact the complementarity solution opens (margin < −thr·scale).
   /// @throws StepFailure naming the contacts if they jam.
   void settle_active(const CamMotion& cm);
+  /// At the start, after settle_active: an open contact whose gap is closed (g ≤ gtol) but
+  /// opens at a rate ġ > 0 so small that, under the start's acceleration (g̈ < 0), its gap
+  /// never opens past contact.tol_u (g + ġ²/(2|g̈|) ≤ tol_u: a rate of round-off size, such
+  /// as a lift table's interpolant between equal base-circle samples) is closed: it joins the
+  /// active set, the start state is projected onto the active set's g = 0, ġ = 0
+  /// (M-orthogonally) and the forces are settled again. An event method could not find its
+  /// closing otherwise: its gap root starts below the root's offset and never crosses it.
+  void close_creeping_contacts(const CamMotion& cm, double gtol);
   /// Resolve an impact at the current state: `closing` contacts (gap ≈ 0, approaching)
   /// and the active ones take a Newton impulse (g⁺ = −e g⁻ on the closing ones, or 0 when
   /// they stick; 0 on the active ones), impulses ≥ 0 (a contact whose impulse would pull
@@ -251,6 +261,9 @@ class ContactRun {
   DesignerStats designer_;
   DesignerColumns design_cols_{sc_};  // run.designer_columns
   RunAnalysis analysis_;              // film, lift deviation, landings, ramp velocity
+  FlightLog flights_;                 // separation → impact flights (the contract's warning)
+  SurgeTracker surge_;                // springs with coil masses: surge amplitude
+  std::vector<double> surge_buf_;
   double take_up_lo_ = NAN, take_up_hi_ = NAN;  // the lash take-up window of the cam's lift
   std::vector<double> row_gaps_, row_u_;        // emit_row_at's buffers for analysis_
   std::size_t element_force_count_ = 0;  // run.element_forces: the mechanism's reported forces

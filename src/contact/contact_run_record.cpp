@@ -26,8 +26,10 @@ std::vector<std::string> ContactRun::extra_columns(const MechanicalSystem& mech,
     c.push_back("u_" + nd);
     c.push_back("v_" + nd);
   }
-  if (element_forces)
+  if (element_forces) {
     for (const std::string& f : mech.element_force_names()) c.push_back("force_" + f);
+    for (const std::string& f : mech.surge_names()) c.push_back("surge_" + f);
+  }
   if (const CamShaft* cs = mech.camshaft()) {  // the drive and each cam's wind-up
     c.push_back("drive_torque");
     c.push_back("drive_twist");
@@ -73,6 +75,8 @@ void ContactRun::emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::Ve
     const std::size_t k = r.extra.size();
     r.extra.resize(k + element_force_count_);
     mk_.element_forces(t, y.data(), y.data() + n_, r.extra.data() + k, states_of(y));
+    r.extra.resize(k + element_force_count_ + surge_buf_.size());
+    mk_.surge(y.data(), r.extra.data() + k + element_force_count_);
   }
   if (const CamShaft* cs = mk_.camshaft()) {
     const int d = cs->drive_station();
@@ -145,6 +149,7 @@ void ContactRun::record_event(EventKind type, int contact, double v, double impu
   }
   sum_.events.push_back(e);
   analysis_.event(e, contact);
+  flights_.event(type, contact, te, v);
   ContactResult& cr = sum_.contacts[contact];
   const double th = angle_deg_mod360(e.theta);
   if (type == EventKind::Separation) {

@@ -39,6 +39,35 @@ void ContactRun::settle_active(const CamMotion& cm) {
     }
 }
 
+void ContactRun::close_creeping_contacts(const CamMotion& cm, double gtol) {
+  if (!unilateral_ || !(sc_.contact.tol_u > 0)) return;
+  Eigen::VectorXd a;
+  acceleration(t_, y_, F_, a);
+  bool any = false;
+  for (int j = 0; j < m_; ++j) {
+    if (active_[j]) continue;
+    const CamShaft* cs = mk_.camshaft();
+    if (cs && cs->contact_cam(j) >= 0) continue;  // a station's lift: not this rule's
+    const double g = gap(j, y_, cm), gd = gap_rate(j, y_, cm);
+    if (!(g <= gtol && gd > gtol)) continue;
+    const double gdd = mk_.contacts()[j].t.dot(a) - cam_acc(j, cm);
+    if (gdd < 0.0 && g + gd * gd / (2.0 * -gdd) <= sc_.contact.tol_u) {
+      active_[j] = 1;
+      any = true;
+    }
+  }
+  if (!any) return;
+  const std::vector<int> set = active_list();
+  Eigen::VectorXd g(m_), gd(m_);
+  for (int j = 0; j < m_; ++j) {
+    g[j] = gap(j, y_, cm);
+    gd[j] = gap_rate(j, y_, cm);
+  }
+  const Rows R = rows_at(y_.data());
+  project_on_set(R.MinvTt, R.W, set, g, gd, y_);
+  settle_active(cm);
+}
+
 void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion& cm, bool plastic) {
   std::vector<int> S = active_list();
   std::vector<char> stick(m_, 0), is_closing(m_, 0);

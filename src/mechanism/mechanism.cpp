@@ -69,6 +69,7 @@ Mechanism::Mechanism(const Scene& scene) {
   // a coil-to-coil contact of a spring whose coils clash: segment lower → upper closes at gap
   struct CoilContact { std::string spring, name; int lower, upper; double gap; std::optional<double> e; };
   std::vector<CoilContact> coils;
+  std::vector<std::pair<std::string, std::vector<int>>> surge_chains;  // springs with coil masses
   for (size_t ei = 0; ei < net.elements.size(); ++ei) {
     const ElementSpec& e = net.elements[ei];
     const int a = dof(e.nodes.at(0)), b = dof(e.nodes.at(1));
@@ -98,6 +99,7 @@ Mechanism::Mechanism(const Scene& scene) {
           const int parts = e.masses + 1;
           const std::vector<int> c = chain(parts);
           ends = c;
+          surge_chains.emplace_back(element_report_name(e, ei), c);
           const double ms = e.mass / parts;
           for (int s = 0; s < parts; ++s) {
             links.push_back({c[s], c[s + 1], k * parts, e.damping * parts, P});
@@ -274,6 +276,19 @@ Mechanism::Mechanism(const Scene& scene) {
   s0_ = Eigen::VectorXd::Zero(elements_.states());
   elements_.initial_states(s0_.data());
   for (const TwoNodeForce& f : two_node) linear_forces_.push_back({f.name, row(f.a), row(f.b), f.k, f.c, f.P});
+  for (const auto& sc : surge_chains) {  // x_i − (1 − f_i) x_a − f_i x_b, f_i = i/parts
+    SurgeChain s{sc.first, {}};
+    const std::vector<int>& c = sc.second;
+    const int parts = int(c.size()) - 1;
+    for (int i = 1; i < parts; ++i) {
+      const double f = double(i) / parts;
+      std::vector<std::pair<int, double>> r = row(c[i]);
+      for (const auto& e : row(c[0])) r.emplace_back(e.first, -(1.0 - f) * e.second);
+      for (const auto& e : row(c[parts])) r.emplace_back(e.first, -f * e.second);
+      s.rows.push_back(std::move(r));
+    }
+    surge_.push_back(std::move(s));
+  }
 
   // ---- contacts
   for (const ContactPointSpec& cs : net.contacts) {
@@ -408,6 +423,24 @@ void Mechanism::element_forces(double t, const double* q, const double* v, doubl
   for (const LinearForce& f : linear_forces_)
     *out++ = f.P + f.k * (dot(f.a, q) - dot(f.b, q)) + f.c * (dot(f.a, v) - dot(f.b, v));
   elements_.forces(t, q, v, out, s);
+}
+
+std::vector<std::string> Mechanism::surge_names() const {
+  std::vector<std::string> n;
+  for (const SurgeChain& s : surge_) n.push_back(s.name);
+  return n;
+}
+
+void Mechanism::surge(const double* q, double* out) const {
+  for (const SurgeChain& s : surge_) {
+    double a = 0.0;
+    for (const auto& r : s.rows) {
+      double d = 0.0;
+      for (const auto& e : r) d += e.second * q[e.first];
+      a = std::max(a, std::abs(d));
+    }
+    *out++ = a;
+  }
 }
 
 void Mechanism::factor_mass() {

@@ -146,6 +146,11 @@ class MechanicalSystem {
   /// names, and their values at (t, q, v) (element_force_names().size() entries). Default:
   /// none.
   virtual std::vector<std::string> element_force_names() const { return {}; }
+  /// The springs with coil masses (their report names) and, at q, each one's surge: the
+  /// largest |x_i − x_i,static| over its inner masses, x_i,static the linear interpolation of
+  /// its two ends (surge_names().size() entries). Default: none.
+  virtual std::vector<std::string> surge_names() const { return {}; }
+  virtual void surge(const double* /*q*/, double* /*out*/) const {}
   virtual void element_forces(double /*t*/, const double* /*q*/, const double* /*v*/, double* /*out*/,
                               const double* /*s*/ = nullptr) const {}
   /// false: damping_power is zero for every v (a quadrature of it may skip the state).
@@ -229,6 +234,8 @@ class Mechanism final : public MechanicalSystem {
   std::vector<std::string> element_force_names() const override;
   void element_forces(double t, const double* q, const double* v, double* out,
                       const double* s = nullptr) const override;
+  std::vector<std::string> surge_names() const override;
+  void surge(const double* q, double* out) const override;
   /// The nonlinear elements (empty for a linear mechanism).
   const ElementSet& elements() const { return elements_; }
 
@@ -248,6 +255,11 @@ class Mechanism final : public MechanicalSystem {
     double k, c, P;
   };
   std::vector<LinearForce> linear_forces_;
+  struct SurgeChain {  // a spring with coil masses: per inner mass, its row x_i − x_i,static
+    std::string name;
+    std::vector<std::vector<std::pair<int, double>>> rows;
+  };
+  std::vector<SurgeChain> surge_;
   Eigen::SimplicialLDLT<SparseMatrix> Mldlt_;
   Eigen::VectorXd f0_;
   // r = f₀ − Kq − Cq̇ is evaluated as r₀ − K(q − q(0)) − Cq̇ with r₀ = f₀ − Kq(0): the same

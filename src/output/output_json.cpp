@@ -374,6 +374,24 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
     c.strs("violations", s.contract.violations);
     c.num("energy_scale", s.contract.energy_scale);
     c.num("energy_bound", s.contract.energy_bound);
+    c.strs("warnings", s.contract.warnings);
+    {
+      std::string f = "[";
+      for (size_t i = 0; i < s.contract.flights.size(); ++i) {
+        const FlightCount& n = s.contract.flights[i];
+        std::string e;
+        JsonObject fo(e, c.child_indent());
+        fo.str("contact", n.contact);
+        fo.integer("flights", n.flights);
+        fo.integer("unresolved", n.unresolved);
+        fo.num("min_apex", n.min_apex);
+        fo.num("max_unresolved_apex", n.max_unresolved_apex);
+        fo.num("max_unresolved_duration", n.max_unresolved_duration);
+        fo.close();
+        f += (i ? ", " : "") + e;
+      }
+      c.raw("flights", f + "]");
+    }
     c.close();
     o.raw("contract", t);
   }
@@ -483,6 +501,16 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
       k.integer("coils_closed", c.coils_closed);
       k.num("first_impact_theta_deg", c.first_impact_theta_deg);
       k.num("max_impact_velocity", c.max_impact_velocity);
+    }));
+  }
+  if (!s.surge.empty()) {
+    // springs with coil masses (include/camdyn/simulator.hpp SurgeResult)
+    o.raw("surge", object_array(o, s.surge, [](JsonObject& k, const SurgeResult& c) {
+      k.str("spring", c.spring);
+      k.num("amplitude", c.amplitude);
+      k.num("theta_deg", c.theta_deg);
+      k.nums("per_revolution", c.per_revolution);
+      k.nums("per_revolution_theta_deg", c.per_revolution_theta_deg);
     }));
   }
   if (!s.elements.empty()) {

@@ -35,12 +35,26 @@ void check_tolerance_scale(const Scene& sc) {
                        "contract means nothing; use contact.tol_u <= " + g(kTolUOfLift * lift));
 }
 
+void flight_warnings(const Scene& sc, RunContract& c) {
+  for (const FlightCount& n : c.flights) {
+    if (n.unresolved == 0) continue;
+    c.warnings.push_back("contact '" + n.contact + "': " + std::to_string(n.unresolved) + " of " +
+                         std::to_string(n.flights) + " flights (separation to impact) below what contact.tol_u = " +
+                         g(sc.contact.tol_u) + " resolves (largest gap " + g(n.max_unresolved_apex) +
+                         " <= tol_u, longest " + g(n.max_unresolved_duration) +
+                         " s): their impacts and separations are not resolved by this tolerance "
+                         "(tighten contact.tol_u and solver.rtol to resolve them)");
+  }
+}
+
 void check_contract(const Scene& sc, Summary& s) {
   RunContract& c = s.contract;
   c.violations.clear();
+  c.warnings.clear();
   c.checked = s.finished;
   c.held = true;
   if (!s.finished) return;
+  flight_warnings(sc, c);
   const bool penalty = sc.contact.model == ContactModel::Penalty;
   // 1. Closed contacts: the gap held to tol_u (penalty contacts penetrate by their law).
   if (!penalty && sc.contact.tol_u > 0 && s.max_penetration > kContractGaps * sc.contact.tol_u) {

@@ -34,5 +34,10 @@ void check_tolerance_scale(const Scene& scene);
 /// been set by the run.
 void check_contract(const Scene& scene, Summary& summary);
 
+/// One warning line in contract.warnings per contact of contract.flights with flights the
+/// gap tolerance cannot resolve (FlightCount::unresolved > 0), naming contact.tol_u and the
+/// numbers. A warning: the contract still holds.
+void flight_warnings(const Scene& scene, RunContract& contract);
+
 }  // namespace detail
 }  // namespace camdyn

@@ -306,11 +306,14 @@ std::string Summary::BriefReport() const {
         o << "; " << c.name << " FAILS (" << fmt(c.value) << (c.is_max ? " > " : " < ") << fmt(c.limit) << " at "
           << fmt(c.theta_deg) << " deg)";
   }
+  for (const SurgeResult& sg : surge)
+    o << " — surge '" << sg.spring << "' " << fmt(sg.amplitude) << " at " << fmt(sg.theta_deg) << " deg";
   if (!finished) o << " — " << message << " [" << to_string(termination) << "]";
   if (contract.checked && !contract.held) {
     o << "\ncamdyn: CONTRACT NOT HELD — the result is not to be trusted:";
     for (const std::string& v : contract.violations) o << "\n  - " << v;
   }
+  for (const std::string& w : contract.warnings) o << "\ncamdyn: warning: " << w;
   return o.str();
 }
 
@@ -398,6 +401,9 @@ std::string Summary::FullReport() const {
       << (std::isnan(c.value) ? std::string("-") : fmt(c.value)) << (c.is_max ? " <= " : " >= ") << fmt(c.limit)
       << " (worst at " << (std::isnan(c.theta_deg) ? std::string("-") : fmt(c.theta_deg) + " deg") << ")"
       << (c.note.empty() ? std::string() : ": " + c.note) << "\n";
+  for (const SurgeResult& sg : surge)
+    o << "  surge '" << sg.spring << "':" << std::string(sg.spring.size() < 11 ? 11 - sg.spring.size() : 1, ' ')
+      << fmt(sg.amplitude) << " (largest |coil − quasi-static shape|, at " << fmt(sg.theta_deg) << " deg)\n";
   for (const CoilClashResult& c : coil_clash)
     o << "  coil clash '" << c.spring << "': " << c.impacts << " coil impacts on " << c.coils_closed
       << " coils (first at " << (std::isnan(c.first_impact_theta_deg) ? std::string("-") : fmt(c.first_impact_theta_deg) + " deg")

@@ -162,7 +162,8 @@ const KeyDoc kDocs[] = {
     {"run.element_forces", "—", "true: history.csv gets `force_<element>` per spring (without mass), dashpot and "
                                 "progressive_spring of a network: the element's compressive force (P + kδ + cδ̇, F(δ) + cδ̇); "
                                 "guide_friction: the friction force on the node; gas_load: p·A toward the seat; "
-                                "unnamed elements as `<type>_<index>`."},
+                                "unnamed elements as `<type>_<index>`; then `surge_<spring>` per spring with coil masses "
+                                "(its coils' largest departure from the linear quasi-static shape)."},
     {"run.valve_node", "—", "Network node that is the valve: history column `lift_deviation` (valve lift minus the "
                             "kinematic lift, the cam lift through the levers with the clearances on the path taken up) "
                             "and its extremes per revolution in summary.json; \"\" = none."},
