@@ -286,11 +286,9 @@ std::map<std::string, std::string> defaults() {
   });
   Scene s;
   s.network.nodes.emplace_back();
-  for (ElementKind k : {ElementKind::Spring, ElementKind::Dashpot, ElementKind::Bar, ElementKind::Lever,
-                        ElementKind::ProgressiveSpring, ElementKind::GuideFriction, ElementKind::GasLoad,
-                        ElementKind::HydraulicLashAdjuster}) {
+  for (const scene_detail::ElementKindInfo& k : scene_detail::element_kinds()) {
     ElementSpec e;
-    e.kind = k;
+    e.kind = k.kind;
     s.network.elements.push_back(e);
   }
   for (ContactPointKind k : {ContactPointKind::Cam, ContactPointKind::Lash, ContactPointKind::Stop}) {
