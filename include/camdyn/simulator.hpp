@@ -180,8 +180,8 @@ struct SurgeResult {
 };
 
 /// The flights of one contact (RunContract::flights): separation → next impact, and those
-/// the gap tolerance cannot resolve (apex ≤ contact.tol_u, or a duration below the
-/// rootfinder's time resolution; docs/tolerances.md "Flights below the gap tolerance").
+/// the gap tolerance cannot resolve (apex ≤ RunContract::flight_threshold, 10⁻³ of the
+/// method's gap tolerance, or a duration below the rootfinder's time resolution; docs/tolerances.md "Flights below the gap tolerance").
 struct FlightCount {
   std::string contact;
   long flights = 0;                    ///< separation → impact pairs
@@ -208,6 +208,9 @@ struct RunContract {
   std::vector<std::string> warnings;
   /// Per contact with flights (contacts without any are left out).
   std::vector<FlightCount> flights;
+  /// The apex at or below which a flight is unresolved: 10⁻³ of the method's gap tolerance
+  /// (Lee: contact.tol_u; event: min(tol_u, max(rtol·X, 1000ε·X))); 0 for penalty.
+  double flight_threshold = 0;
 };
 
 /// One acceptance criterion of a run ([criteria]; Summary::criteria): its measured value,

@@ -440,6 +440,7 @@ Summary ContactRun::run() {
     if (gap(j, y_, cm0) <= gtol && gap_rate(j, y_, cm0) <= gtol) active_[j] = 1;
   settle_active(cm0);
   close_creeping_contacts(cm0, gtol);
+  if (sc_.contact.model != ContactModel::Penalty) flights_.set_gap_tolerance(stick_gap_tol_);
   prepare_start();
   note_shaft_frequencies();
   for (int j = 0; j < m_; ++j)  // the start's forces are samples of the least force too

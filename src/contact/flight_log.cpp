@@ -12,7 +12,7 @@ constexpr double kCubicApex = 4.0 / 27.0;            // least apex / (v·Δt) of
 constexpr double kRootTimeRel = 100.0 * 2.220446049250313e-16;  // SUNDIALS' root tolerance / |t|
 }  // namespace
 
-FlightLog::FlightLog(const std::vector<std::string>& names, double tol_u) : c_(names.size()), tol_u_(tol_u) {
+FlightLog::FlightLog(const std::vector<std::string>& names, double gap_tol) : c_(names.size()), tol_(gap_tol) {
   for (std::size_t j = 0; j < names.size(); ++j) c_[j].count.contact = names[j];
 }
 
@@ -32,7 +32,7 @@ void FlightLog::event(EventKind type, int j, double t, double v) {
   FlightCount& n = c.count;
   ++n.flights;
   const bool short_time = dt <= kRootTimeRel * std::max(std::abs(t), 1e-300);
-  if (tol_u_ > 0 && (apex <= tol_u_ || short_time)) {
+  if (tol_ > 0 && (apex <= threshold() || short_time)) {
     ++n.unresolved;
     n.max_unresolved_apex = std::max(n.max_unresolved_apex, apex);
     n.max_unresolved_duration = std::max(n.max_unresolved_duration, dt);
@@ -47,6 +47,7 @@ void FlightLog::sample(int j, double gap) {
 
 void FlightLog::finish(Summary& s) const {
   s.contract.flights.clear();
+  s.contract.flight_threshold = threshold();
   for (const Contact& c : c_)
     if (c.count.flights > 0) s.contract.flights.push_back(c.count);
 }

@@ -375,6 +375,7 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
     c.num("energy_scale", s.contract.energy_scale);
     c.num("energy_bound", s.contract.energy_bound);
     c.strs("warnings", s.contract.warnings);
+    c.num("flight_threshold", s.contract.flight_threshold);
     {
       std::string f = "[";
       for (size_t i = 0; i < s.contract.flights.size(); ++i) {

@@ -40,8 +40,9 @@ void flight_warnings(const Scene& sc, RunContract& c) {
     if (n.unresolved == 0) continue;
     c.warnings.push_back("contact '" + n.contact + "': " + std::to_string(n.unresolved) + " of " +
                          std::to_string(n.flights) + " flights (separation to impact) below what contact.tol_u = " +
-                         g(sc.contact.tol_u) + " resolves (largest gap " + g(n.max_unresolved_apex) +
-                         " <= tol_u, longest " + g(n.max_unresolved_duration) +
+                         g(sc.contact.tol_u) + " resolves (largest gap " + g(n.max_unresolved_apex) + " <= " +
+                         g(c.flight_threshold) + ", 1e-3 of the method's gap tolerance; longest " +
+                         g(n.max_unresolved_duration) +
                          " s): their impacts and separations are not resolved by this tolerance "
                          "(tighten contact.tol_u and solver.rtol to resolve them)");
   }

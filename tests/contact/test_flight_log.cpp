@@ -22,8 +22,9 @@ TEST(FlightLog, ApexOfASeparationFromRestIsTheCubicsBetweenStepEnds) {
   const double a = 2.0, dt = 1e-3, t0 = 0.25, v = a * dt * dt;
   const double apex = 4.0 / 27.0 * a * dt * dt * dt;  // 1.48e-10
   auto g = [&](double tau) { return a * tau * tau * (dt - tau); };
-  for (double tol : {2.0 * apex, 0.5 * apex}) {
-    FlightLog log({"cam", "seat"}, tol);
+  for (double tol : {2.0 * apex, 0.5 * apex}) {  // the unresolved threshold: 1e-3 gap tolerance
+    FlightLog log({"cam", "seat"}, tol / FlightLog::kFlightGaps);
+    EXPECT_DOUBLE_EQ(log.threshold(), tol);
     log.event(EventKind::Separation, 1, t0, 0.0);
     for (double f : {0.25, 0.5, 0.875}) {
       ASSERT_LT(g(f * dt), apex);
@@ -42,9 +43,9 @@ TEST(FlightLog, ApexOfASeparationFromRestIsTheCubicsBetweenStepEnds) {
 }
 
 TEST(FlightLog, AStepEndAboveTheToleranceResolvesTheFlight) {
-  FlightLog log({"lash"}, 1e-9);
+  FlightLog log({"lash"}, 1e-6);  // threshold 1e-9
   log.event(EventKind::Separation, 0, 1.0, 0.0);
-  log.sample(0, 5e-9);  // a step end inside the flight, 5 tol_u open
+  log.sample(0, 5e-9);  // a step end inside the flight, 5 thresholds open
   log.event(EventKind::Impact, 0, 1.0 + 1e-7, 1e-4);  // its ends alone: 4/27·1e-11
   // an impact without a separation before it (a start, a closing from an open gap) is no flight
   log.event(EventKind::Impact, 0, 1.1, 1e-4);
@@ -60,11 +61,12 @@ TEST(FlightLog, UnresolvedFlightsAreAWarningNamingTolU) {
   Scene sc;
   sc.contact.tol_u = 1e-9;
   RunContract c;
+  c.flight_threshold = 1e-12;
   FlightCount n;
   n.contact = "cam";
   n.flights = 7;
   n.unresolved = 3;
-  n.max_unresolved_apex = 4e-10;
+  n.max_unresolved_apex = 4e-13;
   n.max_unresolved_duration = 2e-6;
   c.flights.push_back(n);
   FlightCount ok;
@@ -77,7 +79,7 @@ TEST(FlightLog, UnresolvedFlightsAreAWarningNamingTolU) {
   EXPECT_NE(w.find("contact 'cam'"), std::string::npos) << w;
   EXPECT_NE(w.find("3 of 7"), std::string::npos) << w;
   EXPECT_NE(w.find("contact.tol_u = 1e-09"), std::string::npos) << w;
-  EXPECT_NE(w.find("4e-10"), std::string::npos) << w;
+  EXPECT_NE(w.find("4e-13 <= 1e-12"), std::string::npos) << w;
   EXPECT_TRUE(c.held);  // a warning, not a violation
   EXPECT_TRUE(c.violations.empty());
 }
