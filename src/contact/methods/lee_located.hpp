@@ -52,13 +52,35 @@ class LeeLocated final : public ContactRun {
     sys.rhs = [this](double t, const double* y, double* yd) { rhs(t, y, yd); };
     // The mechanism's sparse Newton structure (the force shape does not depend on the
     // state); a user's follower: its dense Jacobian, without one difference quotients.
-    sys.newton = sparse_newton();
-    if (!sys.newton) sys.jacobian = dense_jacobian(nullptr);
+    std::shared_ptr<SparseNewton> newton = sparse_newton();
+    if (!newton) sys.jacobian = dense_jacobian(nullptr);
+    sys.newton = newton;
     sys.linear = mk_.linear() && (sys.jacobian || sys.newton);
     if (sc.solver.integrator == Integrator::CvodeBdf)
       throw std::logic_error("network Lee on cvode-bdf runs in methods/lee_cvode.cpp");
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, true));
-    eng_ = engines_.back().get();
+    eng_ = resp_eng_ = engines_.back().get();
+    // A network with nonlinear elements but no internal states and no camshaft: its held
+    // steps correct the force shape by the responses of its linear part (solve_step),
+    // integrated on an engine of their own that knows the part is linear (DIRK: one
+    // Newton iteration per stage on its exact matrix).
+    linear_part_ = newton && !mk_.linear() && ns_ == 0 && !mk_.camshaft();
+    if (linear_part_) {
+      const auto& mech = dynamic_cast<const Mechanism&>(mk_);
+      part_M_.compute(mech.M());
+      part_Ke_ = mech.elements().stiffness_pattern();
+      if (mech.elements().damps()) part_Ce_ = mech.elements().damping_pattern();
+      OdeSystem lin = sys;
+      auto part = std::make_shared<SparseNewton>(*newton);
+      part->element_tangent = [this](double, const double*, SparseMatrix& Ke, SparseMatrix& Ce) {
+        std::copy(part_Ke_.valuePtr(), part_Ke_.valuePtr() + part_Ke_.nonZeros(), Ke.valuePtr());
+        if (Ce.size()) std::copy(part_Ce_.valuePtr(), part_Ce_.valuePtr() + part_Ce_.nonZeros(), Ce.valuePtr());
+      };
+      lin.newton = part;
+      lin.linear = true;
+      engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, lin, true));
+      resp_eng_ = engines_.back().get();
+    }
     F0_ = F1_ = Fc_ = Eigen::VectorXd::Zero(m_);
     slope_ = Eigen::VectorXd::Zero(m_);
     fs_.resize(m_);
@@ -66,9 +88,37 @@ class LeeLocated final : public ContactRun {
 
  private:
   OdeEngine* eng_;
+  OdeEngine* resp_eng_;  // the responses' engine (eng_, or the linear part's own)
   // the force shape of the step being integrated
   double s_t0_ = 0, s_h_ = 1;
   bool homogeneous_ = false;
+  // Held steps of a nonlinear network corrected by its linear part's responses (the
+  // correction's linearisation error estimated, the step integrated again only if it
+  // exceeds kLinearisedShare of the tolerances).
+  bool linear_part_ = false;
+  static constexpr double kLinearisedShare = 0.1;
+  // The linear part: M, C, K and the elements' tangent K_e, C_e frozen at a step's start,
+  // taken again (the responses with it) after a correction the estimate refused, at most
+  // every kPartRefreshSteps accepted steps.
+  Eigen::SimplicialLDLT<SparseMatrix> part_M_;
+  SparseMatrix part_Ke_, part_Ce_;
+  long part_step_ = -1;  // sum_.steps when the tangent was taken (-1: not yet)
+  bool part_stale_ = false;
+  static constexpr long kPartRefreshSteps = 16;
+  Eigen::VectorXd part_r_;
+  // a += M⁻¹(−K_e q − C_e v) with the frozen tangent
+  void add_part_tangent(const double* q, const double* v, double* a) {
+    Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
+    part_r_.noalias() = -(part_Ke_ * Q);
+    if (part_Ce_.size()) part_r_.noalias() -= part_Ce_ * V;
+    Eigen::Map<Eigen::VectorXd>(a, n_) += part_M_.solve(part_r_);
+  }
+  // The tangent at the step's start; the responses computed with the old one are dropped.
+  void refresh_part();
+  // The estimated error of a correction dy (= y1 after − y1 before) applied through the
+  // linear part's responses over a step of hs ending at t1; into lin_err_ (ny_ entries).
+  void linearisation_error(double t1, double hs, const Eigen::VectorXd& y1_before, const Eigen::VectorXd& y1_after);
+  Eigen::VectorXd lin_err_, lin_a_, lin_b_, lin_y_;
   Eigen::VectorXd F0_, F1_, Fc_, fs_, slope_;
 
   void rhs(double t, const double* y, double* yd) {
@@ -76,6 +126,7 @@ class LeeLocated final : public ContactRun {
     for (int j = 0; j < m_; ++j) fs_[j] = F0_[j] + (F1_[j] - F0_[j]) * x + Fc_[j] * 4.0 * x * (1.0 - x);
     std::copy(y + n_, y + 2 * n_, yd);
     mk_.acceleration(t, y, y + n_, fs_, yd + n_, homogeneous_, states_of(y));
+    if (homogeneous_ && linear_part_) add_part_tangent(y, y + n_, yd + n_);
     if (ns_) {  // the elements' internal states (a homogeneous response carries none)
       if (homogeneous_) std::fill(yd + 2 * n_, yd + ny_, 0.0);
       else mk_.state_rate(t, y, y + n_, states_of(y), yd + 2 * n_);
