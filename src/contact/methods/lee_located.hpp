@@ -187,6 +187,24 @@ class LeeLocated final : public ContactRun {
     if (s.set.empty()) return 0.0;
     const double tol = std::max(10.0 * sc_.contact.tol_u, 1e-4 * cam_.lift());
     double r = 0.0;
+    if (!mk_.camshaft()) {
+      // g_j = T_j q + g₀_j − X_C·[cam] (gap()) on the Hermite state: T_j q(τ) from the four
+      // products T_j q and T_j v at both ends, not the whole interpolated state per sample
+      const double h = s.t1 - s.t0;
+      for (int j : s.set) {
+        const MechanismContact& c = mk_.contacts()[j];
+        const double q0 = c.t.dot(s.y0.head(n_)), v0 = c.t.dot(s.y0.segment(n_, n_));
+        const double q1 = c.t.dot(s.y1.head(n_)), v1 = c.t.dot(s.y1.segment(n_, n_));
+        for (int k = 1; k < kSwitchSamples; ++k) {
+          const double x = double(k) / kSwitchSamples, x2 = x * x, x3 = x2 * x;
+          const double tq = (2 * x3 - 3 * x2 + 1) * q0 + (x3 - 2 * x2 + x) * h * v0 + (-2 * x3 + 3 * x2) * q1 +
+                            (x3 - x2) * h * v1;
+          const double g = tq + c.g0 - (c.cam ? cam_at(s.t0 + h * x).X : 0.0);
+          r = std::max(r, std::abs(g) / tol);
+        }
+      }
+      return r;
+    }
     for (int k = 1; k < kSwitchSamples; ++k) {
       const double tau = s.t0 + (s.t1 - s.t0) * double(k) / kSwitchSamples;
       interpolate(s, tau, yi_);
