@@ -8,9 +8,13 @@
 //   responses D of the (time-invariant) mechanism to a unit shape on contact j, computed
 //   from rest without preload once per step size and contact. The displacement and
 //   velocity levels, g_j(t + h) = 0 and ġ_j(t + h) = 0 for every active j, are 2k linear
-//   equations in the 2k shape parameters, solved together (a user's nonlinear follower,
-//   whose step map is not affine: iterated with Lee's constants, ∂g/∂F₁ = W h²/6,
-//   ∂ġ/∂F₁ = W h/2, ∂g/∂F_c = W h²/3, ∂ġ/∂F_c = 2W h/3, W = T M⁻¹ Tᵀ). The acceleration level gives the
+//   equations in the 2k shape parameters, solved together. A network with nonlinear
+//   elements (no internal states, no camshaft): the same equations on the responses of its
+//   linear part (M, C, K and the elements' tangent frozen at a step's start), the corrected
+//   state kept when its estimated linearisation error is within a tenth of the tolerances,
+//   else integrated again and iterated. Otherwise (a user's nonlinear follower, element
+//   states, a camshaft) iterated with Lee's constants, ∂g/∂F₁ = W h²/6,
+//   ∂ġ/∂F₁ = W h/2, ∂g/∂F_c = W h²/3, ∂ġ/∂F_c = 2W h/3, W = T M⁻¹ Tᵀ. The acceleration level gives the
 //   forces the equation of motion demands at t + h, W_AA F̃ = Ẍ_C,A − T_A a_free, which
 //   start the next step; |F̃ − F₁| is in the error test against
 //   rtol·|F| + 2 tol_u/(W_jj h²).
