@@ -8,9 +8,13 @@
 //   responses D of the (time-invariant) mechanism to a unit shape on contact j, computed
 //   from rest without preload once per step size and contact. The displacement and
 //   velocity levels, g_j(t + h) = 0 and ġ_j(t + h) = 0 for every active j, are 2k linear
-//   equations in the 2k shape parameters, solved together (a user's nonlinear follower,
-//   whose step map is not affine: iterated with Lee's constants, ∂g/∂F₁ = W h²/6,
-//   ∂ġ/∂F₁ = W h/2, ∂g/∂F_c = W h²/3, ∂ġ/∂F_c = 2W h/3, W = T M⁻¹ Tᵀ). The acceleration level gives the
+//   equations in the 2k shape parameters, solved together. A network with nonlinear
+//   elements (no internal states, no camshaft): the same equations on the responses of its
+//   linear part (M, C, K and the elements' tangent frozen at a step's start), the corrected
+//   state kept when its estimated linearisation error is within a tenth of the tolerances,
+//   else integrated again and iterated. Otherwise (a user's nonlinear follower, element
+//   states, a camshaft) iterated with Lee's constants, ∂g/∂F₁ = W h²/6,
+//   ∂ġ/∂F₁ = W h/2, ∂g/∂F_c = W h²/3, ∂ġ/∂F_c = 2W h/3, W = T M⁻¹ Tᵀ. The acceleration level gives the
 //   forces the equation of motion demands at t + h, W_AA F̃ = Ẍ_C,A − T_A a_free, which
 //   start the next step; |F̃ − F₁| is in the error test against
 //   rtol·|F| + 2 tol_u/(W_jj h²).
@@ -52,20 +56,42 @@ class LeeLocated final : public ContactRun {
     sys.rhs = [this](double t, const double* y, double* yd) { rhs(t, y, yd); };
     // The mechanism's sparse Newton structure (the force shape does not depend on the
     // state); a user's follower: its dense Jacobian, without one difference quotients.
-    if (auto sn = sparse_newton()) {
+    std::shared_ptr<SparseNewton> newton = sparse_newton();
+    if (newton) {
       // a camshaft: the rows at the state, their stiffness at the step's force shape
-      shaft_newton(*sn, [this](double t, const Eigen::VectorXd&, Eigen::VectorXd& F, Eigen::VectorXd&) {
+      shaft_newton(*newton, [this](double t, const Eigen::VectorXd&, Eigen::VectorXd& F, Eigen::VectorXd&) {
         const double x = (t - s_t0_) / s_h_;
         for (int j = 0; j < m_; ++j) F[j] = F0_[j] + (F1_[j] - F0_[j]) * x + Fc_[j] * 4.0 * x * (1.0 - x);
       });
-      sys.newton = sn;
     }
-    if (!sys.newton) sys.jacobian = dense_jacobian(nullptr);
+    if (!newton) sys.jacobian = dense_jacobian(nullptr);
+    sys.newton = newton;
     sys.linear = mk_.linear() && (sys.jacobian || sys.newton);
     if (sc.solver.integrator == Integrator::CvodeBdf)
       throw std::logic_error("network Lee on cvode-bdf runs in methods/lee_cvode.cpp");
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, true));
-    eng_ = engines_.back().get();
+    eng_ = resp_eng_ = engines_.back().get();
+    // A network with nonlinear elements but no internal states and no camshaft: its held
+    // steps correct the force shape by the responses of its linear part (solve_step),
+    // integrated on an engine of their own that knows the part is linear (DIRK: one
+    // Newton iteration per stage on its exact matrix).
+    linear_part_ = newton && !mk_.linear() && ns_ == 0 && !mk_.camshaft();
+    if (linear_part_) {
+      const auto& mech = dynamic_cast<const Mechanism&>(mk_);
+      part_M_.compute(mech.M());
+      part_Ke_ = mech.elements().stiffness_pattern();
+      if (mech.elements().damps()) part_Ce_ = mech.elements().damping_pattern();
+      OdeSystem lin = sys;
+      auto part = std::make_shared<SparseNewton>(*newton);
+      part->element_tangent = [this](double, const double*, SparseMatrix& Ke, SparseMatrix& Ce) {
+        std::copy(part_Ke_.valuePtr(), part_Ke_.valuePtr() + part_Ke_.nonZeros(), Ke.valuePtr());
+        if (Ce.size()) std::copy(part_Ce_.valuePtr(), part_Ce_.valuePtr() + part_Ce_.nonZeros(), Ce.valuePtr());
+      };
+      lin.newton = part;
+      lin.linear = true;
+      engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, lin, true));
+      resp_eng_ = engines_.back().get();
+    }
     F0_ = F1_ = Fc_ = Eigen::VectorXd::Zero(m_);
     slope_ = Eigen::VectorXd::Zero(m_);
     fs_.resize(m_);
@@ -73,9 +99,37 @@ class LeeLocated final : public ContactRun {
 
  private:
   OdeEngine* eng_;
+  OdeEngine* resp_eng_;  // the responses' engine (eng_, or the linear part's own)
   // the force shape of the step being integrated
   double s_t0_ = 0, s_h_ = 1;
   bool homogeneous_ = false;
+  // Held steps of a nonlinear network corrected by its linear part's responses (the
+  // correction's linearisation error estimated, the step integrated again only if it
+  // exceeds kLinearisedShare of the tolerances).
+  bool linear_part_ = false;
+  static constexpr double kLinearisedShare = 0.1;
+  // The linear part: M, C, K and the elements' tangent K_e, C_e frozen at a step's start,
+  // taken again (the responses with it) after a correction the estimate refused, at most
+  // every kPartRefreshSteps accepted steps.
+  Eigen::SimplicialLDLT<SparseMatrix> part_M_;
+  SparseMatrix part_Ke_, part_Ce_;
+  long part_step_ = -1;  // sum_.steps when the tangent was taken (-1: not yet)
+  bool part_stale_ = false;
+  static constexpr long kPartRefreshSteps = 16;
+  Eigen::VectorXd part_r_;
+  // a += M⁻¹(−K_e q − C_e v) with the frozen tangent
+  void add_part_tangent(const double* q, const double* v, double* a) {
+    Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
+    part_r_.noalias() = -(part_Ke_ * Q);
+    if (part_Ce_.size()) part_r_.noalias() -= part_Ce_ * V;
+    Eigen::Map<Eigen::VectorXd>(a, n_) += part_M_.solve(part_r_);
+  }
+  // The tangent at the step's start; the responses computed with the old one are dropped.
+  void refresh_part();
+  // The estimated error of a correction dy (= y1 after − y1 before) applied through the
+  // linear part's responses over a step of hs ending at t1; into lin_err_ (ny_ entries).
+  void linearisation_error(double t1, double hs, const Eigen::VectorXd& y1_before, const Eigen::VectorXd& y1_after);
+  Eigen::VectorXd lin_err_, lin_a_, lin_b_, lin_y_;
   Eigen::VectorXd F0_, F1_, Fc_, fs_, slope_;
 
   void rhs(double t, const double* y, double* yd) {
@@ -83,6 +137,7 @@ class LeeLocated final : public ContactRun {
     for (int j = 0; j < m_; ++j) fs_[j] = F0_[j] + (F1_[j] - F0_[j]) * x + Fc_[j] * 4.0 * x * (1.0 - x);
     std::copy(y + n_, y + 2 * n_, yd);
     mk_.acceleration(t, y, y + n_, fs_, yd + n_, homogeneous_, states_of(y));
+    if (homogeneous_ && linear_part_) add_part_tangent(y, y + n_, yd + n_);
     if (ns_) {  // the elements' internal states (a homogeneous response carries none)
       if (homogeneous_) std::fill(yd + 2 * n_, yd + ny_, 0.0);
       else mk_.state_rate(t, y, y + n_, states_of(y), yd + 2 * n_);
@@ -143,6 +198,24 @@ class LeeLocated final : public ContactRun {
     if (s.set.empty()) return 0.0;
     const double tol = std::max(10.0 * sc_.contact.tol_u, 1e-4 * cam_.lift());
     double r = 0.0;
+    if (!mk_.camshaft()) {
+      // g_j = T_j q + g₀_j − X_C·[cam] (gap()) on the Hermite state: T_j q(τ) from the four
+      // products T_j q and T_j v at both ends, not the whole interpolated state per sample
+      const double h = s.t1 - s.t0;
+      for (int j : s.set) {
+        const MechanismContact& c = mk_.contacts()[j];
+        const double q0 = c.t.dot(s.y0.head(n_)), v0 = c.t.dot(s.y0.segment(n_, n_));
+        const double q1 = c.t.dot(s.y1.head(n_)), v1 = c.t.dot(s.y1.segment(n_, n_));
+        for (int k = 1; k < kSwitchSamples; ++k) {
+          const double x = double(k) / kSwitchSamples, x2 = x * x, x3 = x2 * x;
+          const double tq = (2 * x3 - 3 * x2 + 1) * q0 + (x3 - 2 * x2 + x) * h * v0 + (-2 * x3 + 3 * x2) * q1 +
+                            (x3 - x2) * h * v1;
+          const double g = tq + c.g0 - (c.cam ? cam_at(s.t0 + h * x).X : 0.0);
+          r = std::max(r, std::abs(g) / tol);
+        }
+      }
+      return r;
+    }
     for (int k = 1; k < kSwitchSamples; ++k) {
       const double tau = s.t0 + (s.t1 - s.t0) * double(k) / kSwitchSamples;
       interpolate(s, tau, yi_);

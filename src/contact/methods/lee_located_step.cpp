@@ -34,14 +34,14 @@ LeeLocated::Responses& LeeLocated::responses(double hs, const std::vector<int>& 
     F1_.setZero();
     Fc_.setZero();
     F1_[j] = amp;
-    integrate_on(*eng_, 0.0, zero, hs, r->D1[j]);
+    integrate_on(*resp_eng_, 0.0, zero, hs, r->D1[j]);
     r->D1[j] /= amp;
-    r->E1[j] = eng_->local_error() / amp;
+    r->E1[j] = resp_eng_->local_error() / amp;
     F1_[j] = 0.0;
     Fc_[j] = amp;
-    integrate_on(*eng_, 0.0, zero, hs, r->Dc[j]);
+    integrate_on(*resp_eng_, 0.0, zero, hs, r->Dc[j]);
     r->Dc[j] /= amp;
-    r->Ec[j] = eng_->local_error() / amp;
+    r->Ec[j] = resp_eng_->local_error() / amp;
     homogeneous_ = false;
     r->have[j] = 1;
     sum_.contact_iterations += 2;
@@ -64,12 +64,17 @@ double LeeLocated::solve_step(const std::vector<int>& set, double hs, double t1,
   double err = integrate(t_, y_, hs, y1);
   const int k = int(set.size());
   if (k == 0) return err;
-  // affine step map: a one-step engine on a linear system; a user's nonlinear follower:
-  // iterated with Lee's constants, which see only the contacts' inverse mass W.
+  // affine step map: a one-step engine on a linear system. A network with nonlinear
+  // elements (linear_part_): the first correction through its linear part's responses,
+  // kept if its estimated linearisation error is within kLinearisedShare of the
+  // tolerances, else the step is integrated again and iterated. A user's nonlinear
+  // follower: iterated with Lee's constants, which see only the contacts' inverse mass W.
   const bool affine = mk_.linear();
+  bool linearised = linear_part_;
   Eigen::VectorXd& le = le_;
   le = eng_->local_error();
-  Responses* R = mk_.linear() ? &responses(hs, set) : nullptr;
+  if (linearised && (part_step_ < 0 || part_stale_)) refresh_part();
+  Responses* R = (affine || linearised) ? &responses(hs, set) : nullptr;
   // J depends on (hs, set) and the responses only: its factorisation is kept while
   // none of them changes
   if (!(J_h_ == hs && J_gen_ == resp_gen_ && J_set_ == set) || mk_.camshaft()) {  // a camshaft: W̃ at each start
@@ -104,25 +109,75 @@ double LeeLocated::solve_step(const std::vector<int>& set, double hs, double t1,
     }
     ++it;
     ++sum_.contact_iterations;
+    if (linearised) lin_y_ = y1;
     for (int l = 0; l < k; ++l) {
       const int j = set[l];
       F1_[j] += d[2 * l];
       Fc_[j] += d[2 * l + 1];
-      if (affine) {
+      if (affine || linearised) {
         y1 += d[2 * l] * R->D1[j] + d[2 * l + 1] * R->Dc[j];
         le += d[2 * l] * R->E1[j] + d[2 * l + 1] * R->Ec[j];
       }
     }
-    if (affine)
+    if (affine) {
       err = eng_->wrms(le, y_);
-    else
+    } else if (linearised) {
+      linearised = false;  // one linearised correction per step at most
+      linearisation_error(t1, hs, lin_y_, y1);
+      bool small = eng_->wrms(lin_err_, y_) <= kLinearisedShare;
+      for (int i = 0; i < k && small; ++i) {
+        const Eigen::RowVectorXd& ti = mk_.contacts()[set[i]].t;
+        small = std::abs(ti.dot(lin_err_.head(n_))) <= kLinearisedShare * sc_.contact.tol_u &&
+                std::abs(ti.dot(lin_err_.segment(n_, n_))) <= kLinearisedShare * tol_v;
+      }
+      if (small) {
+        err = eng_->wrms(le, y_);
+        break;
+      }
+      if (sum_.steps - part_step_ >= kPartRefreshSteps) part_stale_ = true;
       err = integrate(t_, y_, hs, y1);
+    } else {
+      err = integrate(t_, y_, hs, y1);
+    }
   }
   sum_.level_u.total += it;
   sum_.level_u.max = std::max(sum_.level_u.max, it);
   ++sum_.level_u.steps;
   sum_.level_v = sum_.level_u;
   return err;
+}
+
+void LeeLocated::linearisation_error(double t1, double hs, const Eigen::VectorXd& y1_before,
+                                     const Eigen::VectorXd& y1_after) {
+  // The responses carry the correction δy through the linear part
+  // M δÿ = −(K + K_e⁰) δy − (C + C_e⁰) δẏ + Tᵀ δF (K_e⁰, C_e⁰ the frozen tangent); the
+  // mechanism's own correction differs by the rest of its elements' force change,
+  // m = Δf_e − K_e⁰δy − C_e⁰δẏ with Δf_e = f_e(y + δy) − f_e(y). δy starts from zero at the
+  // step's start and grows like x³ (δq) and x² (δẏ) under a ramp or bubble shape
+  // (x = (τ − t)/h), so m's effect on the end state is about h²/20 (δq) and h/4 (δẏ) times
+  // M⁻¹m(t1); taken as h²/6 and h/2 (a margin of 2–3), with
+  // M⁻¹m(t1) = a(y + δy) − a(y) − a_part(δy) at t1 (no contact forces: they cancel).
+  const Eigen::VectorXd none;
+  lin_err_.setZero(ny_);
+  lin_a_.resize(n_);
+  lin_b_.resize(n_);
+  mk_.acceleration(t1, y1_after.data(), y1_after.data() + n_, none, lin_a_.data());
+  mk_.acceleration(t1, y1_before.data(), y1_before.data() + n_, none, lin_b_.data());
+  lin_a_ -= lin_b_;
+  const Eigen::VectorXd dy = y1_after - y1_before;
+  mk_.acceleration(t1, dy.data(), dy.data() + n_, none, lin_b_.data(), true);
+  add_part_tangent(dy.data(), dy.data() + n_, lin_b_.data());
+  lin_a_ -= lin_b_;
+  lin_err_.head(n_) = (hs * hs / 6.0) * lin_a_;
+  lin_err_.segment(n_, n_) = (0.5 * hs) * lin_a_;
+}
+
+void LeeLocated::refresh_part() {
+  dynamic_cast<const Mechanism&>(mk_).elements().tangent(t_, y_.data(), y_.data() + n_, part_Ke_, part_Ce_);
+  for (Responses& c : cache_) c.h = -1.0;
+  ++resp_gen_;
+  part_step_ = sum_.steps;
+  part_stale_ = false;
 }
 
 void LeeLocated::factor_shape_matrix(const std::vector<int>& set, double hs, const Responses* R) {
