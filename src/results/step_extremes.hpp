@@ -35,7 +35,7 @@ struct StepSample {
 using StepProbe = std::function<void(double x, StepSample&)>;
 
 /// Samples per step, the ends included.
-constexpr int kStepSamples = 5;
+constexpr int kStepSamples = 3;
 
 /// The extreme of a quantity over one step located by locate_extreme.
 struct LocatedExtreme {
