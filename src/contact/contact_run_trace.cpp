@@ -42,6 +42,10 @@ void ContactRun::trace_step(double t0, double t1, const StateFn& state, const Fo
       if (mk_.contacts()[j].cam) s.Fc += std::max(trace_F_[j], 0.0);
     }
     s.F = trace_F_[p];
+    if (analysis_.wants_nodes()) {
+      const Eigen::VectorXd u = mk_.L() * trace_y_.head(n_);
+      s.nodes.assign(u.data(), u.data() + u.size());
+    }
     s.held = trace_in_[std::size_t(p)] != 0;
   };
   std::vector<StepSample>& s = trace_samples_;

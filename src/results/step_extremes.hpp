@@ -30,6 +30,7 @@ struct StepSample {
   bool held = false;      ///< the primary contact is held over the step
   std::vector<double> forces, gaps, gap_rates;  ///< per contact
   std::vector<char> in_set;                     ///< per contact: held over the step
+  std::vector<double> nodes;                    ///< named nodes' displacements (when asked for)
 };
 /// The step's state at x (fills every field of the sample).
 using StepProbe = std::function<void(double x, StepSample&)>;
