@@ -42,6 +42,10 @@ void ContactRun::trace_step(double t0, double t1, const StateFn& state, const Fo
       if (mk_.contacts()[j].cam) s.Fc += std::max(trace_F_[j], 0.0);
     }
     s.F = trace_F_[p];
+    if (analysis_.wants_nodes()) {
+      const Eigen::VectorXd u = mk_.L() * trace_y_.head(n_);
+      s.nodes.assign(u.data(), u.data() + u.size());
+    }
     s.held = trace_in_[std::size_t(p)] != 0;
   };
   std::vector<StepSample>& s = trace_samples_;
@@ -61,6 +65,21 @@ void ContactRun::trace_step(double t0, double t1, const StateFn& state, const Fo
       return force(tmp);
     });
     if (lf.found) sample_contact(j, lf.value, angle_deg_mod360(drive_.theta(t0 + lf.x * h)));
+    // an edge of the take-up window inside the step: the force there (bisection on the
+    // cam's lift to the edge, taken on its outer side) is a sample too — a least force
+    // that falls toward the window is found at its edge, not at the sample before it
+    for (int k = 0; k + 1 < kStepSamples; ++k) {
+      const bool in0 = std::isnan(q[k]), in1 = std::isnan(q[k + 1]);
+      if (in0 == in1) continue;
+      double lo = x[k], hi = x[k + 1];  // lo on the side of sample k
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (in_take_up(t0 + mid * h) == in0 ? lo : hi) = mid;
+      }
+      probe(in0 ? hi : lo, tmp);
+      const double F = force(tmp);
+      if (!std::isnan(F)) sample_contact(j, F, angle_deg_mod360(tmp.theta));
+    }
     if (!mk_.contacts()[j].cam) continue;
     auto side = [&](const StepSample& a) { return std::abs(a.forces[std::size_t(j)] * tan_phi(a)); };
     for (int k = 0; k < kStepSamples; ++k) q[k] = side(s[std::size_t(k)]);

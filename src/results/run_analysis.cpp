@@ -153,13 +153,7 @@ void RunAnalysis::row(double t, double theta, const CamPoint& p, double X, doubl
   if (valve_ >= 0) {
     const double d = u[std::size_t(valve_)] - valve_path_.lift(X);
     out.push_back(d);
-    // revolution k holds the progress (2πk, 2π(k + 1)] (the first also its start): a row at a
-    // whole revolution closes the one it ends
-    const long k = std::max(0L, long(std::ceil(std::abs(theta - theta0_) / kTwoPi - 1e-9)) - 1);
-    if (dev_.empty() || dev_.back().revolution != k) dev_.push_back({k, d, th_deg, d, th_deg});
-    LiftDeviationRevolution& r = dev_.back();
-    if (d < r.min) r.min = d, r.min_theta_deg = th_deg;
-    if (d > r.max) r.max = d, r.max_theta_deg = th_deg;
+    if (!traced_) keep_deviation(theta, d);
   }
   if (!std::isnan(prev_X_))
     for (double L : path_.take_up_levels()) {
@@ -183,6 +177,26 @@ void RunAnalysis::row(double t, double theta, const CamPoint& p, double X, doubl
   }
 }
 
+void RunAnalysis::keep_deviation(double theta, double d) {
+  if (std::isnan(theta0_)) theta0_ = theta;
+  const double th_deg = angle_deg_mod360(theta);
+  // revolution k holds the progress (2πk, 2π(k + 1)] (the first also its start): a point at
+  // a whole revolution closes the one it ends
+  const long k = std::max(0L, long(std::ceil(std::abs(theta - theta0_) / kTwoPi - 1e-9)) - 1);
+  LiftDeviationRevolution* r = nullptr;
+  for (auto it = dev_.rbegin(); it != dev_.rend() && !r; ++it)
+    if (it->revolution == k) r = &*it;
+  if (!r) {
+    dev_.push_back({k, d, th_deg, d, th_deg});
+    std::sort(dev_.begin(), dev_.end(), [](const LiftDeviationRevolution& a, const LiftDeviationRevolution& b) {
+      return a.revolution < b.revolution;
+    });
+    return;
+  }
+  if (d < r->min) r->min = d, r->min_theta_deg = th_deg;
+  if (d > r->max) r->max = d, r->max_theta_deg = th_deg;
+}
+
 void RunAnalysis::step_inside(const std::vector<StepSample>& s, const StepProbe& probe) {
   traced_ = true;
   const int n = int(s.size());
@@ -203,6 +217,25 @@ void RunAnalysis::step_inside(const std::vector<StepSample>& s, const StepProbe&
       probe(e.x, tmp);
       min_h_theta_ = angle_deg_mod360(tmp.theta);
       min_lambda_ = lambda_ ? e.value / oil_.composite_roughness : NAN;
+    }
+  }
+  if (valve_ >= 0 && !s[0].nodes.empty()) {
+    // the lift deviation's least and largest value in the step, each kept in the
+    // revolution where it lies
+    auto dev = [&](const StepSample& p) { return p.nodes[std::size_t(valve_)] - valve_path_.lift(p.X); };
+    for (int k = 0; k < n; ++k) q[k] = dev(s[k]);
+    for (int k = 0; k < n; ++k) keep_deviation(s[k].theta, q[k]);
+    for (int sign : {-1, 1}) {
+      const double rec = dev_.empty() ? NAN : sign < 0 ? dev_.back().min : dev_.back().max;
+      const LocatedExtreme e = locate_extreme(x, q, n, sign, rec, [&](double xx) {
+        probe(xx, tmp);
+        return dev(tmp);
+      });
+      bool sample = false;
+      for (int k = 0; k < n; ++k) sample = sample || e.x == x[k];
+      if (!e.found || sample) continue;
+      probe(e.x, tmp);
+      keep_deviation(tmp.theta, e.value);
     }
   }
   for (Seat& seat : seats_) {

@@ -58,6 +58,8 @@ class RunAnalysis {
   /// open seat's highest gap (the apex: the root of its gap rate inside the step). Once a
   /// method traces its steps, these come from the steps only, not from the rows.
   void step_inside(const std::vector<StepSample>& s, const StepProbe& probe);
+  /// The named nodes' displacements are needed in the step samples (run.valve_node).
+  bool wants_nodes() const { return valve_ >= 0; }
   /// An event of contact `j`.
   void event(const ContactEvent& e, int j);
   /// Film, lift deviation, ramp velocity and landings into `s`.
@@ -91,6 +93,7 @@ class RunAnalysis {
   double band_ = 0;  // 1 % of the cam's lift
   double theta0_ = NAN;
   bool traced_ = false;  // step_inside has run: the rows add no extreme
+  void keep_deviation(double theta, double d);  // the lift deviation d at θ into its revolution
   // results
   double min_h_ = NAN, min_h_theta_ = NAN, min_lambda_ = NAN;
   std::vector<LiftDeviationRevolution> dev_;

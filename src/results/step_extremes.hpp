@@ -30,12 +30,13 @@ struct StepSample {
   bool held = false;      ///< the primary contact is held over the step
   std::vector<double> forces, gaps, gap_rates;  ///< per contact
   std::vector<char> in_set;                     ///< per contact: held over the step
+  std::vector<double> nodes;                    ///< named nodes' displacements (when asked for)
 };
 /// The step's state at x (fills every field of the sample).
 using StepProbe = std::function<void(double x, StepSample&)>;
 
 /// Samples per step, the ends included.
-constexpr int kStepSamples = 5;
+constexpr int kStepSamples = 3;
 
 /// The extreme of a quantity over one step located by locate_extreme.
 struct LocatedExtreme {

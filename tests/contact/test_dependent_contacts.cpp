@@ -277,16 +277,20 @@ TEST(ContactResults, OhcMatchTheRowsAndEvents) {
     const std::string name = s.network.contacts[j].name;
     const ContactResult& cr = sum.contacts[j];
     EXPECT_EQ(cr.name, name);
-    double minF = NAN, vmax = 0, first_imp = NAN, first_sep = NAN, dF = 0, Fprev = NAN;
+    double minF = NAN, vmax = 0, first_imp = NAN, first_sep = NAN;
     long imp = 0, sep = 0;
-    for (const HistoryRow& r : obs.rows)
-      if (col(cols, r, "in_" + name) == 1.0 && !in_window(r.theta)) {
-        const double F = col(cols, r, "F_" + name);
-        if (std::isnan(minF) || F < minF) minF = F;
-        if (!std::isnan(Fprev)) dF = std::max(dF, std::abs(F - Fprev));  // between neighbouring rows
-        Fprev = F;
-      } else {
-        Fprev = NAN;
+    std::vector<double> Fr;  // the rows' forces while closed outside the window (NaN: not)
+    for (const HistoryRow& r : obs.rows) {
+      const bool closed = col(cols, r, "in_" + name) == 1.0 && !in_window(r.theta);
+      Fr.push_back(closed ? col(cols, r, "F_" + name) : NAN);
+      if (closed && (std::isnan(minF) || Fr.back() < minF)) minF = Fr.back();
+    }
+    // the change from the least row to its neighbours (closed ones)
+    double dF = 0;
+    for (std::size_t i = 0; i < Fr.size(); ++i)
+      if (Fr[i] == minF) {
+        if (i > 0 && !std::isnan(Fr[i - 1])) dF = std::max(dF, Fr[i - 1] - minF);
+        if (i + 1 < Fr.size() && !std::isnan(Fr[i + 1])) dF = std::max(dF, Fr[i + 1] - minF);
       }
     for (const ContactEvent& e : sum.events) {
       if (e.contact != name) continue;
@@ -306,8 +310,9 @@ TEST(ContactResults, OhcMatchTheRowsAndEvents) {
     EXPECT_NEAR(cr.first_impact_theta_deg, first_imp, 1e-9) << name;
     EXPECT_NEAR(cr.first_separation_theta_deg, first_sep, 1e-9) << name;
     // the least force is located inside the steps (not at the rows): at most every row's,
-    // and within one row-to-row change of the least row (measured 0.85 N below it on the
-    // cam, at the take-up window's edge, where the rows 10 µs apart change by up to dF)
+    // and within the change from the least row to its neighbours (measured: 0.85 N below it
+    // on the cam, 0.83 N on the seat, at the take-up window's edge; the neighbours differ
+    // from the least row by 10.2 N and 12.7 N, rows 10 µs apart)
     EXPECT_LE(cr.min_force, minF + 1e-9 * std::abs(minF)) << name;
     EXPECT_GE(cr.min_force, minF - dF) << name;
   }

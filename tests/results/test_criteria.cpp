@@ -413,10 +413,15 @@ TEST(LiftDeviation, QuasiStaticClosedFormAtLowSpeed) {
     }
     EXPECT_LT(err, 1.0);
     ASSERT_EQ(s.lift_deviation.size(), 1u);
-    EXPECT_EQ(s.lift_deviation[0].min, lo);
-    EXPECT_EQ(s.lift_deviation[0].max, hi);
+    // the extremes are located inside the steps: beyond every row's value, and within the
+    // closed form's tolerance of the rows' extremes (the rows resolve the quasi-static curve)
+    const Summary& S = s;
+    EXPECT_LE(S.lift_deviation[0].min, lo + 1e-18);
+    EXPECT_GE(S.lift_deviation[0].min, lo - (5e-10 + 1e-5 * std::abs(lo)));
+    EXPECT_GE(S.lift_deviation[0].max, hi - 1e-18);
+    EXPECT_LE(S.lift_deviation[0].max, hi + (5e-10 + 1e-5 * std::abs(hi)));
     ASSERT_EQ(s.criteria.size(), 1u);
-    EXPECT_EQ(s.criteria[0].value, std::max(std::abs(lo), std::abs(hi)));
+    EXPECT_EQ(s.criteria[0].value, std::max(std::abs(S.lift_deviation[0].min), std::abs(S.lift_deviation[0].max)));
     EXPECT_TRUE(s.criteria[0].pass);
     if (kp == 1e8) {
       EXPECT_LT(std::max(std::abs(lo), std::abs(hi)), 2.5e-6);
