@@ -325,6 +325,17 @@ struct LubricantSpec {
   double roughness = 0;           ///< composite roughness √(R_q,cam² + R_q,follower²) [length], ≥ 0 (0: no λ)
 };
 
+/// The valve train the cam is synthesised through ([synthesis]; `camdyn cam
+/// --synthesise-from-valve-lift`, synthesise_cam_from_valve_lift: camdyn/synthesis.hpp
+/// ValveTrainOptions). Read only by the synthesis; a run does not use these keys. The CLI
+/// options --ratio, --valve-end-angle, --lash, --lash-ramp override them.
+struct SynthesisSpec {
+  double ratio = 1.0;                ///< translating follower: lever ratio dV/ds, > 0 [1]
+  double valve_end_angle_deg = 0.0;  ///< oscillating finger: ψ₀ of the pivot–valve-end line, |ψ₀| < 90 [deg]
+  double lash = 0.0;                 ///< valve lash, measured at the valve, ≥ 0 [length]
+  double ramp_deg = 0.0;             ///< with lash > 0: the lash ramp's cam angle, in (0, 180) [deg]
+};
+
 /// [camshaft] (optional; inertias empty: no camshaft, the cam turns at the prescribed angle of
 /// [cam]): the camshaft as a torsionally elastic body (issue 40). Stations 0 … N−1 are unknowns
 /// of the mechanism whose coordinate is the shaft angle φ_i [rad] (history columns
@@ -388,6 +399,8 @@ struct Scene {
   LubricantSpec lubricant;
   /// [camshaft]: the camshaft as a body (empty: the prescribed cam angle of [cam]).
   CamshaftSpec camshaft;
+  /// [synthesis]: the train the cam is synthesised through (not used by a run).
+  SynthesisSpec synthesis;
   /// follower.kind = "network": the nodes, elements and contacts ([[nodes]], [[elements]],
   /// [[contacts]]); empty for the other kinds (follower.* bar keys and [spring] are then
   /// unused, [contact] gives the method and the contacts' default restitution and penalty).
@@ -559,6 +572,7 @@ bool operator==(const RunSpec& a, const RunSpec& b);
 bool operator==(const JumpSpec& a, const JumpSpec& b);
 bool operator==(const CriteriaSpec& a, const CriteriaSpec& b);
 bool operator==(const LubricantSpec& a, const LubricantSpec& b);
+bool operator==(const SynthesisSpec& a, const SynthesisSpec& b);
 bool operator==(const CamshaftSpec& a, const CamshaftSpec& b);
 bool operator==(const Scene& a, const Scene& b);
 bool operator!=(const Scene& a, const Scene& b);

@@ -47,17 +47,17 @@ void valve_map(const CamSpec& c, const ValveTrainOptions& t, double q, double* g
 void check_train(const CamSpec& c, const ValveTrainOptions& t) {
   if (!oscillating(c)) {
     if (!(std::isfinite(t.ratio) && t.ratio > 0))
-      fail("ratio", fmt_num(t.ratio), "the lever ratio dV/ds must be finite and > 0");
+      fail("synthesis.ratio", fmt_num(t.ratio), "the lever ratio dV/ds must be finite and > 0");
   } else {
     if (!(std::isfinite(c.valve_arm) && c.valve_arm > 0))
       fail("cam.valve_arm", fmt_num(c.valve_arm), "must be finite and > 0 (the finger's valve end)");
     if (!(std::isfinite(t.valve_end_angle_deg) && std::fabs(t.valve_end_angle_deg) < 90))
-      fail("valve_end_angle_deg", fmt_num(t.valve_end_angle_deg),
+      fail("synthesis.valve_end_angle_deg", fmt_num(t.valve_end_angle_deg),
            "must be in (−90, 90) (at ±90° the finger's ratio dV/dψ is 0)");
   }
-  if (!(std::isfinite(t.lash) && t.lash >= 0)) fail("lash", fmt_num(t.lash), "must be finite and ≥ 0");
+  if (!(std::isfinite(t.lash) && t.lash >= 0)) fail("synthesis.lash", fmt_num(t.lash), "must be finite and ≥ 0");
   if (t.lash > 0 && !(std::isfinite(t.ramp_deg) && t.ramp_deg > 0 && t.ramp_deg < 180))
-    fail("ramp_deg", fmt_num(t.ramp_deg), "with lash > 0 the lash ramp must be in (0, 180) degrees");
+    fail("synthesis.ramp_deg", fmt_num(t.ramp_deg), "with lash > 0 the lash ramp must be in (0, 180) degrees");
   if (t.points < 16) fail("points", std::to_string(t.points), "must be ≥ 16");
 }
 
@@ -145,7 +145,7 @@ CamSynthesis synthesise_cam_from_valve_lift(const CamSpec& cam, const MotionLaw&
     double dwell = th_o - th_c;
     if (dwell <= 0) dwell += kTwoPi;
     if (!(2.0 * t.ramp_deg * kDeg <= dwell))
-      fail("ramp_deg", fmt_num(t.ramp_deg),
+      fail("synthesis.ramp_deg", fmt_num(t.ramp_deg),
            "the two lash ramps do not fit on the closed valve (" + fmt_num(dwell / kDeg) + "° from closing at " +
                fmt_num(th_c / kDeg) + "° to opening at " + fmt_num(th_o / kDeg) + "°)");
   }

@@ -38,11 +38,18 @@ int cmd_cam(const CamOpts& o) {
                 const LiftTable t = read_lift_table_csv(sc.cam.lift_table);
                 return MotionLaw::from_table(t.angle_deg, t.lift, t.dlift_ddeg, t.d2lift_ddeg2);
               }();
+    // the train: the scene's [synthesis], each CLI option given overriding its key (and
+    // checked by the same rules, named by the key)
+    if (!std::isnan(o.ratio)) sc.synthesis.ratio = o.ratio;
+    if (!std::isnan(o.valve_end_angle_deg)) sc.synthesis.valve_end_angle_deg = o.valve_end_angle_deg;
+    if (!std::isnan(o.lash)) sc.synthesis.lash = o.lash;
+    if (!std::isnan(o.ramp_deg)) sc.synthesis.ramp_deg = o.ramp_deg;
+    validate(sc);
     ValveTrainOptions tr;
-    tr.ratio = o.ratio;
-    tr.valve_end_angle_deg = o.valve_end_angle_deg;
-    tr.lash = o.lash;
-    tr.ramp_deg = o.ramp_deg;
+    tr.ratio = sc.synthesis.ratio;
+    tr.valve_end_angle_deg = sc.synthesis.valve_end_angle_deg;
+    tr.lash = sc.synthesis.lash;
+    tr.ramp_deg = sc.synthesis.ramp_deg;
     tr.points = std::max(o.points, 16);
     const std::string table = join_path(o.out, "cam_lift_table.csv");
     const CamSynthesis syn = synthesise_cam_from_valve_lift(sc.cam, valve, tr, table);

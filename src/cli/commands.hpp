@@ -128,7 +128,8 @@ struct CamOpts {
   bool no_plot = false;
   // --synthesise-from-valve-lift: cam.law (or cam.profile = "table") is the VALVE lift
   bool synthesise = false;
-  double ratio = 1.0, valve_end_angle_deg = 0.0, lash = 0.0, ramp_deg = 0.0;
+  // the train's [synthesis] keys given on the command line (NaN: the scene's value)
+  double ratio = NAN, valve_end_angle_deg = NAN, lash = NAN, ramp_deg = NAN;
 };
 
 struct SceneOpts {

@@ -112,16 +112,15 @@ int real_main(int argc, char** argv) {
                 "The scene's cam.law (or lift table) is the VALVE lift: synthesise the cam through the train "
                 "(docs/cam_laws.md \"From the valve lift to the cam\"); writes DIR/cam_lift_table.csv and "
                 "DIR/synthesised.toml (run it with `camdyn run`), then the cam's files as usual");
-  cam->add_option("--ratio", co.ratio, "Synthesis, translating follower: lever ratio dV/ds > 0")
-      ->capture_default_str();
+  cam->add_option("--ratio", co.ratio,
+                  "Synthesis, translating follower: lever ratio dV/ds > 0 (overrides synthesis.ratio, default 1)");
   cam->add_option("--valve-end-angle", co.valve_end_angle_deg,
                   "Synthesis, oscillating finger: angle ψ₀ [deg] of the pivot–valve-end line from the normal "
-                  "to the valve axis at rest")
-      ->capture_default_str();
-  cam->add_option("--lash", co.lash, "Synthesis: valve lash [length] ≥ 0, measured at the valve")
-      ->capture_default_str();
-  cam->add_option("--lash-ramp", co.ramp_deg, "Synthesis: cam angle [deg] over which the cam takes up the lash")
-      ->capture_default_str();
+                  "to the valve axis at rest (overrides synthesis.valve_end_angle_deg, default 0)");
+  cam->add_option("--lash", co.lash,
+                  "Synthesis: valve lash [length] ≥ 0, measured at the valve (overrides synthesis.lash, default 0)");
+  cam->add_option("--lash-ramp", co.ramp_deg,
+                  "Synthesis: cam angle [deg] over which the cam takes up the lash (overrides synthesis.ramp_deg)");
 
   SceneOpts so;
   auto* scene = app.add_subcommand(

@@ -223,6 +223,16 @@ const KeyDoc kDocs[] = {
                            "(camshaft.drive_stiffness, camshaft.drive_damping) from the crank; `prescribed`: the "
                            "drive station's angle is θ_crank(t) exactly (no unknown: its cams are prescribed cams at "
                            "θ_crank(t) − offset, its segments drive the neighbouring stations), without the coupling's keys."},
+    {"synthesis.ratio", "—", "Cam synthesis from the valve lift (`camdyn cam --synthesise-from-valve-lift`; not used by a "
+                            "run), translating follower: the lever ratio dV/ds of the valve to the follower (1: a bucket). "
+                            "CLI --ratio overrides it."},
+    {"synthesis.valve_end_angle_deg", "deg", "Cam synthesis, oscillating finger: the angle ψ₀ of the pivot–valve-end line "
+                                            "from the normal to the valve axis at rest, |ψ₀| < 90 (valve lift "
+                                            "cam.valve_arm·(sin(ψ₀ + ψ) − sin ψ₀)). CLI --valve-end-angle overrides it."},
+    {"synthesis.lash", "length", "Cam synthesis: the valve lash, measured at the valve (≥ 0). CLI --lash overrides it."},
+    {"synthesis.ramp_deg", "deg", "Cam synthesis: the cam angle over which the cam takes up the lash before the valve "
+                                 "opens and after it closes; in (0, 180) when synthesis.lash > 0. CLI --lash-ramp "
+                                 "overrides it."},
     // [[nodes]]
     {"nodes.name", "—", "Node name: history columns `u_<name>`, `v_<name>`.", "string",
      "non-empty, unique, not \"ground\", letters, digits, '_' and '-' only", "(required)"},

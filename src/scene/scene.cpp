@@ -101,7 +101,7 @@ Field mk(const char* t, const char* k, FK kind) {
   }()
 
 const char* const kTables[] = {"cam", "follower", "spring", "contact", "solver", "run", "jump", "criteria", "lubricant",
-                               "camshaft"};
+                               "camshaft", "synthesis"};
 
 Field ruled(Field f, Rule r, double lo, double hi = 0, const char* note = "") {
   f.rule = r;
@@ -261,6 +261,10 @@ const std::vector<Field>& fields() {
     v.push_back(F_ARR(camshaft, crank_amplitudes_deg));
     v.push_back(F_ARR(camshaft, crank_phases_deg));
     v.push_back(F_ENUM(camshaft, drive, kCamshaftDriveNames));
+    v.push_back(ruled(F_REAL(synthesis, ratio), Rule::Gt, 0));
+    v.push_back(ruled(F_REAL(synthesis, valve_end_angle_deg), Rule::Finite, 0));
+    v.push_back(ruled(F_REAL(synthesis, lash), Rule::Ge, 0));
+    v.push_back(ruled(F_REAL(synthesis, ramp_deg), Rule::Ge, 0));
     return v;
   }();
   return kFields;
@@ -528,6 +532,9 @@ bool operator==(const CriteriaSpec& a, const CriteriaSpec& b) {
 }
 bool operator==(const LubricantSpec& a, const LubricantSpec& b) {
   return same_table(a, b, &Scene::lubricant, "lubricant");
+}
+bool operator==(const SynthesisSpec& a, const SynthesisSpec& b) {
+  return same_table(a, b, &Scene::synthesis, "synthesis");
 }
 bool operator==(const CamshaftSpec& a, const CamshaftSpec& b) {
   return same_table(a, b, &Scene::camshaft, "camshaft");

@@ -152,6 +152,12 @@ class Validator {
   void run() const {
     const Scene& s = s_;
     key_rules();
+    // ---- [synthesis] (the rules synthesise_cam_from_valve_lift applies, named by key)
+    if (!(std::abs(s.synthesis.valve_end_angle_deg) < 90.0))
+      fail_at("synthesis.valve_end_angle_deg", fmt_num(s.synthesis.valve_end_angle_deg), "must be > -90 and < 90");
+    if (s.synthesis.lash > 0 && !(s.synthesis.ramp_deg > 0 && s.synthesis.ramp_deg < 180))
+      fail_at("synthesis.ramp_deg", fmt_num(s.synthesis.ramp_deg),
+              "with synthesis.lash > 0 the lash ramp must be > 0 and < 180 degrees");
     // ---- cam (rules between keys)
     const CamSpec& c = s.cam;
     if (c.profile == CamProfileKind::Points) {

@@ -249,14 +249,14 @@ TEST(CamSynthesis, BadTrainsNameKeyAndRule) {
   c.base_radius = 20.0;
   ValveTrainOptions t;
   t.ratio = 0.0;
-  EXPECT_EQ(key_of(c, t).rfind("ratio | 0 |", 0), 0u) << key_of(c, t);
+  EXPECT_EQ(key_of(c, t).rfind("synthesis.ratio | 0 |", 0), 0u) << key_of(c, t);
   t.ratio = -2.0;
-  EXPECT_EQ(key_of(c, t).rfind("ratio | -2 |", 0), 0u) << key_of(c, t);
+  EXPECT_EQ(key_of(c, t).rfind("synthesis.ratio | -2 |", 0), 0u) << key_of(c, t);
   t.ratio = 1.0;
   t.lash = 0.1;
-  EXPECT_EQ(key_of(c, t).rfind("ramp_deg", 0), 0u) << key_of(c, t);
+  EXPECT_EQ(key_of(c, t).rfind("synthesis.ramp_deg", 0), 0u) << key_of(c, t);
   t.ramp_deg = 120;  // two ramps of 120° on a 210° closed valve
-  EXPECT_EQ(key_of(c, t).rfind("ramp_deg", 0), 0u) << key_of(c, t);
+  EXPECT_EQ(key_of(c, t).rfind("synthesis.ramp_deg", 0), 0u) << key_of(c, t);
   // A finger whose valve end cannot reach 9 mm: ℓ_v (1 − sin ψ₀) = 12 (1 − sin 30°) = 6.
   CamSpec f = roller_finger(40, 18, 30, 8, 12);
   ValveTrainOptions tf;
@@ -265,5 +265,5 @@ TEST(CamSynthesis, BadTrainsNameKeyAndRule) {
   EXPECT_EQ(m.rfind("cam.law", 0), 0u) << m;
   EXPECT_NE(m.find("reach"), std::string::npos) << m;
   tf.valve_end_angle_deg = 95;
-  EXPECT_EQ(key_of(f, tf).rfind("valve_end_angle_deg", 0), 0u) << key_of(f, tf);
+  EXPECT_EQ(key_of(f, tf).rfind("synthesis.valve_end_angle_deg", 0), 0u) << key_of(f, tf);
 }

@@ -43,7 +43,7 @@ inline const std::string kCamKeys =
     "valve_arm, land_on_breaks, width, youngs_modulus, poisson_ratio, "
     "follower_youngs_modulus, follower_poisson_ratio, friction_coefficient, friction_static_coefficient, "
     "friction_stribeck_speed, roller_slip";
-inline const std::string kTopKeys = "title, cam, follower, spring, contact, solver, run, jump, criteria, lubricant, camshaft, nodes, elements, contacts";
+inline const std::string kTopKeys = "title, cam, follower, spring, contact, solver, run, jump, criteria, lubricant, camshaft, synthesis, nodes, elements, contacts";
 
 
 }  // namespace scene_test
