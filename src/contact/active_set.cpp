@@ -1,4 +1,7 @@
-// camdyn — the contact LCP with the minimal-norm split (active_set.hpp has the maths).
+// camdyn — the contact LCP with the minimal-norm split (active_set.hpp has the maths). When
+// the whole set is not the answer, W is split into the blocks of its non-zeros (contacts
+// that share no unknown) and each block is its own LCP: the supports are enumerated per
+// block (up to kMaxEnumerated contacts each), and the smallest ‖F‖ is the blocks' together.
 #include "contact/active_set.hpp"
 
 #include <Eigen/Dense>
