@@ -61,3 +61,25 @@ def test_camshaft_curves_are_the_stations_angles(i4_run, plot_module):
         w = dict(windups)[name]
         assert abs(w - 1e3 * (c["u_shaft_0"] - c["u_shaft_%d" % station])).max() < 1e-9
     assert abs(torque).max() > 0.1  # the valve springs load the drive
+
+
+def test_camshaft_report_section(i4_run, plot_module):
+    """camdyn report's Camshaft section states the drive torque's range and each cam's largest
+    wind-up as the history has them, and the frequencies with the trains attached."""
+    import importlib.util as iu
+    import json
+    import sys
+
+    sys.path.insert(0, str(SRC / "scripts"))
+    spec = iu.spec_from_file_location("camdyn_report", SRC / "scripts" / "camdyn_report.py")
+    rep = iu.module_from_spec(spec)
+    spec.loader.exec_module(rep)
+    _, c = plot_module.read_csv(str(i4_run / "history.csv"))
+    s = json.load(open(i4_run / "summary.json"))
+    h = rep.camshaft_html(s, c)
+    assert "<h2>Camshaft</h2>" in h
+    assert "drive torque %s … %s" % (rep.fmt(float(c["drive_torque"].min())), rep.fmt(float(c["drive_torque"].max()))) in h
+    w = c["windup_cam7"]
+    assert "cam7: largest wind-up %s mrad" % rep.fmt(1e3 * float(w[int(np.argmax(np.abs(w)))])) in h
+    assert "natural frequencies with the trains attached" in h
+    assert rep.camshaft_html(s, {"theta": c["theta"]}) == ""
