@@ -12,6 +12,9 @@
                            with run.valve_node (a lift_deviation column) also:
                            DIR/lift_deviation.png     valve lift − kinematic lift vs cam angle,
                                                       one line per revolution
+                           with a [camshaft] (drive_torque, windup_cam<i> columns) also:
+                           DIR/camshaft.png           drive torque and every cam's wind-up
+                                                      against the cam angle θ(t)
     camdyn_plot.py cam DIR [--speed REV_S]
         DIR/cam.csv     -> DIR/cam_profile.png        the profile in the cam frame
                            DIR/cam_kinematics.png     lift, velocity, acceleration vs cam angle
@@ -183,6 +186,36 @@ def plot_run(d, zoom=None):
         plot_network(d, c, title)
     if "lift_deviation" in c and "theta" in c:
         plot_lift_deviation(d, c, title)
+    if "drive_torque" in c:
+        plot_camshaft(d, c, title)
+
+
+def camshaft_curves(c):
+    """A camshaft run's curves: the cam angle θ(t) that [cam] prescribes [deg] (the crank's
+    mean angle), the drive torque, and each cam's wind-up against the drive station [mrad] as
+    (name, values), in cam order."""
+    drive_deg = np.degrees(c["theta"])
+    cams = sorted((k for k in c if k.startswith("windup_cam")), key=lambda k: int(k[len("windup_cam"):]))
+    return drive_deg, c["drive_torque"], [(k[len("windup_"):], 1e3 * c[k]) for k in cams]
+
+
+def plot_camshaft(d, c, title=""):
+    """DIR/camshaft.png: the drive torque and every cam's wind-up against the prescribed cam
+    angle over the run."""
+    deg, torque, windups = camshaft_curves(c)
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    a1.plot(deg, torque, "-", lw=1.0)
+    a1.set_ylabel("drive torque")
+    a1.set_title(("Camshaft: drive torque and wind-up\n" + title).strip())
+    a1.grid(True, alpha=0.3)
+    for name, w in windups:
+        a2.plot(deg, w, "-", lw=0.9, label=name)
+    a2.set_xlabel("cam angle θ(t) [deg]")
+    a2.set_ylabel("wind-up against the drive [mrad]")
+    a2.grid(True, alpha=0.3)
+    if 0 < len(windups) <= 16:
+        a2.legend(loc="best", fontsize=7, ncol=2)
+    save(fig, os.path.join(d, "camshaft.png"))
 
 
 def plot_lift_deviation(d, c, title=""):

@@ -256,6 +256,31 @@ def spectra_html(d):
             "(camdyn spectrum DIR --column NAME).</p>" % "".join(out))
 
 
+def camshaft_html(s, c):
+    """A [camshaft] run (history.csv has drive_torque): the drive torque's range, each cam's
+    largest wind-up against the drive station, and the model's frequency lines (summary.json
+    model.network)."""
+    if "drive_torque" not in c:
+        return ""
+    import numpy as np
+
+    tq = c["drive_torque"]
+    items = ["drive torque %s … %s" % (fmt(float(np.min(tq))), fmt(float(np.max(tq))))]
+    cams = sorted((k for k in c if k.startswith("windup_cam")), key=lambda k: int(k[len("windup_cam"):]))
+    for k in cams:
+        w = c[k]
+        i = int(np.argmax(np.abs(w)))
+        items.append("%s: largest wind-up %s mrad at %s" % (html.escape(k[len("windup_"):]), fmt(1e3 * float(w[i])),
+                                                           angle(np.degrees(c["theta"][i]))))
+    model = s.get("model") if isinstance(s.get("model"), dict) else {}
+    for line in model.get("network", []) if isinstance(model.get("network"), list) else []:
+        if "frequenc" in str(line):
+            items.append(html.escape(str(line)))
+    return "<h2>Camshaft</h2><ul>%s</ul><p class='note'>Wind-up: the drive station's angle − the cam's " \
+           "station's angle (&gt; 0: the cam lags). Torque in N m (SI scenes).</p>" % "".join(
+               "<li>%s</li>" % x for x in items)
+
+
 def criteria_html(crit):
     """The acceptance criteria of a run as a traffic-light table."""
     if not isinstance(crit, list) or not crit:
@@ -284,6 +309,8 @@ def run_report(d, reuse):
     figs += ["displacement.png", "contact_force.png", "contact_force_zoom.png"]
     if "lift_deviation" in c:
         figs.append("lift_deviation.png")
+    if "drive_torque" in c:
+        figs.append("camshaft.png")
     if not (reuse and all(os.path.isfile(os.path.join(d, f)) for f in figs)):
         cp.plot_run(d)
 
@@ -354,6 +381,7 @@ def run_report(d, reuse):
                              imp, "s" if imp != 1 else "", fmt(s.get("max_impact_velocity"), 3),
                              angle(s.get("max_impact_theta_deg")), fmt(s.get("max_contact_force")),
                              fmt(s.get("min_contact_force")), angle(s.get("min_force_theta_deg"))))
+    words.append(camshaft_html(s, c))
     words.append(designer_html(s))
     words.append(criteria_html(s.get("criteria")))
     words.append(spectra_html(d))

@@ -1,4 +1,7 @@
-// camdyn — the contact LCP with the minimal-norm split (active_set.hpp has the maths).
+// camdyn — the contact LCP with the minimal-norm split (active_set.hpp has the maths). When
+// the whole set is not the answer, W is split into the blocks of its non-zeros (contacts
+// that share no unknown) and each block is its own LCP: the supports are enumerated per
+// block (up to kMaxEnumerated contacts each), and the smallest ‖F‖ is the blocks' together.
 #include "contact/active_set.hpp"
 
 #include <Eigen/Dense>
@@ -96,6 +99,49 @@ ContactLcpResult solve_contact_lcp(const Eigen::MatrixXd& W, const Eigen::Vector
     r.F = best.F;
     r.w = best.w;
     r.ok = true;
+    return r;
+  }
+  // W block-diagonal after a permutation (contacts that share no unknown: a camshaft's cams on
+  // different stations of a lumped shaft, separate trains): one LCP per connected block of W's
+  // non-zeros. The smallest ‖F‖ is the blocks' smallest ones together.
+  std::vector<int> block(std::size_t(k), -1);
+  int blocks = 0;
+  for (int s0 = 0; s0 < k; ++s0) {
+    if (block[std::size_t(s0)] >= 0) continue;
+    std::vector<int> stack{s0};
+    block[std::size_t(s0)] = blocks;
+    while (!stack.empty()) {
+      const int i = stack.back();
+      stack.pop_back();
+      for (int j = 0; j < k; ++j)
+        if (block[std::size_t(j)] < 0 && (W(i, j) != 0.0 || W(j, i) != 0.0)) {
+          block[std::size_t(j)] = blocks;
+          stack.push_back(j);
+        }
+    }
+    ++blocks;
+  }
+  if (blocks > 1) {
+    r.F.setZero(k);
+    r.w.resize(k);
+    r.ok = true;
+    for (int c = 0; c < blocks; ++c) {
+      std::vector<int> idx;
+      for (int j = 0; j < k; ++j)
+        if (block[std::size_t(j)] == c) idx.push_back(j);
+      const int kc = int(idx.size());
+      Eigen::MatrixXd Wc(kc, kc);
+      Eigen::VectorXd bc(kc);
+      for (int i = 0; i < kc; ++i) {
+        bc[i] = b[idx[std::size_t(i)]];
+        for (int j = 0; j < kc; ++j) Wc(i, j) = W(idx[std::size_t(i)], idx[std::size_t(j)]);
+      }
+      const ContactLcpResult rc = solve_contact_lcp(Wc, bc);
+      r.ok = r.ok && rc.ok;
+      for (int i = 0; i < kc; ++i) r.F[idx[std::size_t(i)]] = rc.F[i];
+    }
+    r.w = W * r.F + b;
+    if (!r.ok) r.F.setZero(k), r.w = b;
     return r;
   }
   if (k <= kMaxEnumerated) {
