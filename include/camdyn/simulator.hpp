@@ -115,17 +115,18 @@ struct ElementResult {
 
 /// Results of one contact of a network or user follower (summary.json
 /// "contacts", FullReport, Python). Angles: cam degrees in [0, 360); NaN (null) when the
-/// thing did not happen. The lash take-up window: the output rows where the cam's lift X
+/// thing did not happen. The lash take-up window: the cam angles where the cam's lift X
 /// lies between the lowest and the highest take-up level on the path from the cam, each
 /// widened by 1 % of the lift (the levels: every cam contact's clearance and the cam lift at
 /// which each lash contact reached from a cam contact closes, through levers and rigid
 /// links; docs/contacts.md): the load passes between the cam, the lashes and the stops
-/// there, the forces fall to zero by design; min_force leaves those rows out, and a
+/// there, the forces fall to zero by design; min_force leaves that window out, and a
 /// separation inside it is no loss of margin.
 struct ContactResult {
   std::string name;
-  /// Smallest force while closed over the output rows outside the lash take-up window (0
-  /// if the contact separated outside it); NaN if never closed there.
+  /// Smallest force while closed outside the lash take-up window, located inside each
+  /// accepted step (docs/contacts.md "Extremes inside the steps": independent of the output
+  /// grid; 0 if the contact separated outside it); NaN if never closed there.
   double min_force = NAN;
   double min_force_theta_deg = NAN;
   double max_impact_velocity = 0;     ///< largest approach speed at its impacts
@@ -201,7 +202,11 @@ struct RunContract {
   std::vector<std::string> violations;
   /// Largest |cam work| and |dissipated energy| over the run: the energy ledger's scale.
   double energy_scale = 0;
-  /// The energy residual the contract allows: min(max(100·rtol, 1e-5), 0.01)·energy_scale.
+  /// Largest |stored energy| (kinetic + potential, preloads included) at the run's start and
+  /// end: the ledger's round-off scale (W − ΔE − D subtracts energies of this size).
+  double energy_magnitude = 0;
+  /// The energy residual the contract allows: min(max(100·rtol, 1e-5), 0.01)·energy_scale,
+  /// but at least the round-off 1000ε·energy_magnitude (a run in which almost nothing moves).
   double energy_bound = 0;
   /// Warnings of a finished run (the contract still holds): one line per contact with
   /// flights the gap tolerance cannot resolve, naming contact.tol_u and the numbers.
@@ -240,7 +245,7 @@ struct SeatLanding {
   double t = 0, theta_deg = NAN;
   double velocity = 0;        ///< approach speed of the landing impact
   long bounces = 0;           ///< re-impacts after it before the cam lifts the node again
-  double bounce_height = 0;   ///< largest seat gap (output rows) between consecutive impacts
+  double bounce_height = 0;   ///< largest seat gap between consecutive impacts (the apex inside the flight)
                               ///< of this landing (0: no bounce)
   double max_velocity = 0;    ///< largest approach speed among the landing and its bounces
   double max_velocity_theta_deg = NAN;
@@ -249,7 +254,7 @@ struct SeatLanding {
 
 /// Extremes of the valve's dynamic minus kinematic lift over one cam revolution (revolution
 /// k = 0, 1, … holds the cam progress from the run's start in (360°k, 360°(k + 1)], the first
-/// also the start), over the output rows.
+/// also the start), located inside each accepted step.
 struct LiftDeviationRevolution {
   long revolution = 0;
   double min = NAN, min_theta_deg = NAN, max = NAN, max_theta_deg = NAN;
@@ -358,8 +363,9 @@ struct Summary {
   /// not hold is a result not to be trusted: the CLI exits 3.
   RunContract contract;
   // ---- oil film, lift deviation, acceleration criteria (issue 38; NaN/empty when not asked)
-  /// [lubricant]: least EHL film thickness at the cam contact over the output rows while in
-  /// contact (the history's film_thickness) and its cam angle; λ = film / roughness there.
+  /// [lubricant]: least EHL film thickness at the cam contact while in contact (the
+  /// history's film_thickness), located inside each accepted step, and its cam angle;
+  /// λ = film / roughness there.
   double min_film_thickness = NAN, min_film_theta_deg = NAN;
   double min_lambda = NAN;
   /// run.valve_node: the lift deviation's extremes per revolution (the history's

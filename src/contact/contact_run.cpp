@@ -484,6 +484,7 @@ Summary ContactRun::run() {
   if (!std::isfinite(sum_.min_gap)) sum_.min_gap = 0.0;
   const double E = mk_.kinetic_energy(y_.data() + n_) + potential(t_, y_);
   sum_.energy_residual = std::abs(work_ - (E - E0_) - dissipated_);
+  sum_.contract.energy_magnitude = std::max(std::abs(E0_), std::abs(E));
   designer_.finish(sum_);
   analysis_.finish(sum_);
   flights_.finish(sum_);

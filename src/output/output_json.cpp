@@ -373,6 +373,7 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
     c.boolean("held", s.contract.held);
     c.strs("violations", s.contract.violations);
     c.num("energy_scale", s.contract.energy_scale);
+    c.num("energy_magnitude", s.contract.energy_magnitude);
     c.num("energy_bound", s.contract.energy_bound);
     c.strs("warnings", s.contract.warnings);
     c.num("flight_threshold", s.contract.flight_threshold);

@@ -65,11 +65,12 @@ void check_contract(const Scene& sc, Summary& s) {
   }
   // 2. The energy ledger: W − ΔE − D closes to the documented bound.
   const double frac = std::min(std::max(kEnergyPerRtol * sc.solver.rtol, kEnergyFloor), kEnergyCap);
-  c.energy_bound = frac * c.energy_scale;
+  c.energy_bound = std::max(frac * c.energy_scale, kEnergyRoundoff * kEps * c.energy_magnitude);
   if (c.energy_scale > 0 && s.energy_residual > c.energy_bound) {
     c.violations.push_back("energy residual " + g(s.energy_residual) + " > " + g(frac) +
                            " of the energy scale " + g(c.energy_scale) + " (bound min(max(" + g(kEnergyPerRtol) +
-                           "·rtol, " + g(kEnergyFloor) + "), " + g(kEnergyCap) + ") of it = " + g(c.energy_bound) +
+                           "·rtol, " + g(kEnergyFloor) + "), " + g(kEnergyCap) + ") of it, at least the round-off " +
+                           g(kEnergyRoundoff * kEps * c.energy_magnitude) + " = " + g(c.energy_bound) +
                            "): the steps did not follow the solution (tighten solver.rtol, now " +
                            g(sc.solver.rtol) + ")");
   }
