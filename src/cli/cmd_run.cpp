@@ -93,7 +93,8 @@ class CliObserver : public StreamingHistoryWriter {
 void remove_earlier_outputs(const std::string& dir) {
   static const char* const kNames[] = {
       "history.csv", "events.csv", "summary.json", "report.html", "displacement.png",
-      "contact_force.png", "contact_force_zoom.png", "network_motion.png", "network_forces.png"};
+      "contact_force.png", "contact_force_zoom.png", "network_motion.png", "network_forces.png",
+      "lift_deviation.png", "camshaft.png"};
   std::error_code ec;
   for (const char* name : kNames) {
     const fs::path p = join_path(dir, name);
