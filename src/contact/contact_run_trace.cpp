@@ -31,6 +31,7 @@ void ContactRun::trace_step(double t0, double t1, const StateFn& state, const Fo
     trace_F_.setZero(m_);
     forces(tau, trace_y_, cm, trace_F_);
     s.X = cm.X;
+    s.Xdot = cm.Xdot;
     s.forces.assign(trace_F_.data(), trace_F_.data() + m_);
     s.gaps.resize(std::size_t(m_));
     s.gap_rates.resize(std::size_t(m_));

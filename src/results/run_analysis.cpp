@@ -155,7 +155,7 @@ void RunAnalysis::row(double t, double theta, const CamPoint& p, double X, doubl
     out.push_back(d);
     if (!traced_) keep_deviation(theta, d);
   }
-  if (!std::isnan(prev_X_))
+  if (!traced_ && !std::isnan(prev_X_))
     for (double L : path_.take_up_levels()) {
       if (!(L > 0) || (prev_X_ - L) * (X - L) > 0 || prev_X_ == X) continue;
       const double w = (L - prev_X_) / (X - prev_X_);
@@ -236,6 +236,25 @@ void RunAnalysis::step_inside(const std::vector<StepSample>& s, const StepProbe&
       if (!e.found || sample) continue;
       probe(e.x, tmp);
       keep_deviation(tmp.theta, e.value);
+    }
+  }
+  // the ramp velocity: the cam's |Ẋ| where its lift X(t) crosses a take-up level inside the
+  // step (the root of X − L on the step's cam motion, not between rows)
+  for (double L : path_.take_up_levels()) {
+    if (!(L > 0)) continue;
+    for (int k = 0; k + 1 < n; ++k) {
+      const double d0 = s[k].X - L, d1 = s[k + 1].X - L;
+      if (d0 * d1 > 0.0 || d0 == d1) continue;
+      const double sg = d0 > 0.0 || d1 < 0.0 ? 1.0 : -1.0;  // sg·(X − L) falls through zero
+      const double xr = d0 == 0.0 ? x[k] : d1 == 0.0 ? x[k + 1]
+                        : falling_root([&](double xx) { probe(xx, tmp); return sg * (tmp.X - L); },
+                                       x[k], sg * d0, x[k + 1], sg * d1);
+      probe(xr, tmp);
+      const double v = std::abs(tmp.Xdot);
+      if (std::isnan(ramp_) || v > ramp_) {
+        ramp_ = v;
+        ramp_theta_ = angle_deg_mod360(tmp.theta);
+      }
     }
   }
   for (Seat& seat : seats_) {

@@ -14,7 +14,8 @@
 //                between the two impacts: the apex of the flight located inside the step
 //                (the root of the gap rate on the step's interpolant; the rows for a method
 //                that does not trace its steps);
-//   ramp velocity  the cam's |Ẋ| where its lift crosses a take-up level > 0 (linear between rows).
+//   ramp velocity  the cam's |Ẋ| where its lift crosses a take-up level > 0 (the root of
+//                X(t) − L inside each traced step; linear between rows only when not traced).
 #pragma once
 
 #include <memory>

@@ -25,6 +25,7 @@ struct StepSample {
   double theta = 0;       ///< cam angle [rad] (just inside the step at its ends)
   double omega = 0;       ///< cam speed [rad/s]
   double X = 0;           ///< the cam's lift above its base circle
+  double Xdot = 0;        ///< its rate dX/dt
   double F = 0;           ///< the primary (cam) contact's force, 0 unless held over the step
   double Fc = 0;          ///< Σ of the cam contacts' forces
   bool held = false;      ///< the primary contact is held over the step
