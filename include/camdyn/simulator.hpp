@@ -202,8 +202,9 @@ struct RunContract {
   std::vector<std::string> violations;
   /// Largest |cam work| and |dissipated energy| over the run: the energy ledger's scale.
   double energy_scale = 0;
-  /// Largest |stored energy| (kinetic + potential, preloads included) at the run's start and
-  /// end: the ledger's round-off scale (W − ΔE − D subtracts energies of this size).
+  /// The ledger's round-off scale: the largest of |stored energy| at the run's start and end
+  /// and the largest contact force times the cam's lift (the energies whose differences and
+  /// integrals the ledger W − ΔE − D adds up).
   double energy_magnitude = 0;
   /// The energy residual the contract allows: min(max(100·rtol, 1e-5), 0.01)·energy_scale,
   /// but at least the round-off 1000ε·energy_magnitude (a run in which almost nothing moves).

@@ -484,7 +484,8 @@ Summary ContactRun::run() {
   if (!std::isfinite(sum_.min_gap)) sum_.min_gap = 0.0;
   const double E = mk_.kinetic_energy(y_.data() + n_) + potential(t_, y_);
   sum_.energy_residual = std::abs(work_ - (E - E0_) - dissipated_);
-  sum_.contract.energy_magnitude = std::max(std::abs(E0_), std::abs(E));
+  sum_.contract.energy_magnitude =
+      std::max({std::abs(E0_), std::abs(E), sum_.max_contact_force * cam_.lift()});
   designer_.finish(sum_);
   analysis_.finish(sum_);
   flights_.finish(sum_);

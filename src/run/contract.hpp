@@ -20,9 +20,10 @@ constexpr double kTolUOfLift = 1e-2;
 constexpr double kEnergyPerRtol = 100.0;
 constexpr double kEnergyFloor = 1e-5;
 constexpr double kEnergyCap = 1e-2;
-/// ... and never below the round-off of the ledger's subtraction: kEnergyRoundoff·ε times the
-/// largest stored energy (a run in which almost nothing moves: OHV train at θ₀ = 20° over
-/// 1.5 ms, scale 8.6e-13 J, residual 3.7e-15 J of stored energies ≈ 1 J).
+/// ... and never below round-off: kEnergyRoundoff·ε times RunContract::energy_magnitude (a
+/// run in which almost nothing moves — the OHV train at θ₀ = 20° over 1.5 ms: scale 8.6e-13 J,
+/// residual 3.7e-15 J, bound 8.6e-18 J without the floor; the seat's 330 N over the cam's
+/// 6 mm lift makes the floor 4.4e-13 J).
 constexpr double kEnergyRoundoff = 1000.0;
 constexpr double kEps = 2.220446049250313e-16;
 /// More rejected than this fraction of all attempted steps: the error test does not control the step.

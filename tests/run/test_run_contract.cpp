@@ -113,6 +113,22 @@ TEST(RunContract, ExamplesAtTheirOwnTolerancesHoldIt) {
   }
 }
 
+TEST(RunContract, ARunInWhichAlmostNothingMovesHoldsIt) {
+  // The OHV train started on its base circle at 20° for 1.5 ms: the lifter rests on the cam
+  // (15 N), the work is 8.6e-13 J and the residual 3.7e-15 J — round-off, not an error (the
+  // relative bound alone, 1e-5 of the scale, is 8.6e-18 J and failed it). The floor
+  // 1000ε·(largest force, the seat's 330 N, × the cam's 6 mm lift) = 4.4e-13 J holds it (the
+  // residual is 1e-2 of it); in a run that moves the
+  // relative bound is far above it (LooseErkOnCaseB2… above: exactly 0.01 of the scale).
+  Simulator sim(load_scene_file(example("ohv_pushrod_train.toml"), {"cam.theta0_deg=20", "run.t_end=0.0015"}));
+  const Summary sum = sim.run();
+  ASSERT_TRUE(sum.finished) << sum.message;
+  EXPECT_TRUE(sum.contract.held) << (sum.contract.violations.empty() ? "" : sum.contract.violations[0]);
+  EXPECT_NEAR(sum.contract.energy_magnitude, sum.max_contact_force * 0.006, 1e-5 * sum.contract.energy_magnitude);
+  EXPECT_LT(sum.contract.energy_bound, 1e-12);  // a floor at round-off, not a loose bound
+  EXPECT_LE(sum.energy_residual, sum.contract.energy_bound);
+}
+
 TEST(RunContract, CliExitsThreeAndSaysWhichKeyToTighten) {
   // The same loose run over its first 0.1 s (residual 392 J against a bound of 37.6 J):
   // exit 3, summary.json "contract": {"held": false}, stderr names solver.rtol.
