@@ -21,21 +21,12 @@
 
 #include <arkode/arkode_arkstep.h>
 #include <arkode/arkode_erkstep.h>
-#include <cvode/cvode.h>
-#include <cvode/cvode_proj.h>
-#include <nvector/nvector_serial.h>
-#include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunmatrix/sunmatrix_dense.h>
 
-#include <Eigen/Dense>
-#include <cmath>
-#include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
-#include "engine/sparse_newton.hpp"
-#include "engine/sundials_raii.hpp"
+#include "engine/ode_engine_base.hpp"
 
 namespace camdyn {
 
@@ -43,191 +34,10 @@ double OdeEngine::wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) con
   return detail::wrms_norm(err, y, spec_.rtol, spec_.atol);
 }
 
-namespace {
+/// The CVODE engine (cvode_ode.cpp).
+std::unique_ptr<OdeEngine> make_cvode_ode(const SolverSpec& spec, OdeSystem system, bool trial);
 
-using detail::ContextHolder;
-using detail::LS;
-using detail::Mat;
-using detail::not_null;
-using detail::kTrialMaxSteps;
-using detail::trial_min_step;
-using detail::NVec;
-
-using detail::ArkDel;
-using detail::CvDel;
-using detail::ErkDel;
-using detail::make_nvec;
-inline Eigen::Map<Eigen::VectorXd> map(N_Vector v) {
-  return Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(v), N_VGetLength(v));
-}
-
-// Trial steps: SUNDIALS' error test must never reject (our own test acts). The tolerances
-// are the spec's scaled by kTrialScale/rtol, so that every weighted norm inside SUNDIALS
-// is the native one divided by a constant: the Newton test (coefficient scaled alike) and
-// the difference-quotient increments behave as in native mode, the error test never fails.
-constexpr double kHugeTol = 1e30;
-// With a projection, ERK/DIRK are reset after every step: the first step after a reset may
-// grow by ARKODE's normal factor only (its default for a first step is 10⁴).
-constexpr double kGrowthAfterReset = 20.0;
-
-// Counter of a SUNDIALS integrator read as a running delta (robust to resets that zero it).
-struct Counter {
-  long base = 0;
-  long delta(long now) {
-    const long d = now >= base ? now - base : now;
-    base = now;
-    return d;
-  }
-};
-
-// Shared state and callbacks of the three engines.
-class EngineBase : public OdeEngine {
- protected:
-  EngineBase(const SolverSpec& spec, OdeSystem sys, bool trial)
-      : OdeEngine(spec, std::move(sys)), trial_(trial) {
-    if (n_ < 1) throw std::invalid_argument("OdeEngine: system size must be ≥ 1");
-    if (!sys_.rhs) throw std::invalid_argument("OdeEngine: no right-hand side");
-    if (sys_.linear && !sys_.jacobian && !sys_.newton)
-      throw std::invalid_argument("OdeEngine: linear = true needs a jacobian or the sparse Newton structure");
-    if (sys_.newton && 2 * sys_.newton->M->rows() + sys_.newton->states != n_)
-      throw std::invalid_argument("OdeEngine: the sparse Newton structure's size (2n + states) is not the system's");
-    y_ = make_nvec(n_, ctx_.ctx);
-    tmp_ = make_nvec(n_, ctx_.ctx);
-    local_error_ = Eigen::VectorXd::Zero(n_);
-  }
-
-  /// check_flag, with the message of an exception a callback caught (if any) appended.
-  int check(int flag, const char* call) {
-    if (flag < 0 && !callback_error_.empty()) {
-      std::string msg = std::string(call) + " [callback threw: " + callback_error_ + "]";
-      callback_error_.clear();
-      sundials_message_.clear();
-      throw SundialsError(msg, flag);
-    }
-    callback_error_.clear();
-    if (flag < 0 && !sundials_message_.empty()) {
-      const std::string msg = std::string(call) + " [" + sundials_message_ + "]";
-      sundials_message_.clear();
-      return check_flag(flag, msg.c_str());
-    }
-    return check_flag(flag, call);
-  }
-  void caught(const char* what) {
-    if (callback_error_.empty()) callback_error_ = what;
-  }
-  // A callback's body: 0, or −1 with the exception's message kept for check().
-  template <class Body>
-  static int guarded(void* ud, Body body) {
-    auto* self = static_cast<EngineBase*>(ud);
-    try {
-      body(self);
-      return 0;
-    } catch (const std::exception& e) {
-      self->caught(e.what());
-    } catch (...) {
-      self->caught("unknown exception");
-    }
-    return -1;
-  }
-  void set_root_count(int n, RootFn fn) {
-    if (n < 0) throw std::invalid_argument("OdeEngine::set_roots: n < 0");
-    if (n > 0 && !fn) throw std::invalid_argument("OdeEngine::set_roots: no function");
-    root_fn_ = n > 0 ? std::move(fn) : RootFn();
-    root_info_.assign(std::size_t(n), 0);
-    hit_root_ = false;
-  }
-  void fetch_root_info(int flag, int root_return, int (*get)(void*, int*), void* mem, const char* call) {
-    hit_root_ = flag == root_return;
-    std::fill(root_info_.begin(), root_info_.end(), 0);
-    if (hit_root_ && !root_info_.empty()) check(get(mem, root_info_.data()), call);
-  }
-
-  // ERK/DIRK native mode, after a step that ended at tret with state y_: the projected
-  // state in y_; true if it moved (the stepper must restart there).
-  bool project_step_end(double tret) {
-    if (!proj_) return false;
-    corr_.setZero(n_);
-    proj_(tret, N_VGetArrayPointer(y_.get()), corr_.data());
-    if (!(corr_.cwiseAbs().maxCoeff() > 0.0)) return false;
-    map(y_.get()) += corr_;
-    return true;
-  }
-
-  // The sparse Schur path (OdeSystem::newton): our own linear solver; the integrator's
-  // linear-system function hands over γ and the state.
-  void make_sparse_solver() {
-    const bool dense = resolve_linear_solver(spec_, int(sys_.newton->M->rows())) == LinearSolverKind::Dense;
-    newton_ = std::make_unique<detail::SparseNewtonSolver>(*sys_.newton, dense, stats_);
-    cls_ = std::make_unique<detail::CustomLinearSolver>(
-        ctx_.ctx, [this] { newton_->setup(); }, [this](double* x) { newton_->solve(x); });
-  }
-  // ARKLsLinSysFn / CVLsLinSysFn (ARKODE's has the mass matrix M in addition).
-  static int ark_linsys(double t, N_Vector y, N_Vector, SUNMatrix, SUNMatrix, sunbooleantype, sunbooleantype* jcur,
-                        double gamma, void* ud, N_Vector, N_Vector, N_Vector) {
-    return linsys(t, y, jcur, gamma, ud);
-  }
-  static int cv_linsys(double t, N_Vector y, N_Vector, SUNMatrix, sunbooleantype, sunbooleantype* jcur, double gamma,
-                       void* ud, N_Vector, N_Vector, N_Vector) {
-    return linsys(t, y, jcur, gamma, ud);
-  }
-  static int linsys(double t, N_Vector y, sunbooleantype* jcur, double gamma, void* ud) {
-    return guarded(ud, [&](EngineBase* self) {
-      self->newton_->prepare(t, N_VGetArrayPointer(y), gamma);
-      *jcur = SUNTRUE;
-    });
-  }
-
-  static int rhs_cb(double t, N_Vector y, N_Vector ydot, void* ud) {
-    return guarded(ud, [&](EngineBase* self) {
-      ++self->stats_.rhs_evals;
-      self->sys_.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-    });
-  }
-  static int root_cb(double t, N_Vector y, double* g, void* ud) {
-    return guarded(ud, [&](EngineBase* self) { self->root_fn_(t, N_VGetArrayPointer(y), g); });
-  }
-  // ARKLsJacFn and CVLsJacFn have the same signature.
-  static int jac_cb(double t, N_Vector y, N_Vector, SUNMatrix Jac, void* ud, N_Vector, N_Vector, N_Vector) {
-    return guarded(ud, [&](EngineBase* self) {
-      Eigen::MatrixXd& J = self->J_;
-      J.setZero(self->n_, self->n_);
-      self->sys_.jacobian(t, N_VGetArrayPointer(y), J);
-      if (J.rows() != self->n_ || J.cols() != self->n_)
-        throw std::runtime_error("OdeSystem::jacobian resized its matrix");
-      // Both column-major with leading dimension n.
-      std::memcpy(SUNDenseMatrix_Data(Jac), J.data(), sizeof(double) * std::size_t(self->n_) * std::size_t(self->n_));
-    });
-  }
-
-  // The integrator's linear-solver setups up to now (nls): the factorisations of its own
-  // dense solver. The sparse Schur path counts its own factorisations (SparseNewtonSolver::
-  // setup refactors only when γ or the contact derivatives changed): the integrator calls
-  // its setup at every step after a reset — every Lee trial step — mostly with the same γ.
-  void count_setups(long nls) {
-    const long d = setups_.delta(nls);
-    if (!newton_) stats_.lin_setups += d;
-  }
-  // The integrator's Newton iterations, Newton convergence failures and error-test failures
-  // up to now (running totals since its last reset): counted, or (count = false) the base.
-  void count_newton(long nni, long ncf, long netf, bool count = true) {
-    const long a = nni_.delta(nni), b = ncf_.delta(ncf), c = netf_.delta(netf);
-    if (!count) return;
-    stats_.nonlin_iters += a;
-    stats_.nonlin_conv_fails += b;
-    stats_.err_test_fails += c;
-  }
-
-  bool trial_;
-  ContextHolder ctx_;
-  NVec y_, tmp_;
-  Eigen::MatrixXd J_;
-  Eigen::VectorXd corr_;
-  std::unique_ptr<detail::SparseNewtonSolver> newton_;
-  std::unique_ptr<detail::CustomLinearSolver> cls_;
-  std::string callback_error_;
-  std::string sundials_message_;  ///< the last message of SUNDIALS' error handler
-  Counter steps_, setups_, nni_, ncf_, netf_;
-};
+namespace ode_impl {
 
 // ---------------------------------------------------------------- ERK ------------
 class ErkOde final : public EngineBase {
@@ -458,141 +268,18 @@ class DirkOde final : public EngineBase {
   std::unique_ptr<void, ArkDel> mem_;
 };
 
-// ---------------------------------------------------------------- CVODE ----------
-class CvodeOde final : public EngineBase {
- public:
-  CvodeOde(const SolverSpec& spec, OdeSystem sys, bool trial) : EngineBase(spec, std::move(sys), trial) {
-    if (!sys_.newton) {
-      A_.reset(not_null(SUNDenseMatrix(n_, n_, ctx_.ctx), "SUNDenseMatrix"));
-      ls_.reset(not_null(SUNLinSol_Dense(y_.get(), A_.get(), ctx_.ctx), "SUNLinSol_Dense"));
-    } else {
-      make_sparse_solver();
-    }
-    mem_.reset(not_null(CVodeCreate(CV_BDF, ctx_.ctx), "CVodeCreate"));
-    void* mem = mem_.get();
-    check(CVodeInit(mem, &EngineBase::rhs_cb, 0.0, y_.get()), "CVodeInit");
-    check(CVodeSetUserData(mem, this), "CVodeSetUserData");
-    check(CVodeSStolerances(mem, spec.rtol, spec.atol), "CVodeSStolerances");
-    check(CVodeSetMaxNumSteps(mem, trial ? kTrialMaxSteps : -1), "CVodeSetMaxNumSteps");
-    check(CVodeSetErrHandlerFn(mem, &detail::capture_sundials_message, &sundials_message_), "CVodeSetErrHandlerFn");
-    if (spec.max_step > 0) check(CVodeSetMaxStep(mem, spec.max_step), "CVodeSetMaxStep");
-    if (sys_.newton) {
-      check(CVodeSetLinearSolver(mem, cls_->ls(), cls_->placeholder()), "CVodeSetLinearSolver");
-      check(CVodeSetLinSysFn(mem, &EngineBase::cv_linsys), "CVodeSetLinSysFn");
-    } else {
-      check(CVodeSetLinearSolver(mem, ls_.get(), A_.get()), "CVodeSetLinearSolver");
-      if (sys_.jacobian) check(CVodeSetJacFn(mem, &EngineBase::jac_cb), "CVodeSetJacFn");
-    }
-    if (sys_.max_order > 0) check(CVodeSetMaxOrd(mem, sys_.max_order), "CVodeSetMaxOrd");
-    if (sys_.stability_limit_detection) check(CVodeSetStabLimDet(mem, SUNTRUE), "CVodeSetStabLimDet");
-  }
-  ~CvodeOde() override { mem_.reset(); }  // CVodeFree before the solver and matrix it uses
-  const char* name() const override { return "cvode-bdf"; }
-  int error_order() const override { return 2; }
-  bool estimates_error() const override { return false; }
+}  // namespace ode_impl
 
-  // [t, t + h] under CVODE's own error control, restarted from (t, y) (BDF history
-  // cannot be saved and restored through the API): the result is the same for the same
-  // (t, y, h), but not exactly affine in anything f depends on.
-  double step(double t, const Eigen::VectorXd& y, double h, Eigen::VectorXd& y_out) override {
-    void* mem = mem_.get();
-    map(y_.get()) = y;
-    check(CVodeReInit(mem, t, y_.get()), "CVodeReInit");
-    ++stats_.reinits;
-    check(CVodeSetInitStep(mem, first_h_ > 0 ? std::min(h, first_h_) : h), "CVodeSetInitStep");
-    check(CVodeSetStopTime(mem, t + h), "CVodeSetStopTime");
-    check(CVodeSetMinStep(mem, trial_min_step(t, h)), "CVodeSetMinStep");
-    steps_.base = 0;
-    setups_.base = 0;
-    count_newton(0, 0, 0, false);
-    double tret = t;
-    while (check(CVode(mem, t + h, y_.get(), &tret, CV_NORMAL), "CVode") == CV_ROOT_RETURN) {
-    }  // roots (if set) do not end a trial step
-    y_out = map(y_.get());
-    count();
-    double h0 = 0;
-    check(CVodeGetActualInitStep(mem, &h0), "CVodeGetActualInitStep");
-    first_h_ = 2.0 * h0;  // start the next restart near the first step that worked
-    local_error_.setZero();
-    return 0.0;
-  }
-  void reinit(double t, const Eigen::VectorXd& y) override {
-    void* mem = mem_.get();
-    map(y_.get()) = y;
-    check(CVodeReInit(mem, t, y_.get()), "CVodeReInit");  // zeroes CVODE's counters
-    check(CVodeSetInitStep(mem, spec_.initial_step), "CVodeSetInitStep");
-    check(CVodeSetMinStep(mem, 0.0), "CVodeSetMinStep");  // native stepping: no trial bound
-    ++stats_.reinits;
-    steps_.base = 0;
-    setups_.base = 0;
-    count_newton(0, 0, 0, false);
-    hit_root_ = false;
-  }
-  double advance(double tout, Eigen::VectorXd& y_out) override {
-    void* mem = mem_.get();
-    check(CVodeSetStopTime(mem, tout), "CVodeSetStopTime");
-    double tret = 0;
-    const int flag = check(CVode(mem, tout, y_.get(), &tret, CV_ONE_STEP), "CVode");
-    fetch_root_info(flag, CV_ROOT_RETURN, &CVodeGetRootInfo, mem, "CVodeGetRootInfo");
-    y_out = map(y_.get());
-    count();
-    return tret;
-  }
-  void set_projection(ProjFn fn) override {
-    void* mem = mem_.get();
-    if (fn && !projection_set_) {
-      check(CVodeSetProjFn(mem, &CvodeOde::project_cb), "CVodeSetProjFn");
-      check(CVodeSetProjErrEst(mem, SUNFALSE), "CVodeSetProjErrEst");
-      projection_set_ = true;
-    }
-    if (projection_set_) check(CVodeSetProjFrequency(mem, fn ? 1 : 0), "CVodeSetProjFrequency");
-    proj_ = std::move(fn);
-  }
-  void dense(double t, Eigen::VectorXd& y_out) override {
-    check(CVodeGetDky(mem_.get(), t, 0, tmp_.get()), "CVodeGetDky");
-    y_out = map(tmp_.get());
-  }
-  void set_roots(int n, RootFn fn) override {
-    set_root_count(n, std::move(fn));
-    check(CVodeRootInit(mem_.get(), n, n > 0 ? &EngineBase::root_cb : nullptr), "CVodeRootInit");
-  }
-
- private:
-  void count() {
-    long ns = 0, nls = 0;
-    check(CVodeGetNumSteps(mem_.get(), &ns), "CVodeGetNumSteps");
-    check(CVodeGetNumLinSolvSetups(mem_.get(), &nls), "CVodeGetNumLinSolvSetups");
-    stats_.steps += steps_.delta(ns);
-    count_setups(nls);
-    long nni = 0, ncf = 0, netf = 0;
-    check(CVodeGetNumNonlinSolvIters(mem_.get(), &nni), "CVodeGetNumNonlinSolvIters");
-    check(CVodeGetNumNonlinSolvConvFails(mem_.get(), &ncf), "CVodeGetNumNonlinSolvConvFails");
-    check(CVodeGetNumErrTestFails(mem_.get(), &netf), "CVodeGetNumErrTestFails");
-    count_newton(nni, ncf, netf);
-  }
-  static int project_cb(double t, N_Vector ycur, N_Vector corr, double, N_Vector, void* ud) {
-    return guarded(ud, [&](EngineBase* self) {
-      static_cast<CvodeOde*>(self)->proj_(t, N_VGetArrayPointer(ycur), N_VGetArrayPointer(corr));
-    });
-  }
-  Mat A_;
-  LS ls_;
-  std::unique_ptr<void, CvDel> mem_;
-  double first_h_ = 0;
-  bool projection_set_ = false;
-};
-
-}  // namespace
 
 std::unique_ptr<OdeEngine> OdeEngine::make(Integrator integrator, const SolverSpec& spec, OdeSystem system,
                                            bool trial) {
   switch (integrator) {
     case Integrator::ArkodeErk:
-      return std::make_unique<ErkOde>(spec, std::move(system), trial);
+      return std::make_unique<ode_impl::ErkOde>(spec, std::move(system), trial);
     case Integrator::ArkodeDirk:
-      return std::make_unique<DirkOde>(spec, std::move(system), trial);
+      return std::make_unique<ode_impl::DirkOde>(spec, std::move(system), trial);
     case Integrator::CvodeBdf:
-      return std::make_unique<CvodeOde>(spec, std::move(system), trial);
+      return make_cvode_ode(spec, std::move(system), trial);
     case Integrator::Ida:
       throw std::invalid_argument("OdeEngine: \"ida\" is a DAE integrator, not an OdeEngine");
   }
