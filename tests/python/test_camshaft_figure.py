@@ -6,7 +6,6 @@ u_shaft_0 up to those 0.2°; each cam's wind-up is the drive station's angle −
 the example's cams 0 and 1 sit on station 1, cams 6 and 7 on station 4.
 """
 
-import importlib.util
 import math
 import os
 import pathlib
@@ -18,15 +17,6 @@ import pytest
 
 SRC = pathlib.Path(os.environ.get("CAMDYN_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
 CLI = os.environ.get("CAMDYN_CLI") or str(SRC / "build" / "camdyn")
-
-
-@pytest.fixture(scope="module")
-def plot_module():
-    pytest.importorskip("matplotlib")
-    spec = importlib.util.spec_from_file_location("camdyn_plot", SRC / "scripts" / "camdyn_plot.py")
-    m = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(m)
-    return m
 
 
 @pytest.fixture(scope="module")

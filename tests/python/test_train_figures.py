@@ -9,7 +9,6 @@ the tappet rides the cam, so the curve equals the tappet's displacement u_tappet
 peak (180°) it is the table's 8 mm minus the clearance.
 """
 
-import importlib.util
 import math
 import os
 import pathlib
@@ -22,15 +21,6 @@ import pytest
 SRC = pathlib.Path(os.environ.get("CAMDYN_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
 CLI = os.environ.get("CAMDYN_CLI") or str(SRC / "build" / "camdyn")
 CLEARANCE = 0.0002  # the OHC example's cam contact
-
-
-@pytest.fixture(scope="module")
-def plot_module():
-    pytest.importorskip("matplotlib")
-    spec = importlib.util.spec_from_file_location("camdyn_plot", SRC / "scripts" / "camdyn_plot.py")
-    m = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(m)
-    return m
 
 
 @pytest.fixture(scope="module")
