@@ -28,6 +28,9 @@ void LeeLocated::run_method() {
         throw StepSizeUnderflow(h, trial_error_);  // naming the failed trials' cause
       }
     h_try = -1.0;
+    const int sep_target = relocating ? reloc_sep_ : -1;
+    const double sliver_of = reloc_from_h_;
+    reloc_sep_ = -1;
     if (hs <= 1e-14 * std::max(1.0, std::abs(t_))) throw StepSizeUnderflow(hs, trial_error_);
     const double t1 = (!relocating && hs == t_next - t_) ? t_next : t_ + hs;
     hs = t1 - t_;
@@ -83,6 +86,10 @@ void LeeLocated::run_method() {
     const double fc = err_c > 0 ? 0.9 * std::pow(err_c, -1.0 / pc) : 5.0;
     const double fac = std::min(5.0, std::max(0.2, std::min(fe, fc)));
     if (std::max(err_e, err_c) > 1.0) {
+      if (sep_target >= 0 && hs <= kSliver * sliver_of) {
+        release_now(sep_target);  // the separation's root is within round-off of t_
+        continue;
+      }
       ++sum_.rejected_steps;
       steps_.failed(hs);
       h = grid_step(hs * std::min(0.9, fac));
@@ -188,14 +195,14 @@ void LeeLocated::run_method() {
                           reloc_count_ > kMaxRelocations)) {
         // the held force is zero at the step's start (or within the located root's
         // resolution after kMaxRelocations relocations): release now
-        active_[who] = 0;
-        ++sum_.separations;
-        record_event(EventKind::Separation, who, 0.0);
-        settle_active(cam_at(t_));
-        slope_.setZero();
+        release_now(who);
         continue;
       }
       ++sum_.relocated_steps;
+      if (in_set[who]) {
+        reloc_sep_ = who;
+        reloc_from_h_ = hs;
+      }
       h_try = std::max(x_first, 1e-9) * hs;
       continue;
     }

@@ -330,12 +330,27 @@ class LeeLocated final : public ContactRun {
     record_event(EventKind::Tensile, j, 0.0, 0.0, sum_.first_tensile_time);
   }
 
+  // A held contact separates at the current step start.
+  void release_now(int j) {
+    active_[j] = 0;
+    ++sum_.separations;
+    record_event(EventKind::Separation, j, 0.0);
+    settle_active(cam_at(t_));
+    slope_.setZero();
+  }
+
   std::string trial_error_;  // the last failed trial's message
   StepSizeMemory steps_;  // the step-size controller (lee_step_tools.hpp)
   double brk_t_ = NAN;    // the last breakpoint a step landed on
   static constexpr int kMaxRelocations = 4;
   double reloc_t_ = -1.0;  // the step start of the last relocation, and their count there
   int reloc_count_ = 0;
+  // A relocation toward a held contact's separation: the contact and the step it cut short.
+  // The step to its root, if it is a sliver of that step and fails the error test, is
+  // round-off (a held gap corrected by a force ∝ gap/Δt²): the contact is released there.
+  int reloc_sep_ = -1;
+  double reloc_from_h_ = 0.0;
+  static constexpr double kSliver = 1e-6;
 
 
   // Solve the shape for the active set over a step of hs; y1 the end state, returns the
