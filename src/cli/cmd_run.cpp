@@ -178,6 +178,9 @@ int cmd_run(const RunOpts& o) {
     interrupted = g_stop.load();
   }
   obs->erase_progress();
+  // The run's own warnings (after the scene's, printed above).
+  for (std::size_t i = sim->warnings().size(); i < summary.warnings.size(); ++i)
+    std::fprintf(stderr, "camdyn: warning: %s\n", summary.warnings[i].c_str());
   if (summary.scene.empty()) summary.scene = sc.title;
   if (!summary.finished && summary.message.empty())
     summary.message = interrupted ? stop_reason() : "did not finish";

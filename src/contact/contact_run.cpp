@@ -81,6 +81,7 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
 OdeSystem ContactRun::contact_system(ForceFn forces) {
   OdeSystem sys;
   sys.size = ny_;
+  sys.atol = absolute_tolerances();
   sys.rhs = [this, forces = std::move(forces)](double t, const double* y, double* yd) {
     sys_y_ = Eigen::Map<const Eigen::VectorXd>(y, ny_);
     forces(t, sys_y_, sys_F_);
@@ -490,6 +491,7 @@ Summary ContactRun::run() {
   analysis_.finish(sum_);
   flights_.finish(sum_);
   surge_.finish(sum_);
+  if (!atol_note_.empty()) sum_.warnings.push_back(atol_note_);
   return sum_;
 }
 

@@ -74,6 +74,10 @@ class ContactRun {
   /// forces(t, y, F) (m entries).
   using ForceFn = std::function<void(double t, const Eigen::VectorXd& y, Eigen::VectorXd& F)>;
   OdeSystem contact_system(ForceFn forces);
+  /// The engine's absolute tolerance per unknown: solver.atol raised to the round-off floor
+  /// of the positions and velocities (contact_run_tolerance.cpp); empty when solver.atol is
+  /// above it everywhere (the scalar is used). Notes the raise as a run warning.
+  Eigen::VectorXd absolute_tolerances();
   /// The implicit engines' sparse Newton structure (M, K, C, T) of a linear Mechanism;
   /// null for a user's FollowerSystem (dense Jacobian). The method adds its contact
   /// derivatives or held set.
@@ -245,6 +249,7 @@ class ContactRun {
   const Scene& sc_;
   std::shared_ptr<const MechanicalSystem> mech_;
   const MechanicalSystem& mk_;
+  std::string atol_note_;  // absolute_tolerances(): the warning when the floor was used
   Cam cam_;
   CamDrive drive_;
   CamStops stops_{sc_, cam_};

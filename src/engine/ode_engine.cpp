@@ -22,6 +22,7 @@
 #include <arkode/arkode_arkstep.h>
 #include <arkode/arkode_erkstep.h>
 
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -31,7 +32,14 @@
 namespace camdyn {
 
 double OdeEngine::wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const {
-  return detail::wrms_norm(err, y, spec_.rtol, spec_.atol);
+  if (sys_.atol.size() == 0) return detail::wrms_norm(err, y, spec_.rtol, spec_.atol);
+  if (err.size() == 0) return 0.0;
+  double s = 0.0;
+  for (Eigen::Index i = 0; i < err.size(); ++i) {
+    const double w = spec_.rtol * std::abs(y[i]) + sys_.atol[i];
+    s += (err[i] / w) * (err[i] / w);
+  }
+  return std::sqrt(s / double(err.size()));
 }
 
 /// The CVODE engine (cvode_ode.cpp).
@@ -52,7 +60,10 @@ class ErkOde final : public EngineBase {
     if (trial_) {
       check(ERKStepSStolerances(mem, kHugeTol, kHugeTol), "ERKStepSStolerances");
     } else {
-      check(ERKStepSStolerances(mem, spec.rtol, spec.atol), "ERKStepSStolerances");
+      if (sys_.atol.size())
+        check(ERKStepSVtolerances(mem, spec.rtol, atol_vector(1.0)), "ERKStepSVtolerances");
+      else
+        check(ERKStepSStolerances(mem, spec.rtol, spec.atol), "ERKStepSStolerances");
       // Trial steps are sized by the caller: no max_step there (it would clip h).
       if (spec.max_step > 0) check(ERKStepSetMaxStep(mem, spec.max_step), "ERKStepSetMaxStep");
     }
@@ -154,13 +165,19 @@ class DirkOde final : public EngineBase {
       // Newton test (coefficient 0.01 scaled alike) and the difference-quotient increments
       // see the same weighted norms as in native mode.
       const double scale = kHugeTol / spec.rtol;
-      check(ARKStepSStolerances(mem, kHugeTol, spec.atol * scale), "ARKStepSStolerances");
+      if (sys_.atol.size())
+        check(ARKStepSVtolerances(mem, kHugeTol, atol_vector(scale)), "ARKStepSVtolerances");
+      else
+        check(ARKStepSStolerances(mem, kHugeTol, spec.atol * scale), "ARKStepSStolerances");
       if (sys_.linear)
         check(ARKStepSetLinear(mem, 0), "ARKStepSetLinear");  // one Newton iteration, exact J
       else
         check(ARKStepSetNonlinConvCoef(mem, 0.01 / scale), "ARKStepSetNonlinConvCoef");
     } else {
-      check(ARKStepSStolerances(mem, spec.rtol, spec.atol), "ARKStepSStolerances");
+      if (sys_.atol.size())
+        check(ARKStepSVtolerances(mem, spec.rtol, atol_vector(1.0)), "ARKStepSVtolerances");
+      else
+        check(ARKStepSStolerances(mem, spec.rtol, spec.atol), "ARKStepSStolerances");
       // The Newton matrix is reused across steps: a Newton tolerance of 0.01 of the error
       // test (ARKODE's default 0.1 costs a stiff penalty run accuracy: method_notes.md).
       check(ARKStepSetNonlinConvCoef(mem, 0.01), "ARKStepSetNonlinConvCoef");

@@ -91,6 +91,9 @@ struct SparseNewton {
 struct OdeSystem {
   /// Number of unknowns, ≥ 1.
   int size = 0;
+  /// Optional absolute tolerance per unknown (size entries, each > 0); empty: the
+  /// SolverSpec's scalar atol for every unknown. Used by SUNDIALS' error test and by wrms().
+  Eigen::VectorXd atol;
   /// ydot = f(t, y). May throw (the engine's callback turns it into a failed step:
   /// SundialsError from step()/advance()).
   std::function<void(double t, const double* y, double* ydot)> rhs;
@@ -128,7 +131,7 @@ class OdeEngine {
   virtual double step(double t, const Eigen::VectorXd& y, double h, Eigen::VectorXd& y_out) = 0;
   /// The unweighted local error estimate of the last step() (size() entries).
   const Eigen::VectorXd& local_error() const { return local_error_; }
-  /// WRMS norm of err with the engine's tolerances, weights rtol·|y_i| + atol.
+  /// WRMS norm of err with the engine's tolerances, weights rtol·|y_i| + atol_i.
   double wrms(const Eigen::VectorXd& err, const Eigen::VectorXd& y) const;
 
   /// Native mode: restart from (t, y) with the solver's own error control.

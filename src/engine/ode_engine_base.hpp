@@ -200,6 +200,16 @@ class EngineBase : public OdeEngine {
   bool trial_;
   ContextHolder ctx_;
   NVec y_, tmp_;
+  NVec atol_;  // the per-unknown absolute tolerances (OdeSystem::atol), when given
+
+  /// sys_.atol × scale as an N_Vector SUNDIALS keeps (copied at the *SVtolerances call).
+  N_Vector atol_vector(double scale) {
+    if (sys_.atol.size() != n_ || !(sys_.atol.array() > 0.0).all())
+      throw std::invalid_argument("OdeEngine: OdeSystem::atol needs size() entries, each > 0");
+    atol_ = make_nvec(n_, ctx_.ctx);
+    map(atol_.get()) = scale * sys_.atol;
+    return atol_.get();
+  }
   Eigen::MatrixXd J_;
   Eigen::VectorXd corr_;
   std::unique_ptr<detail::SparseNewtonSolver> newton_;

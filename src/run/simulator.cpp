@@ -265,7 +265,7 @@ Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
   Summary sum = method->run();
   detail::describe_tolerance(scene_, sum);
   detail::check_contract(scene_, sum);
-  sum.warnings = warnings_;
+  sum.warnings.insert(sum.warnings.begin(), warnings_.begin(), warnings_.end());  // the scene's, then the run's
   sum.verdict = detail::make_verdict(scene_, mech_->traits().named_contacts ? mech_.get() : nullptr, sum.events);
   sum.verdict_text = detail::verdict_one_line(sum.verdict);
   detail::collect_coil_clash(sum);

@@ -53,6 +53,7 @@ class LeeLocated final : public ContactRun {
     least_ = Eigen::VectorXd::Constant(m_, INFINITY);
     OdeSystem sys;
     sys.size = ny_;
+    sys.atol = absolute_tolerances();
     sys.rhs = [this](double t, const double* y, double* yd) { rhs(t, y, yd); };
     // The mechanism's sparse Newton structure (the force shape does not depend on the
     // state); a user's follower: its dense Jacobian, without one difference quotients.
