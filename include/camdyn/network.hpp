@@ -160,6 +160,18 @@ struct ElementSpec {
   double check_transition_pressure = 1000.0;
   double oil_density = 850.0;
   double initial_pressure = 0.0;
+  /// hydraulic_lash_adjuster, the check valve as a ball (check_ball_mass [mass] > 0; 0: the
+  /// orifice law above): its spring's stiffness [force/length] > 0, whose preload holds the
+  /// ball on its seat up to check_opening_pressure (preload = check_opening_pressure · A_s);
+  /// its viscous damping [force·time/length] ≥ 0; the seat bore's diameter [length] > 0
+  /// (seat area A_s = π d_s²/4, curtain area π d_s x up to the full-open area check_area, or
+  /// A_s when check_area is 0); the seat's contact stiffness [force/length] > 0 (a
+  /// regularised elastic stop). Without a ball these keys must be 0.
+  double check_ball_mass = 0.0;
+  double check_ball_stiffness = 0.0;
+  double check_ball_damping = 0.0;
+  double check_seat_diameter = 0.0;
+  double check_seat_stiffness = 0.0;
 };
 
 /// A unilateral contact (any number per network).

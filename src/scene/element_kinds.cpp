@@ -61,6 +61,7 @@ F written_if(F f, bool (*written)(const ElementSpec&)) {
 
 bool coil_clash_on(const ElementSpec& e) { return e.solid_length > 0; }
 bool coil_gaps_given(const ElementSpec& e) { return e.solid_length > 0 && !e.coil_gaps.empty(); }
+bool has_check_ball(const ElementSpec& e) { return e.check_ball_mass > 0; }
 
 std::vector<ElementKindInfo> make_kinds() {
   std::vector<ElementKindInfo> k;
@@ -180,10 +181,12 @@ std::vector<ElementKindInfo> make_kinds() {
         ge0("supply_pressure", &ElementSpec::supply_pressure, "force/length²",
             "oil gallery (supply) gauge pressure p_s, behind the check valve and at the leak's exit"),
         ge0("check_opening_pressure", &ElementSpec::check_opening_pressure, "force/length²",
-            "check valve opening pressure difference Δp_open (the valve opens for p < p_s − Δp_open)"),
+            "check valve opening pressure difference Δp_open (the valve opens for p < p_s − Δp_open; with a check "
+            "ball its spring's preload is Δp_open·A_s)"),
         ge0("check_area", &ElementSpec::check_area, "length²",
             "check valve flow area A_v; Q = C_d A_v √(2/ρ) Δ/(Δ² + Δ_t²)^¼, Δ = p_s − p − Δp_open > 0; 0: no check "
-            "valve"),
+            "valve. With a check ball: its full-open flow area, which the curtain area π d_s x reaches at the lift "
+            "A_v/(π d_s) (0: the seat bore's area A_s = π d_s²/4)"),
         worded(gt0("check_discharge_coefficient", &ElementSpec::check_discharge_coefficient, "—",
                    "check valve discharge coefficient C_d"),
                "must be > 0 and <= 1"),
@@ -194,7 +197,36 @@ std::vector<ElementKindInfo> make_kinds() {
             "oil density ρ of the check valve's orifice law (default in kg/m³)"),
         worded(real("initial_pressure", &ElementSpec::initial_pressure, "force/length²",
                     "chamber gauge pressure at t = 0 (the internal state's start)"),
-               "must be finite and > -air_reference_pressure")}});
+               "must be finite and > -air_reference_pressure"),
+        written_if(worded(ge0("check_ball_mass", &ElementSpec::check_ball_mass, "mass",
+                              "the check valve as a ball of this mass m_b (0: the orifice law of check_area), "
+                              "typically 3e-5 to 1e-4 kg (a 2 to 3 mm steel ball); its lift x off the seat and its "
+                              "speed are internal states, m_b ẍ = (p_s − p)A_s − Δp_open·A_s − k_b x − c_b ẋ + "
+                              "k_s·max(−x, 0), Q_check = C_d π d_s x √(2/ρ) Δ/(Δ² + Δ_t²)^¼ for 0 < x up to full "
+                              "open, Δ = p_s − p (history columns force_<name>_ball_lift, force_<name>_check_flow)"),
+                          "must be >= 0"),
+                   has_check_ball),
+        written_if(worded(ge0("check_ball_stiffness", &ElementSpec::check_ball_stiffness, "force/length",
+                              "the check ball's spring stiffness k_b, typically 100 to 2000 N/m (the ball rings "
+                              "at √(k_b/m_b) off its seat)"),
+                          "must be >= 0; > 0 with a check ball, 0 without"),
+                   has_check_ball),
+        written_if(worded(ge0("check_ball_damping", &ElementSpec::check_ball_damping, "force·time/length",
+                              "the check ball's viscous damping c_b (the oil's drag on it; critical is "
+                              "2√(k_b m_b), about 0.2 N·s/m for 3.3e-5 kg on 300 N/m)"),
+                          "must be >= 0; 0 without a check ball"),
+                   has_check_ball),
+        written_if(worded(ge0("check_seat_diameter", &ElementSpec::check_seat_diameter, "length",
+                              "the check ball's seat bore d_s, typically 1 to 2 mm: pressure area A_s = π d_s²/4, "
+                              "curtain (flow) area π d_s x"),
+                          "must be >= 0; > 0 with a check ball, 0 without"),
+                   has_check_ball),
+        written_if(worded(ge0("check_seat_stiffness", &ElementSpec::check_seat_stiffness, "force/length",
+                              "the check ball's seat as a regularised elastic stop, force k_s·(−x) while x < 0; "
+                              "1e5 to 1e6 N/m keeps the ball's seat penetration below a micrometre at chamber "
+                              "pressures of some MPa (its mode √(k_s/m_b) is stiff: an implicit engine)"),
+                          "must be >= 0; > 0 with a check ball, 0 without"),
+                   has_check_ball)}});
   return k;
 }
 

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scene/element_kinds.hpp"
@@ -179,6 +180,23 @@ void Validator::network() const {
           net_fail(p + ".initial_pressure", fmt_num(e.initial_pressure),
                    "must be > -air_reference_pressure (" + fmt_num(-e.air_reference_pressure) +
                        "): a gauge pressure above vacuum (" + who + ")");
+        // The check ball: its keys need a ball (check_ball_mass > 0), a ball needs its spring,
+        // its seat bore and its seat's stiffness.
+        const std::pair<const char*, double> ball_keys[] = {{"check_ball_stiffness", e.check_ball_stiffness},
+                                                            {"check_seat_diameter", e.check_seat_diameter},
+                                                            {"check_seat_stiffness", e.check_seat_stiffness},
+                                                            {"check_ball_damping", e.check_ball_damping}};
+        for (const auto& [key, v] : ball_keys) {
+          const bool needed = std::string(key) != "check_ball_damping";
+          if (e.check_ball_mass > 0.0 && needed && !(v > 0.0))
+            net_fail(p + "." + key, fmt_num(v),
+                     "must be > 0 with a check ball (" + p + ".check_ball_mass = " + fmt_num(e.check_ball_mass) +
+                         ") (" + who + ")");
+          if (!(e.check_ball_mass > 0.0) && v != 0.0)
+            net_fail(p + "." + key, fmt_num(v),
+                     "needs a check ball: " + p + ".check_ball_mass > 0 (it is 0: the check valve is the orifice "
+                     "law, which reads no check ball key) (" + who + ")");
+        }
         break;
       }
     }

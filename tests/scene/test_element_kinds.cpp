@@ -81,6 +81,11 @@ Scene scene_with(ElementKind kind) {
       e.viscosity = 0.01;
       e.supply_pressure = 2e5;
       e.check_area = 1e-6;
+      // the check valve as a ball, so that each of its keys can change on its own
+      e.check_ball_mass = 3e-5;
+      e.check_ball_stiffness = 300.0;
+      e.check_seat_diameter = 1.4e-3;
+      e.check_seat_stiffness = 1e6;
       break;
   }
   s.network.elements.push_back(e);

@@ -68,6 +68,14 @@ std::vector<camdyn::Scene> scenes_with_every_key() {
     e.coil_restitution = 0.2;
     s.network.elements.push_back(e);
   }
+  {  // a hydraulic lash adjuster whose check valve is a ball: its keys are written only then
+    camdyn::ElementSpec e;
+    e.kind = camdyn::ElementKind::HydraulicLashAdjuster;
+    e.name = "hla";
+    e.nodes = {"a", "b"};
+    e.check_ball_mass = 3.3e-5;
+    s.network.elements.push_back(e);
+  }
   for (auto k : {camdyn::ContactPointKind::Cam, camdyn::ContactPointKind::Lash, camdyn::ContactPointKind::Stop}) {
     camdyn::ContactPointSpec c;
     c.kind = k;

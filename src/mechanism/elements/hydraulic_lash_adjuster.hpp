@@ -22,14 +22,29 @@
 //               fraction α at p_ref (H. E. Merritt, Hydraulic Control Systems, Wiley 1967,
 //               §2.5 "effective bulk modulus"); p_abs ≥ p_ref/1000 in β_eff (cavitation
 //               is not modelled).
+//   The check valve as a ball (check_ball_mass m_b > 0) instead of the orifice law: two
+//   more internal states, the ball's lift x off its seat (into the chamber) and its speed
+//   w (s₃ = x, s₄ = w):
+//     ẋ = w,  m_b ẇ = (p_s − p) A_s − P_b − k_b x − c_b w + k_s·max(−x, 0)
+//     Q_check = C_d π d_s min(x, x_o)⁺ √(2/ρ) · Δ/(Δ² + Δ_t²)^¼,  Δ = p_s − p (both
+//               directions while the ball is off its seat): the curtain area π d_s x up to
+//               the full-open area A_o = π d_s x_o (check_area, or the seat bore's area
+//               A_s = π d_s²/4 when check_area is 0)
+//   with P_b = Δp_open A_s, the preload that holds the ball on its seat up to the opening
+//   pressure; the seat a regularised elastic stop of stiffness k_s (no restitution law:
+//   the ball's own damping c_b dissipates its bounces); no cage stop above (the spring
+//   limits the lift); the ball's displaced volume is neglected. At rest it opens for
+//   p_s − p > Δp_open. It starts at rest in its static equilibrium at initial_pressure.
 //   Energy: stored V = ½kδ² + Pδ + V(δ)·ε(p), ε(p) = ∫₀^p p′/β_eff(p′) dp′ (closed form); the
 //   ledger's dissipated power is the net power the chamber exchanges with the gallery,
 //   P = p(Q_leak − Q_check) − ε(p) dV/dδ δ̇ (throttling losses less the gallery's pumping
 //   work: negative while the check valve fills the chamber), so that F δ̇ = dV/dt + P holds
-//   exactly along the model's solutions.
+//   exactly along the model's solutions. The ball adds ½m_b w² + ½k_b x² + P_b x + ½k_s x²
+//   (x < 0) to V and c_b w² − (p_s − p) A_s w to P (the pressures' work on it).
 //   Reported (history columns with run.element_forces, Summary::elements): force_<name> (F),
 //   force_<name>_pressure (gauge p), force_<name>_travel (δ), force_<name>_pumped and
-//   force_<name>_leaked (the volumes).
+//   force_<name>_leaked (the volumes); with the ball also force_<name>_ball_lift (x) and
+//   force_<name>_check_flow (Q_check).
 #pragma once
 
 #include <string>
@@ -60,6 +75,11 @@ class HydraulicLashAdjuster final : public Element {
   double bulk_modulus(double p) const;
   double leak_flow(double p) const { return leak_ * (p - p_s_); }
   double check_flow(double p) const;
+  /// The ball's flow at lift x (0 without a ball) and the ball's acceleration.
+  double ball_flow(double p, double x) const;
+  double ball_acceleration(double p, double x, double w) const;
+  bool has_ball() const { return mb_ > 0.0; }
+  double seat_area() const { return As_; }
   /// ε(p) = ∫₀^p p′/β_eff(p′) dp′.
   double strain_energy_density(double p) const;
   double chamber_volume(double delta) const;
@@ -70,8 +90,11 @@ class HydraulicLashAdjuster final : public Element {
   double travel(const ElementState& e) const { return e.x[0] - e.x[1]; }
   double dbulk_dp(double p) const;
   double dcheck_dp(double p) const;
+  /// Q_check and its derivatives in p and x, the orifice law or the ball's (s: the states).
+  double inflow(const ElementState& e, double* dQdp, double* dQdx) const;
   double A_, V0_, beta_, alpha_, p_ref_, leak_, p_s_, dp_open_, check_c_, dp_t_, k_, P_, p0_;
   double p_abs_min_;
+  double mb_, kb_, cb_, As_, Pb_, ks_, ball_c_, x_open_;
   std::vector<std::string> nodes_;
 };
 
