@@ -252,6 +252,48 @@ TEST(OscillatingFriction, HeldMotionIsTheFrictionlessOneToTheBit) {
   EXPECT_GT(r1.sum.cam_friction_work, 0.0);
 }
 
+// A weak spring at 40 rev/s: the finger floats off the nose and lands again (restitution 0),
+// twice in two revolutions.
+Scene float_scene(const std::string& model, double mu) {
+  Scene s = pad_scene(model, "arkode-dirk", mu);
+  s.network.elements[0].preload = 5.0;
+  s.network.elements[0].stiffness = 1000.0;
+  s.cam.speed_rev_s = 40.0;
+  s.contact.restitution = 0.0;
+  s.run.t_end = 0.05;
+  s.run.output_dt = 1e-4;
+  s.solver.rtol = 1e-9;
+  s.solver.atol = 1e-13;
+  return s;
+}
+
+TEST(OscillatingFriction, FloatAndLandingLeeAgreesWithEventAndFrictionMovesNoEvent) {
+  const camdyn_test::NetRun l0 = camdyn_test::run_keeping_rows(float_scene("lee", 0.0));
+  const camdyn_test::NetRun l1 = camdyn_test::run_keeping_rows(float_scene("lee", kMu));
+  const camdyn_test::NetRun e1 = camdyn_test::run_keeping_rows(float_scene("event", kMu));
+  for (const auto* r : {&l0, &l1, &e1}) ASSERT_EQ(r->sum.termination, Termination::Finished) << r->sum.message;
+  EXPECT_EQ(l1.sum.separations, 2);
+  EXPECT_EQ(l1.sum.impacts, 2);
+  // the motion with friction is the frictionless one, separations and landings included
+  EXPECT_EQ(l0.sum.separations, l1.sum.separations);
+  EXPECT_EQ(l0.sum.first_separation_theta_deg, l1.sum.first_separation_theta_deg);
+  EXPECT_EQ(l0.sum.max_impact_velocity, l1.sum.max_impact_velocity);
+  ASSERT_EQ(l0.rows.size(), l1.rows.size());
+  for (std::size_t i = 0; i < l0.rows.size(); ++i) {
+    EXPECT_EQ(l0.col(l0.rows[i], "u_finger"), l1.col(l1.rows[i], "u_finger"));
+    EXPECT_EQ(l0.col(l0.rows[i], "F_cam"), l1.col(l1.rows[i], "F_cam"));
+  }
+  // Lee against the event method: measured separation angle 8.8e-10 deg, landing speed
+  // 4.3e-9 relative, friction force at the rows 0 (both put their rows on the held set)
+  EXPECT_NEAR(l1.sum.first_separation_theta_deg, e1.sum.first_separation_theta_deg, 1e-7);
+  EXPECT_NEAR(l1.sum.max_impact_velocity, e1.sum.max_impact_velocity, 1e-7 * l1.sum.max_impact_velocity);
+  ASSERT_EQ(l1.rows.size(), e1.rows.size());
+  double ef = 0;
+  for (std::size_t i = 0; i < l1.rows.size(); ++i)
+    ef = std::max(ef, std::abs(l1.col(l1.rows[i], "cam_friction_force") - e1.col(e1.rows[i], "cam_friction_force")));
+  EXPECT_LT(ef, 1e-6 * l1.sum.cam_friction_force_max);
+}
+
 TEST(OscillatingFriction, LockingFrictionSlippingRollerAndCamshaftAreRefused) {
   auto expect_error = [](Scene bad, const std::string& key) {
     try {
@@ -270,4 +312,11 @@ TEST(OscillatingFriction, LockingFrictionSlippingRollerAndCamshaftAreRefused) {
   s.cam.pad_offset = 0.0;
   s.cam.roller_slip = 0.1;
   expect_error(s, "cam.roller_slip");
+  s = pad_scene("lee", "arkode-dirk", kMu);  // a camshaft body: the friction's torque on it is not applied
+  s.camshaft.inertias = {1e-4};
+  s.camshaft.drive_stiffness = 1e3;
+  s.camshaft.cam_stations = {0};
+  expect_error(s, "cam.friction_coefficient");
+  s.cam.friction_coefficient = 0.0;
+  EXPECT_NO_THROW(validate(s));
 }
