@@ -9,7 +9,8 @@
 //     the camshaft's drive torque T = Q × (N n̂ + f t̂), t̂ = J n̂;
 //   * the friction energy over a revolution against quadrature of f·|w| over the cam angle,
 //     and the drive's energy = change of stored + dissipated + friction energy;
-//   * Lee, the event method and holonomic agree; penalty converges to them as k_p grows;
+//   * Lee, the event method and holonomic agree, also through a float and its landing;
+//     penalty converges to them as k_p grows;
 //   * the held motion does not depend on μ (the complementarity problem in the generalised
 //     force is the frictionless one, docs/contacts.md), to the last bit;
 //   * a friction that locks the arm (a ≤ μ|b|), a slipping roller on an oscillating
@@ -197,7 +198,9 @@ TEST(OscillatingFriction, FrictionEnergyAndTheDrivesLedgerOverARevolution) {
     const PadTruth::At t = truth().at(truth().theta_low + 2 * kPi * (i + 0.5) / n, w, kMu);
     E += t.f * std::abs(t.w) * (2 * kPi / n) / w;
   }
-  for (const char* model : {"lee", "event"}) {
+  // holonomic: Lee's levels without release (on IDA this scene stops at t = 0 with or
+  // without friction: IDA's error test at the start, not a friction matter)
+  for (const char* model : {"lee", "event", "holonomic"}) {
     SCOPED_TRACE(model);
     const camdyn_test::NetRun r = camdyn_test::run_keeping_rows(pad_scene(model, "arkode-dirk", kMu));
     ASSERT_EQ(r.sum.termination, Termination::Finished) << r.sum.message;
