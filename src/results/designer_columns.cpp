@@ -63,7 +63,7 @@ CamFriction DesignerColumns::friction_at(const CamPoint& p, double F, double ome
   if (osc_) {
     const PadFriction pf = pad_friction(p, omega);
     f.sliding_speed = pf.sliding_speed;
-    f.force = pf.mu * F * pf.normal_ratio;
+    f.force = pf.mu * std::abs(pf.sign) * F * pf.normal_ratio;  // w = 0: no sliding, no force
     f.power = f.force * f.sliding_speed;
     f.torque = omega != 0 ? f.power / omega : 0.0;
     return f;

@@ -81,7 +81,8 @@ class DesignerColumns {
   /// true: cam friction on an oscillating follower's flat pad, where the friction's moment
   /// about the pivot enters the follower's dynamics (pad_friction, contact_gain).
   bool pad_friction_on() const { return static_cast<bool>(osc_); }
-  /// The pad's friction at cam point p and cam speed ω (held kinematics); pad_friction_on().
+  /// The pad's friction at cam point p and cam speed ω (held kinematics).
+  /// @pre pad_friction_on()
   PadFriction pad_friction(const CamPoint& p, double omega) const;
   /// The factor 1 + κ on a cam contact's normal-law force (penalty): pad_friction's gain, 1
   /// without pad friction.
