@@ -147,6 +147,7 @@ OscillatingGeometry::OscillatingGeometry(const CamSpec& spec)
   } else {
     check_arcs(spec);
   }
+  check_friction_lock(spec);
   xmin_ = INFINITY;
   xmax_ = -INFINITY;
   min_rho_ = INFINITY;
@@ -312,11 +313,31 @@ void OscillatingGeometry::finish(OscillatingState& s, V2 Q, V2 nh) const {
   s.f.s3 = lv_ * s.psi3;
   const V2 P{px_, py_}, QP = Q - P;
   s.moment_arm = sigma_ * cross(QP, nh);
+  s.tangent_arm = sigma_ * dot(QP, nh);
+  s.normal_distance = dot(Q, nh);
   // Direction of motion (lifting) of the follower's point on the line of action: the
   // roller centre C = Q + r_r n̂ (the roller's pressure angle), the pad's point at Q.
   const V2 CP = QP + rr_ * nh;
   const V2 t = (sigma_ / norm(CP)) * J(CP);
   s.f.phi = std::atan2(cross(t, nh), dot(t, nh));
+}
+
+void OscillatingGeometry::check_friction_lock(const CamSpec& spec) {
+  // Friction at the pad (docs/contacts.md): the generalised contact force on X is
+  // N (a + μ s b)/ℓ_v, s = ±1 the sliding sense; it must stay positive for either sense.
+  const double mu_max = std::max(spec.friction_coefficient, spec.friction_static_coefficient);
+  if (face_ != FollowerFace::Flat || !(mu_max > 0)) return;
+  std::vector<char> locked(kScan);
+  for (int k = 0; k < kScan; ++k) {
+    const OscillatingState s = eval(kTwoPi * k / kScan);
+    locked[k] = !(s.moment_arm - mu_max * std::abs(s.tangent_arm) > 0);
+  }
+  const std::string bad = bad_angles(locked);
+  if (!bad.empty())
+    fail("cam.friction_coefficient", spec.friction_coefficient,
+         "friction at the pad locks the arm (moment arm a <= mu |b|, b the friction force's arm about the pivot, "
+         "mu = max(friction_coefficient, friction_static_coefficient)) at cam angles " +
+             bad + " — lower the friction or move the pivot");
 }
 
 void OscillatingGeometry::check_law_profile(const CamSpec& spec) {

@@ -36,6 +36,9 @@
 //   direction of motion σ J(C − P) of the roller centre C (flat pad: of the pad's point at
 //   Q, C = Q) to n̂; a = |C − P| cos φ. The normal
 //   force is N = F ℓ_v / a for the force F on X (virtual work: F δX = N a δα).
+//   Cam friction (docs/contacts.md): a force f t̂ at Q (t̂ = J n̂) has the moment σ f b
+//   about P, b = σ (Q − P)·n̂, so the generalised force on X is (N a + f b)/ℓ_v; the cam's
+//   surface slides past the arm's point at Q at w = ω Q·n̂ − ψ̇ b.
 #pragma once
 
 #include <array>
@@ -57,6 +60,12 @@ struct OscillatingState {
   double psi1 = 0, psi2 = 0, psi3 = 0;  ///< dψ/dθ, d²ψ/dθ², d³ψ/dθ³
   double alpha = 0;         ///< absolute arm angle α [rad]
   double moment_arm = 0;    ///< a = (Q − P) × n̂ [length]
+  /// b = σ (Q − P)·n̂ [length]: the moment arm about the pivot of a tangential force at Q
+  /// along t̂ = J n̂ (cam friction: docs/contacts.md "Friction at an oscillating follower").
+  double tangent_arm = 0;
+  /// h = Q·n̂ [length]: the cam's support distance; its surface passes the contact at
+  /// ω h along t̂ (Q × t̂ = Q·n̂).
+  double normal_distance = 0;
   double nx = 0, ny = 0;    ///< contact normal n̂ (cam → follower), fixed frame
 };
 
@@ -105,6 +114,8 @@ class OscillatingGeometry {
   void finish(OscillatingState& s, OscVec Q, OscVec nh) const;
   void check_law_profile(const CamSpec& spec);
   void check_arcs(const CamSpec& spec);
+  /// Cam friction at a flat pad: a − μ_max|b| > 0 at every angle (else cam.friction_coefficient).
+  void check_friction_lock(const CamSpec& spec);
 };
 
 }  // namespace detail

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cam/follower_oscillating.hpp"
 #include "camdyn/hertz.hpp"
 
 namespace camdyn {
@@ -39,9 +40,34 @@ double DesignerColumns::friction_coefficient(double v) const {
   return mu_ + (mu_s_ - mu_) * std::exp(-x * x);
 }
 
+PadFriction DesignerColumns::pad_friction(const CamPoint& p, double omega) const {
+  PadFriction r;
+  const OscillatingState o = osc_->eval(p.theta);
+  const double w = omega * (o.normal_distance - o.psi1 * o.tangent_arm);  // ω h − ψ̇ b
+  r.sliding_speed = std::abs(w);
+  r.sign = w > 0 ? 1.0 : (w < 0 ? -1.0 : 0.0);
+  r.mu = friction_coefficient(r.sliding_speed);
+  const double a_eff = o.moment_arm + r.mu * r.sign * o.tangent_arm;  // > 0: check_friction_lock
+  r.gain = a_eff / o.moment_arm;
+  r.normal_ratio = lv_ / a_eff;
+  return r;
+}
+
+double DesignerColumns::normal_force(const CamPoint& p, double F, double omega) const {
+  return osc_ ? F * pad_friction(p, omega).normal_ratio : F * p.normal_force_ratio;
+}
+
 CamFriction DesignerColumns::friction_at(const CamPoint& p, double F, double omega) const {
   CamFriction f;
   if (!friction() || !(F > 0)) return f;
+  if (osc_) {
+    const PadFriction pf = pad_friction(p, omega);
+    f.sliding_speed = pf.sliding_speed;
+    f.force = pf.mu * std::abs(pf.sign) * F * pf.normal_ratio;  // w = 0: no sliding, no force
+    f.power = f.force * f.sliding_speed;
+    f.torque = omega != 0 ? f.power / omega : 0.0;
+    return f;
+  }
   const double N = F * p.normal_force_ratio;
   if (roller_ && slip_ == 0) return f;  // a rolling roller: no sliding friction
   if (roller_) {
@@ -70,6 +96,10 @@ DesignerColumns::DesignerColumns(const Scene& scene) {
   slip_ = c.roller_slip;
   roller_ = c.follower_face == FollowerFace::Roller;
   rr_ = c.roller_radius;
+  if (friction() && c.follower_motion == FollowerMotion::Oscillating && c.follower_face == FollowerFace::Flat) {
+    lv_ = c.valve_arm;
+    osc_ = std::make_shared<const OscillatingGeometry>(c);
+  }
   const bool face_ok = c.follower_face == FollowerFace::Flat || c.follower_face == FollowerFace::Roller;
   if (c.width > 0 && face_ok) {
     width_ = c.width;
@@ -90,7 +120,7 @@ ContactDesign DesignerColumns::eval(const CamPoint& p, double F, double omega) c
   d.stress = NAN;
   const double curv = (std::isinf(Rf_) ? 0.0 : 1.0 / Rf_) + 1.0 / p.rho;
   if (E_star_ > 0 && std::isfinite(p.rho) && curv > 0)
-    d.stress = hertz_line(F * p.normal_force_ratio, width_, p.rho, Rf_, E_star_).max_pressure;
+    d.stress = hertz_line(normal_force(p, F, omega), width_, p.rho, Rf_, E_star_).max_pressure;
   return d;
 }
 

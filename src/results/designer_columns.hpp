@@ -12,6 +12,7 @@
 //   radius of curvature ρ at the contact and the follower face (roller radius, or a plane).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,8 @@
 
 namespace camdyn {
 namespace detail {
+
+class OscillatingGeometry;
 
 /// The designer quantities at one contact state.
 struct ContactDesign {
@@ -39,11 +42,30 @@ struct ContactDesign {
 /// P_f = μ(v)·N·v ≥ 0, torque T_f = P_f/ω (the drive torque it takes; a flat face: μN·X_C,
 /// the force's moment about the cam centre). Results only: a translating follower takes the
 /// flat face's friction force as a side load across its axis, not along its motion.
+///
+/// An oscillating follower's flat pad (docs/contacts.md "Friction at an oscillating
+/// follower"): the friction force f = μ(v)·N·s along t̂ = J n̂ (s = sign of the sliding speed
+/// w = ω h − ψ̇ b of the cam's surface past the arm, v = |w|) has the moment arm b about the
+/// pivot, so the contact's generalised force on X is F = N (a + μ s b)/ℓ_v: the run's F is
+/// that force, the normal force N = F ℓ_v/(a + μ s b). The drive torque is F·X′ (the power
+/// into the follower over ω) plus T_f = P_f/ω, P_f = μ N v. Evaluated on the held kinematics
+/// (ψ̇ = ψ′ω): where the contact carries force, it is held (penalty: to its penetration rate).
 struct CamFriction {
   double sliding_speed = 0;  ///< v [length/time]
   double force = 0;          ///< μ(v)·N [force]
   double torque = 0;         ///< T_f [force·length]
   double power = 0;          ///< P_f [force·length/time]
+};
+
+/// The friction's part of an oscillating follower's contact force at one cam state.
+struct PadFriction {
+  double sliding_speed = 0;  ///< v = |w| [length/time]
+  double mu = 0;             ///< μ(v)
+  double sign = 0;           ///< s = sign(w): the sense of the friction force along t̂
+  /// 1 + κ = 1 + μ s b/a: the factor by which the friction's moment about the pivot scales
+  /// the force N a/ℓ_v the normal force alone puts on X.
+  double gain = 1;
+  double normal_ratio = 1;  ///< N per unit of the generalised force F: ℓ_v/(a + μ s b)
 };
 
 class DesignerColumns {
@@ -56,6 +78,19 @@ class DesignerColumns {
   double friction_coefficient(double sliding_speed) const;
   /// The cam friction at a contact state (zeros when friction() is false or F ≤ 0).
   CamFriction friction_at(const CamPoint& p, double F, double omega) const;
+  /// true: cam friction on an oscillating follower's flat pad, where the friction's moment
+  /// about the pivot enters the follower's dynamics (pad_friction, contact_gain).
+  bool pad_friction_on() const { return static_cast<bool>(osc_); }
+  /// The pad's friction at cam point p and cam speed ω (held kinematics).
+  /// @pre pad_friction_on()
+  PadFriction pad_friction(const CamPoint& p, double omega) const;
+  /// The factor 1 + κ on a cam contact's normal-law force (penalty): pad_friction's gain, 1
+  /// without pad friction.
+  double contact_gain(const CamPoint& p, double omega) const {
+    return osc_ ? pad_friction(p, omega).gain : 1.0;
+  }
+  /// The normal force of the generalised contact force F at cam point p.
+  double normal_force(const CamPoint& p, double F, double omega) const;
   /// Appends the four columns of friction_at() to `out`.
   void append_friction(const CamPoint& p, double F, double omega, std::vector<double>& out) const;
   /// The history columns, in order: pressure_angle_deg, radius_of_curvature,
@@ -77,6 +112,8 @@ class DesignerColumns {
   double E_star_ = 0, width_ = 0, Rf_ = 0;  // Rf_: follower face radius (inf: flat)
   double mu_ = 0, mu_s_ = 0, v_st_ = 0, slip_ = 0, rr_ = 0;  // cam friction
   bool roller_ = false;
+  double lv_ = 0;                                      // valve_arm (pad friction)
+  std::shared_ptr<const OscillatingGeometry> osc_;     // pad friction's geometry (else null)
 };
 
 }  // namespace detail

@@ -52,6 +52,8 @@ RunAnalysis::RunAnalysis(const Scene& sc, const std::vector<std::string>& contac
       pad_ = std::make_shared<const OscillatingGeometry>(c);
       pivot_x_ = c.pivot_x;
       pivot_y_ = c.pivot_y;
+      auto cols = std::make_shared<const DesignerColumns>(sc);
+      if (cols->pad_friction_on()) pad_friction_ = std::move(cols);
     }
   }
   if (!sc.run.valve_node.empty()) {
@@ -79,7 +81,7 @@ RunAnalysis::RunAnalysis(const Scene& sc, const std::vector<std::string>& contac
 
 double RunAnalysis::film(const CamPoint& p, double omega, double Fc) const {
   if (!(Fc > 0) || !std::isfinite(p.rho)) return NAN;
-  const double N = Fc * p.normal_force_ratio;
+  const double N = pad_friction_ ? pad_friction_->normal_force(p, Fc, omega) : Fc * p.normal_force_ratio;
   const double curv = 1.0 / p.rho + (roller_ ? 1.0 / rr_ : 0.0);
   if (!(curv > 0)) return NAN;
   const double Rx = 1.0 / curv;

@@ -33,6 +33,7 @@ namespace camdyn {
 namespace detail {
 
 class OscillatingGeometry;
+class DesignerColumns;
 
 class RunAnalysis {
  public:
@@ -88,6 +89,7 @@ class RunAnalysis {
   double Ep_ = 0, width_ = 0, rr_ = 0;
   bool roller_ = false;
   std::shared_ptr<const OscillatingGeometry> pad_;  // an oscillating flat pad's kinematics
+  std::shared_ptr<const DesignerColumns> pad_friction_;  // its friction: the normal force of F
   double pivot_x_ = 0, pivot_y_ = 0;
   int valve_ = -1;  // index in the nodes
   KinematicNode valve_path_;

@@ -193,12 +193,21 @@ class Validator {
               "must be within +-" + fmt_num(kMaxTheta0Deg) +
                   " deg: the cam angle theta0 + omega t is one double, and beyond that its resolution is coarser "
                   "than 1e-10 rad (give the angle modulo 360)");
-    // Cam friction: a translating follower; a Stribeck curve rises from μ to μ_s.
+    // Cam friction: a flat face or a roller; a Stribeck curve rises from μ to μ_s. On an
+    // oscillating follower the friction's moment about the pivot enters the dynamics (the
+    // lock a ≤ μ|b| is the geometry's check, cam/follower_oscillating.cpp).
     if (c.friction_coefficient > 0 || c.friction_static_coefficient > 0) {
-      if (c.follower_motion != FollowerMotion::Translating)
-        fail_at("cam.friction_coefficient", fmt_num(c.friction_coefficient),
-                "cam friction needs a translating follower (cam.follower_motion = \"oscillating\" is not supported)",
+      if (c.follower_motion == FollowerMotion::Oscillating && c.follower_face == FollowerFace::Roller &&
+          c.roller_slip > 0)
+        fail_at("cam.roller_slip", fmt_num(c.roller_slip),
+                "a slipping roller is modelled on a translating follower only; on an oscillating follower "
+                "(cam.follower_motion = \"oscillating\") the roller rolls: must be 0",
                 "cam.follower_motion");
+      if (c.follower_motion == FollowerMotion::Oscillating && s.camshaft.present())
+        fail_at("cam.friction_coefficient", fmt_num(c.friction_coefficient),
+                "cam friction on an oscillating follower with a [camshaft] body is not modelled (the friction's "
+                "torque on the shaft's stations is not applied); remove [camshaft] or set 0",
+                "camshaft.inertias");
       if (c.follower_face != FollowerFace::Flat && c.follower_face != FollowerFace::Roller)
         fail_at("cam.friction_coefficient", fmt_num(c.friction_coefficient),
                 std::string("cam friction needs cam.follower_face = \"flat\" or \"roller\" (the face is \"") +

@@ -4,6 +4,11 @@
 // with its own error control, lands on the output times, and restarts where a gap
 // crosses zero (rootfinding: the force law has a kink there). Implicit engines get the
 // exact Jacobian [[0, I], [−M⁻¹(K + Σ k̃_j t_jᵀt_j), −M⁻¹(C + Σ c̃_j t_jᵀt_j)]].
+// Cam friction at an oscillating follower's pad (docs/contacts.md): a cam contact's law gives
+// the normal force's share N a/ℓ_v of the force on X; the contact puts G_j(t) = 1 + κ_j
+// times it on X (the friction's moment about the pivot), G_j from the held kinematics, so
+// the Jacobian scales by G_j and the friction power beyond the held sliding speed,
+// (G_j − 1)·F_law·ŝ_j, is booked as dissipated.
 #include <Eigen/Dense>
 #include <cmath>
 
@@ -38,8 +43,9 @@ class PenaltyMethod final : public ContactRun {
             for (int j = 0; j < m_; ++j) {
               double dq = 0, dv = 0;
               params(j).derivatives(-gap(j, yv_, cm), -gap_rate(j, yv_, cm), &dq, &dv);
-              dFdg[j] = -dq;
-              dFdgd[j] = -dv;
+              const double G = gain(j, t);
+              dFdg[j] = -G * dq;
+              dFdgd[j] = -G * dv;
             }
           };
       // a camshaft: the cam contacts' rows at the state and their stiffness at the laws' forces
@@ -48,9 +54,10 @@ class PenaltyMethod final : public ContactRun {
         for (int j = 0; j < m_; ++j) {
           double dq = 0, dv = 0;
           const double s = -gap(j, y, cm), sd = -gap_rate(j, y, cm);
-          F[j] = law(j, s, sd);
+          const double G = gain(j, t);
+          F[j] = G * law(j, s, sd);
           params(j).derivatives(s, sd, &dq, &dv);
-          dFdgd[j] = -dv;
+          dFdgd[j] = -G * dv;
         }
       });
     } else if (mk_.acceleration_jacobian(0.0, q0.data(), v0.data(), dq0, dv0))
@@ -63,6 +70,9 @@ class PenaltyMethod final : public ContactRun {
         for (int j = 0; j < m_; ++j) {
           double dq = 0, dv = 0;  // dF/ds, dF/dŝ
           params(j).derivatives(-gap(j, yv_, cm), -gap_rate(j, yv_, cm), &dq, &dv);
+          const double G = gain(j, t);
+          dq *= G;
+          dv *= G;
           // F = f(s, ŝ), s = −T_j q: ∂(M⁻¹T_jᵀF)/∂q = −dq M⁻¹T_jᵀT_j
           const Eigen::RowVectorXd& tj = mk_.contacts()[j].t;
           dadq.noalias() -= dq * mk_.MinvTt().col(j) * tj;
@@ -89,10 +99,18 @@ class PenaltyMethod final : public ContactRun {
   // The penalty law of contact j; its force at penetration s and its rate ŝ (el: the elastic part).
   const PenaltyNormalLaw& params(int j) const { return mk_.contacts()[j].law.penalty; }
   double law(int j, double s, double sd, double* el = nullptr) const { return params(j).force(s, sd, el); }
+  /// The factor G_j(t) on contact j's law force: 1 + κ at a cam contact with pad friction
+  /// (designer_columns.hpp PadFriction), else 1.
+  double gain(int j, double t) const {
+    if (!design_cols_.pad_friction_on() || !mk_.contacts()[j].cam) return 1.0;
+    return design_cols_.contact_gain(cam_.evaluate(drive_.theta(t)), drive_.omega(t));
+  }
   void forces(double t, const Eigen::VectorXd& y, Eigen::VectorXd& F) const {
     const CamMotion cm = cam_at(t);
     F.resize(m_);
     for (int j = 0; j < m_; ++j) F[j] = law(j, -gap(j, y, cm), -gap_rate(j, y, cm));
+    if (design_cols_.pad_friction_on())
+      for (int j = 0; j < m_; ++j) F[j] *= gain(j, t);
   }
   double contact_potential(double t, const double* q) const override {
     const CamMotion cm = cam_at(t);
@@ -114,6 +132,7 @@ class PenaltyMethod final : public ContactRun {
       double el = 0.0;
       const double F = law(j, s, sd, &el);
       if (s > 0.0) P += (F - el) * sd;
+      if (s > 0.0 && design_cols_.pad_friction_on()) P += (gain(j, t) - 1.0) * F * sd;
     }
     return P;
   }
@@ -152,7 +171,7 @@ class PenaltyMethod final : public ContactRun {
       g0[i] = gap(j, y_, cm0);
       Fs[i] = F_[j];
       sd[i] = -gap_rate(j, y_, cm0);
-      s_static[i] = params(j).depth_at(F_[j]);
+      s_static[i] = params(j).depth_at(F_[j] / gain(j, 0.0));
       for (int l = 0; l < k; ++l) Wss(i, l) = mk_.W()(j, set[l]);
     }
     for (int i = 0; i < k; ++i)
@@ -186,9 +205,10 @@ class PenaltyMethod final : public ContactRun {
       s = TP * mu - g0;
       for (int i = 0; i < k; ++i) {
         double dq = 0, dv = 0;
-        F[i] = law(set[i], s[i], sd[i]);
+        const double G = gain(set[i], 0.0);
+        F[i] = G * law(set[i], s[i], sd[i]);
         params(set[i]).derivatives(s[i], sd[i], &dq, &dv);
-        dF[i] = dq;
+        dF[i] = G * dq;
       }
       r = b0 + Wss * F;
       J = A + Wss * dF.asDiagonal() * TP;
