@@ -144,7 +144,9 @@ TEST(CamshaftTiming, ErrorFallsWithTheStiffness) {
   // 2(T − τṪ)/K, falling as 1/K toward the prescribed cam's zero. Measured (opening,
   // closing relative to the closed form): K = 1e3 5.0e-4, 5.7e-4 (the shaft's inertia,
   // (ω/ω_n)² = 3.9e-4); 1e4 3.8e-5, 3.0e-5; 1e5 9.1e-5, 8.9e-5 (1e-9 deg: the located
-  // crossing's resolution at rtol 1e-10).
+  // crossing's resolution at rtol 1e-10). The second revolution is reported (the start's
+  // torsional transient gone); the stiffest shaft, whose steps cost most, settles by the
+  // first opening and runs one revolution.
   const Follower f;
   double prev = NAN;
   for (double K : {1e3, 1e4, 1e5}) {
@@ -152,7 +154,7 @@ TEST(CamshaftTiming, ErrorFallsWithTheStiffness) {
                                      "inertias = [1e-4, 1e-4]\nstiffnesses = [" + num(K) +
                                          "]\ncam_stations = [1]\nrayleigh_beta = 2e-4\ndrive_stiffness = " + num(K) +
                                          "\ndrive_damping = " + num(2e-4 * K) + "\n",
-                                     0.2, 1e-10));
+                                     K > 3e4 ? 0.1 : 0.2, 1e-10));
     ASSERT_TRUE(s.finished) << s.message;
     ASSERT_EQ(s.valve_timing.size(), 1u);
     const ValveTimingResult& v = s.valve_timing[0];
