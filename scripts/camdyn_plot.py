@@ -14,7 +14,9 @@
                                                       one line per revolution
                            with a [camshaft] (drive_torque, windup_cam<i> columns) also:
                            DIR/camshaft.png           drive torque and every cam's wind-up
-                                                      against the cam angle θ(t)
+                                                      against the cam angle θ(t), and each
+                                                      valve's timing error (summary.json
+                                                      valve_timing)
     camdyn_plot.py cam DIR [--speed REV_S]
         DIR/cam.csv     -> DIR/cam_profile.png        the profile in the cam frame
                            DIR/cam_kinematics.png     lift, velocity, acceleration vs cam angle
@@ -199,15 +201,44 @@ def camshaft_curves(c):
     return drive_deg, c["drive_torque"], [(k[len("windup_"):], 1e3 * c[k]) for k in cams]
 
 
-def plot_camshaft(d, c, title=""):
+def valve_timing_bars(s):
+    """Each valve's timing errors from a summary.json (dict) of a camshaft run: (valve names,
+    opening errors, closing errors) [deg, camshaft degrees; NaN where the valve did not open or
+    close], in the summary's valve order; three empty lists without "valve_timing"."""
+    rows = s.get("valve_timing") if isinstance(s, dict) else None
+    if not isinstance(rows, list):
+        return [], [], []
+
+    def num(v):
+        return float("nan") if v is None else float(v)
+
+    return ([str(r.get("valve")) for r in rows], [num(r.get("opening_error_deg")) for r in rows],
+            [num(r.get("closing_error_deg")) for r in rows])
+
+
+def read_summary(d):
+    try:
+        with open(os.path.join(d, "summary.json"), "r", encoding="utf-8") as f:
+            s = json.load(f)
+        return s if isinstance(s, dict) else {}
+    except (OSError, ValueError):
+        return {}
+
+
+def plot_camshaft(d, c, title="", summary=None):
     """DIR/camshaft.png: the drive torque and every cam's wind-up against the prescribed cam
-    angle over the run."""
+    angle over the run, and, when summary.json (or `summary`) has "valve_timing", each valve's
+    opening and closing timing error (dynamic − kinematic, camshaft degrees)."""
     deg, torque, windups = camshaft_curves(c)
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    names, opening, closing = valve_timing_bars(read_summary(d) if summary is None else summary)
+    panels = 3 if names else 2
+    fig, axes = plt.subplots(panels, 1, figsize=(8, 3.5 * panels))
+    a1, a2 = axes[0], axes[1]
     a1.plot(deg, torque, "-", lw=1.0)
     a1.set_ylabel("drive torque")
     a1.set_title(("Camshaft: drive torque and wind-up\n" + title).strip())
     a1.grid(True, alpha=0.3)
+    a1.sharex(a2)
     for name, w in windups:
         a2.plot(deg, w, "-", lw=0.9, label=name)
     a2.set_xlabel("cam angle θ(t) [deg]")
@@ -215,6 +246,18 @@ def plot_camshaft(d, c, title=""):
     a2.grid(True, alpha=0.3)
     if 0 < len(windups) <= 16:
         a2.legend(loc="best", fontsize=7, ncol=2)
+    if names:
+        a3 = axes[2]
+        x = np.arange(len(names))
+        a3.bar(x - 0.2, opening, 0.4, label="opening")
+        a3.bar(x + 0.2, closing, 0.4, label="closing")
+        a3.axhline(0.0, color="k", lw=0.6)
+        a3.set_xticks(x)
+        a3.set_xticklabels(names, rotation=45 if len(names) > 8 else 0, fontsize=8)
+        a3.set_ylabel("timing error [cam deg]")
+        a3.set_title("Timing error per valve: dynamic − kinematic (> 0: late)", fontsize=9)
+        a3.grid(True, axis="y", alpha=0.3)
+        a3.legend(loc="best", fontsize=7)
     save(fig, os.path.join(d, "camshaft.png"))
 
 

@@ -277,8 +277,32 @@ def camshaft_html(s, c):
         if "frequenc" in str(line):
             items.append(html.escape(str(line)))
     return "<h2>Camshaft</h2><ul>%s</ul><p class='note'>Wind-up: the drive station's angle − the cam's " \
-           "station's angle (&gt; 0: the cam lags). Torque in N m (SI scenes).</p>" % "".join(
-               "<li>%s</li>" % x for x in items)
+           "station's angle (&gt; 0: the cam lags). Torque in N m (SI scenes).</p>%s" % (
+               "".join("<li>%s</li>" % x for x in items), valve_timing_html(s))
+
+
+def valve_timing_html(s):
+    """summary.json's valve_timing as a table: per valve its kinematic and dynamic opening and
+    closing angles and their errors (camshaft degrees; "" without valve_timing)."""
+    rows = s.get("valve_timing") if isinstance(s, dict) else None
+    if not isinstance(rows, list) or not rows:
+        return ""
+
+    def deg(v, digits=5):
+        t = fmt(v, digits)
+        return t if t == "—" else t + "°"
+
+    body = "".join("<tr><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td>"
+                   "<td>%s</td></tr>" % (html.escape(str(r.get("valve"))), html.escape(str(r.get("cam"))),
+                                         deg(r.get("kinematic_opening_deg")), deg(r.get("opening_deg")),
+                                         deg(r.get("opening_error_deg"), 3), deg(r.get("kinematic_closing_deg")),
+                                         deg(r.get("closing_deg")), deg(r.get("closing_error_deg"), 3))
+                   for r in rows)
+    return ("<h3>Valve timing</h3><table><tr><th>valve</th><th>cam</th><th>opens (kinematic)</th>"
+            "<th>opens</th><th>error</th><th>closes (kinematic)</th><th>closes</th><th>error</th></tr>%s"
+            "</table><p class='note'>Open above 1 %% of the valve's kinematic lift. Kinematic: the cam's own "
+            "angle; dynamic: the crank's angle − the cam's offset when the valve crosses that lift (the last "
+            "revolution with both); camshaft degrees, error &gt; 0: late.</p>" % body)
 
 
 def criteria_html(crit):

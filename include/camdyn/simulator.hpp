@@ -261,6 +261,27 @@ struct LiftDeviationRevolution {
   double min = NAN, min_theta_deg = NAN, max = NAN, max_theta_deg = NAN;
 };
 
+/// The timing of one valve of a camshaft run (summary.json "valve_timing"; issue 40;
+/// src/results/valve_timing.hpp). The valve is open while its displacement exceeds
+/// `threshold`, 1 % of its kinematic lift. Kinematic angles: the cam's own angle (station
+/// angle − offset) where the kinematic lift (every part rigid, the clearances on the path
+/// taken up) crosses the threshold. Dynamic angles: the crank's angle − the cam's offset
+/// (the angle the cam would have on a rigid shaft and drive) where the valve's displacement
+/// crosses it, located inside the steps: the first opening and the last closing of a cam
+/// revolution, of the last revolution with both. Angles in camshaft degrees [0, 360) (crank
+/// degrees are twice); errors dynamic − kinematic in (−180, 180] (> 0: late); NaN: did not
+/// happen.
+struct ValveTimingResult {
+  std::string valve;    ///< the valve's node: a seat's node its cam contact's path reaches, else its follower
+  std::string contact;  ///< the cam contact that drives it
+  int cam = 0;          ///< its cam (the index in camshaft.cam_stations)
+  double threshold = NAN;  ///< the lift above which it is open [length]
+  double kinematic_opening_deg = NAN, kinematic_closing_deg = NAN;
+  double opening_deg = NAN, closing_deg = NAN;
+  double opening_error_deg = NAN, closing_error_deg = NAN;
+  long openings = 0;    ///< openings seen in the run
+};
+
 struct Summary {
   std::string scene;
   bool finished = false;  ///< termination == Termination::Finished
@@ -381,6 +402,9 @@ struct Summary {
   std::vector<CriterionResult> criteria;
   /// Every criterion passes (true when there is none).
   bool criteria_pass = true;
+  /// A [camshaft]: each valve's timing (ValveTimingResult), in the order of the cam contacts
+  /// and their seats; empty without a camshaft.
+  std::vector<ValveTimingResult> valve_timing;
 
   std::string BriefReport() const;
   std::string FullReport() const;

@@ -18,6 +18,11 @@
 //     F_ġ = T_S v − Ẋ_C(t)·[cam]                 = 0   (k, multipliers λ)
 //     F_W = Ẇ − Σ_{j ∈ S, cam} λ_j Ẋ_C(t)        = 0   (1, the cam's work W)
 //
+//   A [camshaft] (ida_rows.hpp): a held cam contact on a free station s has the row
+//   T̃_c = T_c − X_L′(φ_s)e_sᵀ in F_q, F_v and F_ġ, and F_g its lift X_L(φ_s − α); the
+//   Newton matrix carries those −X_L′ entries and their derivatives in φ_s (X_L″μ, X_L″λ,
+//   X_L″φ̇_s); r gains the crank's part of the drive couplings, and W their power (with the
+//   prescribed station's cams' λẊ) instead of the free stations' cams' λẊ, which works inside.
 //   With nonlinear elements r = f₀ − Kq − Cv + r_e(t, q, v, s) and their internal states s
 //   (ns of them, element.hpp) add F_s = ṡ − g(t, q, v, s) = 0 (ns, differential, in the
 //   error test), y = [q; v; λ; μ; W; s; D], N = 2n + 2k + 2 + ns; their blocks in the Newton
@@ -59,6 +64,7 @@
 // Every SUNDIALS flag is checked (negative → SundialsError naming the call); callbacks
 // catch every exception and return −1 so none crosses SUNDIALS.
 #include "engine/ida_engine.hpp"
+#include "engine/ida_rows.hpp"
 #include "engine/sundials_raii.hpp"
 
 #include <ida/ida.h>
@@ -101,31 +107,14 @@ using detail::Mat;
 using detail::NVec;
 using detail::not_null;
 
-/// A contact row: its nonzeros (T_j is sparse: one entry for a single follower).
-struct Row {
-  std::vector<std::pair<long, double>> nz;
-  double g0 = 0.0;
-  bool cam = false;
-  double dot(const double* x) const {
-    double s = 0.0;
-    for (const auto& e : nz) s += e.second * x[e.first];
-    return s;
-  }
-};
-
-Row row_of(const MechanismContact& c) {
-  Row r;
-  for (long i = 0; i < c.t.size(); ++i)
-    if (c.t[i] != 0.0) r.nz.emplace_back(i, c.t[i]);
-  r.g0 = c.g0;
-  r.cam = c.cam;
-  return r;
-}
+using ida_rows::Row;
+using ida_rows::row_of;
 
 }  // namespace
 
 struct IdaHeldSet::Impl {
   const Mechanism& mech;
+  const CamShaft* shaft;  // a [camshaft] (ida_rows.hpp), else nullptr
   IdaHeldSet::CamFn cam;
   int n, k, ns, N;
   int iL, iU, iW, iS, iD;  // first indices of λ, μ; index of W; first index of s; index of D
@@ -136,6 +125,13 @@ struct IdaHeldSet::Impl {
   Eigen::VectorXd q0, r0;
   SparseMatrix J0, J1;    // ∂F/∂y, ∂F/∂ẏ on one common (union) pattern
   std::vector<long> p_wl;  // positions of ∂F_W/∂λ_j (held cam contacts), −1 otherwise
+  // a camshaft: per held contact on a free station s, the positions of its row's entries
+  // (s, s), (s, μ), (n + s, s), (n + s, λ), (g, s), (ġ, n + s), (ġ, s)
+  struct ShaftEntries {
+    int c;
+    long qq, qmu, vq, vlam, gq, gdv, gdq;
+  };
+  std::vector<ShaftEntries> p_shaft;
   // nonlinear elements: their tangent's values and positions in J0 (rows n + i)
   SparseMatrix Ke, Ce;
   std::vector<long> p_ke, p_ce;
@@ -160,18 +156,18 @@ struct IdaHeldSet::Impl {
 
   Impl(const Mechanism& mc, const std::vector<int>& held_ids, const Scene& scene, IdaHeldSet::CamFn c,
        bool dense_ls)
-      : mech(mc), cam(std::move(c)), n(mc.n()), k(int(held_ids.size())), ns(mc.states()),
+      : mech(mc), shaft(mc.camshaft()), cam(std::move(c)), n(mc.n()), k(int(held_ids.size())), ns(mc.states()),
         N(2 * mc.n() + 2 * k + 2 + ns), iL(2 * n), iU(2 * n + k), iW(2 * n + 2 * k), iS(2 * n + 2 * k + 1),
         iD(2 * n + 2 * k + 1 + ns),
         spec(scene.solver), dense(dense_ls), q0(mc.q0()), sdot(mc.states()), r(mc.n()), Mvp(mc.n()), dq(mc.n()) {
     std::vector<char> is_held(std::size_t(mech.m()), 0);
     for (int j : held_ids) {
-      held.push_back(row_of(mech.contacts()[std::size_t(j)]));
+      held.push_back(row_of(mech, j));
       is_held[std::size_t(j)] = 1;
     }
     for (int j = 0; j < mech.m(); ++j)
       if (!is_held[std::size_t(j)]) {
-        open.push_back(row_of(mech.contacts()[std::size_t(j)]));
+        open.push_back(row_of(mech, j));
         open_ids.push_back(j);
       }
     r0 = mech.f0() - mech.K() * q0;
@@ -219,7 +215,18 @@ struct IdaHeldSet::Impl {
         add0(iL + c, e.first, e.second);       // F_g,c = T_c q + …   (row 2n + c)
         add0(iU + c, n + e.first, e.second);   // F_ġ,c = T_c v − …   (row 2n + k + c)
       }
-      if (held[std::size_t(c)].cam) add0(iW, iL + c, 1.0);  // F_W: −Ẋ_C λ_c (value per Jacobian)
+      const Row& h = held[std::size_t(c)];
+      if (h.cam && h.sdof < 0) add0(iW, iL + c, 1.0);  // F_W: −Ẋ_C λ_c (value per Jacobian)
+      if (h.sdof >= 0) {  // a camshaft's free station s: T̃_c = T_c − X_L′e_sᵀ (values per Jacobian)
+        const long st = h.sdof;
+        add0(st, st, 0.0);            // F_q,s: −X_L′μ_c → −X_L″μ_c
+        add0(st, iU + c, 0.0);        // F_q,s: −X_L′
+        add0(n + st, st, 0.0);        // F_v,s: +X_L′λ_c → +X_L″λ_c
+        add0(n + st, iL + c, 0.0);    // F_v,s: +X_L′
+        add0(iL + c, st, 0.0);        // F_g,c: −X_L′
+        add0(iU + c, n + st, 0.0);    // F_ġ,c: −X_L′ φ̇_s → −X_L′
+        add0(iU + c, st, 0.0);        // F_ġ,c: −X_L″ φ̇_s
+      }
     }
     add1(iW, iW, 1.0);  // F_W: Ẇ
     add1(iD, iD, 1.0);  // F_D: Ḋ
@@ -266,6 +273,12 @@ struct IdaHeldSet::Impl {
       }
     for (long c = 0; c < ns; ++c)
       for (long l = 0; l < ns; ++l) p_gs.push_back(position(iS + l, iS + c));
+    for (int c = 0; c < k; ++c) {
+      const long st = held[std::size_t(c)].sdof;
+      if (st < 0) continue;
+      p_shaft.push_back({c, position(st, st), position(st, iU + c), position(n + st, st), position(n + st, iL + c),
+                         position(iL + c, st), position(iU + c, n + st), position(iU + c, st)});
+    }
     p_wl.assign(std::size_t(k), -1);
     for (int c = 0; c < k; ++c)
       for (long p = J0.outerIndexPtr()[iL + c]; p < J0.outerIndexPtr()[iL + c + 1]; ++p)
@@ -284,6 +297,10 @@ struct IdaHeldSet::Impl {
     const double* s = ns > 0 ? y + iS : nullptr;
     if (!mech.elements().empty()) mech.elements().add_force(t, q, v, r.data(), s);
     double Pw = 0.0;
+    if (shaft) {  // the crank's part of the drive couplings, and their power: the run's input
+      shaft->add_crank_forcing(t, r.data());
+      Pw += shaft->coupling_power(t, q, v);
+    }
     for (int j = 0; j < k; ++j) {
       const Row& h = held[std::size_t(j)];
       const double lam = y[iL + j], mu = y[iU + j];
@@ -291,9 +308,15 @@ struct IdaHeldSet::Impl {
         F[e.first] += e.second * mu;
         r[e.first] += e.second * lam;
       }
-      F[iL + j] = h.dot(q) + h.g0 - (h.cam ? c.X : 0.0);
-      F[iU + j] = h.dot(v) - (h.cam ? c.Xdot : 0.0);
-      if (h.cam) Pw += lam * c.Xdot;
+      const ida_rows::RowCam rc = ida_rows::row_cam(h, shaft, c, t, q, v);
+      if (h.sdof >= 0) {  // T̃ᵀ: the contact's torque −X_L′λ on its station (its work stays inside)
+        F[h.sdof] -= rc.dX * mu;
+        r[h.sdof] -= rc.dX * lam;
+      } else if (h.cam) {
+        Pw += lam * rc.Xdot;
+      }
+      F[iL + j] = h.dot(q) + h.g0 - rc.X;
+      F[iU + j] = h.dot(v) - rc.Xdot;
     }
     Mvp.noalias() = mech.M() * Eigen::Map<const Eigen::VectorXd>(dy + n, n);
     for (int i = 0; i < n; ++i) F[n + i] = Mvp[i] - r[i];
@@ -314,8 +337,24 @@ struct IdaHeldSet::Impl {
     std::vector<double>& x = jx;
     x.resize(std::size_t(nnz));
     for (long p = 0; p < nnz; ++p) x[std::size_t(p)] = a0[p] + cj * a1[p];
-    for (long p : p_wl)
-      if (p >= 0) x[std::size_t(p)] = wl;
+    for (int c = 0; c < k; ++c) {
+      const long p = p_wl[std::size_t(c)];
+      if (p < 0) continue;
+      const Row& h = held[std::size_t(c)];
+      x[std::size_t(p)] = h.shaft ? -ida_rows::row_cam(h, shaft, CamMotion{}, t, y, y + n).Xdot : wl;
+    }
+    for (const ShaftEntries& e : p_shaft) {
+      const Row& h = held[std::size_t(e.c)];
+      const ShaftCamLift L = shaft->lift(h.contact, y);
+      const double lam = y[iL + e.c], mu = y[iU + e.c], ws = y[n + h.sdof];
+      x[std::size_t(e.qq)] -= L.ddX * mu;
+      x[std::size_t(e.qmu)] -= L.dX;
+      x[std::size_t(e.vq)] += L.ddX * lam;
+      x[std::size_t(e.vlam)] += L.dX;
+      x[std::size_t(e.gq)] -= L.dX;
+      x[std::size_t(e.gdv)] -= L.dX;
+      x[std::size_t(e.gdq)] -= L.ddX * ws;
+    }
     const double* s = ns > 0 ? y + iS : nullptr;
     if (!p_ke.empty()) {
       mech.elements().tangent(t, y, y + n, Ke, Ce, s);
@@ -358,7 +397,7 @@ struct IdaHeldSet::Impl {
       for (int j = 0; j < k; ++j) g[i++] = y[iL + j];
     if (open.empty()) return;
     const CamMotion c = cam(t);
-    for (const Row& o : open) g[i++] = o.dot(y) + o.g0 - (o.cam ? c.X : 0.0);
+    for (const Row& o : open) g[i++] = o.dot(y) + o.g0 - ida_rows::row_cam(o, shaft, c, t, y, y + n).X;
   }
 
   void set_roots() {
@@ -429,9 +468,11 @@ void IdaHeldSet::init(double t0, const Eigen::VectorXd& y0, const Eigen::VectorX
     y[d.iL + j] = lam[j];
     y[d.iU + j] = 0.0;
     F[held_[std::size_t(j)]] = lam[j];
-    if (d.held[std::size_t(j)].cam) Pw += lam[j] * c.Xdot;
+    const Row& h = d.held[std::size_t(j)];
+    if (h.cam && h.sdof < 0) Pw += lam[j] * ida_rows::row_cam(h, d.shaft, c, t0, y, y + n).Xdot;
     Fmax = std::max(Fmax, std::abs(lam[j]));
   }
+  if (d.shaft) Pw += d.shaft->coupling_power(t0, y, y + n);
   y[d.iW] = 0.0;
   std::copy(y + n, y + 2 * n, dy);  // q̇ = v
   mc.acceleration(t0, y, y + n, F, dy + n, false, s);  // v̇ = M⁻¹(r(t, q, v, s) + T_Sᵀλ)

@@ -16,7 +16,8 @@
 namespace camdyn {
 
 /// The held contacts S of a linear Mechanism (src/mechanism/mechanism.hpp: M q̈ + C q̇ + K q = f₀ +
-/// TᵀF), g_S(q, t) = T_S q + g₀,S − X_C(t)·[cam] = 0, integrated by IDA (variable-order
+/// TᵀF), g_S(q, t) = T_S q + g₀,S − X_C(t)·[cam] = 0 (a [camshaft]'s cam contact: its cam's
+/// lift at its station's angle, the row T̃ = T − X_L′e_sᵀ at the state; ida_rows.hpp), integrated by IDA (variable-order
 /// BDF) as a stabilised index-2 (GGL) DAE in y = [q; v; λ; μ; W]: λ the held contacts'
 /// forces (compressive > 0), μ the GGL multipliers (0 on the exact solution), W = Σ over
 /// held cam contacts ∫ λ_j Ẋ_C dt the cam's work; with the nonlinear elements' internal

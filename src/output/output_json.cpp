@@ -495,6 +495,22 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
     k.str("note", c.note);
   }));
   o.boolean("criteria_pass", s.criteria_pass);
+  if (!s.valve_timing.empty()) {
+    // a [camshaft]: each valve's timing (include/camdyn/simulator.hpp ValveTimingResult)
+    o.raw("valve_timing", object_array(o, s.valve_timing, [](JsonObject& k, const ValveTimingResult& v) {
+      k.str("valve", v.valve);
+      k.str("contact", v.contact);
+      k.integer("cam", v.cam);
+      k.num("threshold", v.threshold);
+      k.num("kinematic_opening_deg", v.kinematic_opening_deg);
+      k.num("kinematic_closing_deg", v.kinematic_closing_deg);
+      k.num("opening_deg", v.opening_deg);
+      k.num("closing_deg", v.closing_deg);
+      k.num("opening_error_deg", v.opening_error_deg);
+      k.num("closing_error_deg", v.closing_error_deg);
+      k.integer("openings", v.openings);
+    }));
+  }
   if (!s.coil_clash.empty()) {
     // springs whose coils clash (include/camdyn/simulator.hpp CoilClashResult)
     o.raw("coil_clash", object_array(o, s.coil_clash, [](JsonObject& k, const CoilClashResult& c) {

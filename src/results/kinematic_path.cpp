@@ -19,24 +19,27 @@ KinematicPath::KinematicPath(const Scene& scene) {
     return -1;  // ground
   };
   std::deque<int> queue;
-  for (const ContactPointSpec& c : net.contacts) {
+  for (std::size_t j = 0; j < net.contacts.size(); ++j) {
+    const ContactPointSpec& c = net.contacts[j];
     if (c.kind != ContactPointKind::Cam || c.nodes.empty()) continue;
     levels_.push_back(c.clearance);
     const int i = index(c.nodes[0]);
     if (i < 0 || nodes_[std::size_t(i)].reached) continue;
-    nodes_[std::size_t(i)] = {true, 1.0, c.clearance};
+    nodes_[std::size_t(i)] = {true, 1.0, c.clearance, int(j)};
     queue.push_back(i);
   }
-  // breadth first: the first path found to a node is its path
+  // breadth first: the first path found to a node is its path (and its source's cam)
+  int from = -1;  // the source of the node being expanded
   auto reach = [&](int to, double gain, double take_up) {
     if (to < 0 || nodes_[std::size_t(to)].reached || !(gain != 0.0) || !std::isfinite(gain)) return;
-    nodes_[std::size_t(to)] = {true, gain, take_up};
+    nodes_[std::size_t(to)] = {true, gain, take_up, from};
     queue.push_back(to);
   };
   while (!queue.empty()) {
     const int i = queue.front();
     queue.pop_front();
     const KinematicNode k = nodes_[std::size_t(i)];
+    from = k.source;
     const std::string& me = names_[std::size_t(i)];
     for (const ContactPointSpec& c : net.contacts) {
       if (c.kind != ContactPointKind::Lash || c.nodes.size() != 2 || c.nodes[0] != me) continue;

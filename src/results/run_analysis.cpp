@@ -34,7 +34,7 @@ std::vector<std::string> RunAnalysis::columns(const Scene& sc) {
 
 RunAnalysis::RunAnalysis(const Scene& sc, const std::vector<std::string>& contacts,
                          const std::vector<std::string>& nodes, double lift, const Cam* cam)
-    : sc_(sc), cam_(cam), path_(sc) {
+    : sc_(sc), cam_(cam), path_(sc), timing_(sc, path_, nodes) {
   const CamSpec& c = sc.cam;
   band_ = kTakeUpBand * (lift > 0 ? lift : 0.0);
   if (sc.lubricant.viscosity > 0) {
@@ -76,7 +76,7 @@ RunAnalysis::RunAnalysis(const Scene& sc, const std::vector<std::string>& contac
     }
   bool levels = false;
   for (double x : path_.take_up_levels()) levels = levels || x > 0;
-  per_row_ = film_ || valve_ >= 0 || !seats_.empty() || levels;
+  per_row_ = film_ || valve_ >= 0 || !seats_.empty() || levels || timing_.active();
 }
 
 double RunAnalysis::film(const CamPoint& p, double omega, double Fc) const {
@@ -171,6 +171,7 @@ void RunAnalysis::row(double t, double theta, const CamPoint& p, double X, doubl
   prev_X_ = X;
   prev_Xdot_ = Xdot;
   prev_theta_ = theta;
+  if (timing_.active()) timing_.row(theta, u);
   for (Seat& s : seats_) {
     if (traced_) break;
     s.t.push_back(t);
@@ -259,6 +260,7 @@ void RunAnalysis::step_inside(const std::vector<StepSample>& s, const StepProbe&
       }
     }
   }
+  if (timing_.active()) timing_.step(s, probe);
   for (Seat& seat : seats_) {
     const std::size_t c = std::size_t(seat.contact);
     if (s[0].in_set[c]) continue;  // on its seat over the step
@@ -308,6 +310,7 @@ void RunAnalysis::finish(Summary& s) const {
   s.lift_deviation = dev_;
   s.max_ramp_velocity = ramp_;
   s.max_ramp_theta_deg = ramp_theta_;
+  s.valve_timing = timing_.results();
   for (const Seat& seat : seats_) {
     std::size_t r = 0;  // rows before the current impact: [.. r)
     double prev_t = -INFINITY;

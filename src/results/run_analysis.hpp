@@ -15,7 +15,9 @@
 //                (the root of the gap rate on the step's interpolant; the rows for a method
 //                that does not trace its steps);
 //   ramp velocity  the cam's |Ẋ| where its lift crosses a take-up level > 0 (the root of
-//                X(t) − L inside each traced step; linear between rows only when not traced).
+//                X(t) − L inside each traced step; linear between rows only when not traced);
+//   valve timing  a [camshaft]: each valve's dynamic opening and closing angles against its
+//                kinematic ones (results/valve_timing.hpp).
 #pragma once
 
 #include <memory>
@@ -28,6 +30,7 @@
 #include "results/kinematic_path.hpp"
 #include "results/oil_film.hpp"
 #include "results/step_extremes.hpp"
+#include "results/valve_timing.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -60,11 +63,12 @@ class RunAnalysis {
   /// open seat's highest gap (the apex: the root of its gap rate inside the step). Once a
   /// method traces its steps, these come from the steps only, not from the rows.
   void step_inside(const std::vector<StepSample>& s, const StepProbe& probe);
-  /// The named nodes' displacements are needed in the step samples (run.valve_node).
-  bool wants_nodes() const { return valve_ >= 0; }
+  /// The named nodes' displacements are needed in the step samples (run.valve_node, a
+  /// camshaft's valve timing).
+  bool wants_nodes() const { return valve_ >= 0 || timing_.active(); }
   /// An event of contact `j`.
   void event(const ContactEvent& e, int j);
-  /// Film, lift deviation, ramp velocity and landings into `s`.
+  /// Film, lift deviation, ramp velocity, landings and valve timing into `s`.
   void finish(Summary& s) const;
 
   /// The film at one state (exposed for tests): h_min, NaN when apart or no conjunction.
@@ -84,6 +88,7 @@ class RunAnalysis {
   const Scene& sc_;
   const Cam* cam_ = nullptr;
   KinematicPath path_;
+  ValveTiming timing_;
   bool film_ = false, lambda_ = false, per_row_ = false;
   Lubricant oil_;
   double Ep_ = 0, width_ = 0, rr_ = 0;

@@ -308,6 +308,17 @@ std::string Summary::BriefReport() const {
   }
   for (const SurgeResult& sg : surge)
     o << " — surge '" << sg.spring << "' " << fmt(sg.amplitude) << " at " << fmt(sg.theta_deg) << " deg";
+  if (!valve_timing.empty()) {  // a camshaft: the largest timing errors
+    const ValveTimingResult *op = nullptr, *cl = nullptr;
+    for (const ValveTimingResult& v : valve_timing) {
+      if (!std::isnan(v.opening_error_deg) && (!op || std::abs(v.opening_error_deg) > std::abs(op->opening_error_deg)))
+        op = &v;
+      if (!std::isnan(v.closing_error_deg) && (!cl || std::abs(v.closing_error_deg) > std::abs(cl->closing_error_deg)))
+        cl = &v;
+    }
+    o << " — valve timing error: opening " << (op ? fmt(op->opening_error_deg) + " deg ('" + op->valve + "')" : "-")
+      << ", closing " << (cl ? fmt(cl->closing_error_deg) + " deg ('" + cl->valve + "')" : "-");
+  }
   if (!finished) o << " — " << message << " [" << to_string(termination) << "]";
   if (contract.checked && !contract.held) {
     o << "\ncamdyn: CONTRACT NOT HELD — the result is not to be trusted:";
@@ -401,6 +412,14 @@ std::string Summary::FullReport() const {
       << (std::isnan(c.value) ? std::string("-") : fmt(c.value)) << (c.is_max ? " <= " : " >= ") << fmt(c.limit)
       << " (worst at " << (std::isnan(c.theta_deg) ? std::string("-") : fmt(c.theta_deg) + " deg") << ")"
       << (c.note.empty() ? std::string() : ": " + c.note) << "\n";
+  for (const ValveTimingResult& v : valve_timing) {
+    auto ang = [&](double d) { return std::isnan(d) ? std::string("-") : fmt(d); };
+    o << "  valve timing '" << v.valve << "' (cam " << v.cam << ", above " << fmt(v.threshold) << "): opens "
+      << ang(v.opening_deg) << " deg (kinematic " << ang(v.kinematic_opening_deg) << ", error "
+      << ang(v.opening_error_deg) << "), closes " << ang(v.closing_deg) << " deg (kinematic "
+      << ang(v.kinematic_closing_deg) << ", error " << ang(v.closing_error_deg) << "), " << v.openings
+      << " openings\n";
+  }
   for (const SurgeResult& sg : surge)
     o << "  surge '" << sg.spring << "':" << std::string(sg.spring.size() < 11 ? 11 - sg.spring.size() : 1, ' ')
       << fmt(sg.amplitude) << " (largest |coil − quasi-static shape|, at " << fmt(sg.theta_deg) << " deg)\n";

@@ -55,11 +55,6 @@ void Validator::camshaft() const {
             std::string("a camshaft needs follower.kind = \"network\" (follower.kind is \"") +
                 to_string(s_.follower.kind) + "\"): its cam contacts are the network's",
             "follower.kind");
-  if (s_.solver.integrator == Integrator::Ida)
-    fail_at("solver.integrator", "\"ida\"",
-            "a [camshaft] runs on \"arkode-erk\", \"arkode-dirk\" or \"cvode-bdf\" (holonomic contact too: its "
-            "DAE on ida does not carry the shaft angle in its contact rows)",
-            "camshaft.inertias");
   if (c.stiffnesses.size() != N - 1)
     fail_at("camshaft.stiffnesses", array_text(c.stiffnesses),
             "must have " + std::to_string(N - 1) + " entries (one per segment between the " + std::to_string(N) +

@@ -73,3 +73,37 @@ def test_camshaft_report_section(i4_run, plot_module):
     assert "cam7: largest wind-up %s mrad" % rep.fmt(1e3 * float(w[int(np.argmax(np.abs(w)))])) in h
     assert "natural frequencies with the trains attached" in h
     assert rep.camshaft_html(s, {"theta": c["theta"]}) == ""
+
+
+def test_valve_timing_panel_and_table(i4_run, plot_module):
+    """The timing panel of camshaft.png draws summary.json's valve_timing (camdyn_plot.py
+    valve_timing_bars), one valve per train (the seat's node), and the report tabulates it.
+    Independent truths for the kinematic angles: every cam has the example's lift table, its
+    trains 0.2 mm of lash and a stiff stem, so each valve is open above 1 % of 7.8 mm, where the
+    cam lifts 0.278 mm: between the table's knots at 90° (0.2689 mm) and 93° (0.2878 mm) on the
+    opening ramp, and (the lobe is symmetric about 180°) at 360° − that on the closing ramp."""
+    import importlib.util as iu
+    import json
+
+    s = json.load(open(i4_run / "summary.json"))
+    names, opening, closing = plot_module.valve_timing_bars(s)
+    assert names == ["valve%d%s" % (i, ab) for i in (1, 2, 3, 4) for ab in "ab"]
+    rows = s["valve_timing"]
+    for r, o, c in zip(rows, opening, closing):
+        assert abs(r["threshold"] - 0.01 * (0.008 - 0.0002)) < 1e-12
+        assert 90.0 < r["kinematic_opening_deg"] < 93.0
+        assert abs(r["kinematic_opening_deg"] + r["kinematic_closing_deg"] - 360.0) < 1e-6
+        for got, key in ((o, "opening_error_deg"), (c, "closing_error_deg")):
+            assert (math.isnan(got) and r[key] is None) or got == r[key]
+    assert plot_module.valve_timing_bars({}) == ([], [], [])
+    fig_before = (i4_run / "camshaft.png").stat().st_size
+    plot_module.plot_camshaft(str(i4_run), plot_module.read_csv(str(i4_run / "history.csv"))[1], summary={})
+    assert (i4_run / "camshaft.png").stat().st_size < fig_before  # two panels without valve_timing
+    plot_module.plot_camshaft(str(i4_run), plot_module.read_csv(str(i4_run / "history.csv"))[1])
+    spec = iu.spec_from_file_location("camdyn_report", SRC / "scripts" / "camdyn_report.py")
+    rep = iu.module_from_spec(spec)
+    spec.loader.exec_module(rep)
+    h = rep.valve_timing_html(s)
+    assert "<h3>Valve timing</h3>" in h and h.count("<tr>") == 1 + len(rows)
+    assert rep.fmt(rows[0]["kinematic_opening_deg"], 5) + "°" in h
+    assert rep.valve_timing_html({}) == ""
