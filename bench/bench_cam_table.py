@@ -6,7 +6,7 @@ Markdown: CPU ns per call of Cam::evaluate (θ in small steps, θ at random) and
 each profile kind, and the motion-law run's steps and rejected steps with and without
 landing on the law's joints (LawRunSteps).
 
-usage: bench/bench_cam_table.py --bin build/bench/bench_cam [--reps 5] [--out FILE]
+usage: bench/bench_cam_table.py --bin build/bench/bench_cam [--reps 5] [--min-time S] [--out FILE]
 """
 import argparse
 import json
@@ -21,12 +21,17 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--bin", required=True, help="build/bench/bench_cam")
     ap.add_argument("--reps", type=int, default=5, help="repetitions (median)")
+    ap.add_argument("--min-time", type=float, default=0.0,
+                    help="Google Benchmark's minimum time per benchmark [s] (0: its default)")
     ap.add_argument("--out", default="-", help="Markdown file (- : stdout)")
     a = ap.parse_args()
     if a.reps < 1:
         sys.exit(f"bench_cam_table.py: --reps {a.reps}: must be >= 1")
     cmd = [a.bin, f"--benchmark_filter={FILTER}", f"--benchmark_repetitions={a.reps}",
-           "--benchmark_report_aggregates_only=true", "--benchmark_format=json"]
+           "--benchmark_report_aggregates_only=true"]
+    if a.min_time > 0:
+        cmd.append(f"--benchmark_min_time={a.min_time:g}")
+    cmd.append("--benchmark_format=json")
     res = subprocess.run(cmd, capture_output=True, text=True)
     if res.returncode != 0:
         sys.exit(f"bench_cam_table.py: {' '.join(cmd)} failed (exit {res.returncode}): {res.stderr[-400:]}")

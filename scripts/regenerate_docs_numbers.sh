@@ -125,9 +125,15 @@ T0=$(date +%s)
   echo
   echo "$STAMP"
   echo
-  echo "| part | command | wall s |"
-  echo "|---|---|---|"
+  echo "| part | command | wall s | CPU s |"
+  echo "|---|---|---|---|"
 } > "$LOG.tmp"
+
+# The figures need matplotlib (Debian's python3-matplotlib): the first python3 that has it.
+PLOT_PY=python3
+for py in python3 /usr/bin/python3; do
+  if "$py" -c "import matplotlib" 2>/dev/null; then PLOT_PY="$py"; break; fi
+done
 
 want() {  # want PART: is this part run (no --only, or listed in it)?
   [ -z "$ONLY" ] || [[ ",$ONLY," == *",$1,"* ]]
@@ -144,14 +150,22 @@ stamp_md() {  # prepend the stamp to a Markdown file (after its front matter, if
   mv "$f.tmp" "$f"
 }
 
-run_part() {  # run_part NAME CMD...: time it, log it
+run_part() {  # run_part NAME CMD...: time it (wall, and CPU of the part's processes), log it
   local name="$1"; shift
-  local t=$(date +%s)
+  local t=$(date +%s) tf rc=0 cpu="–"
+  tf="$(mktemp)"
   echo "== $name: $*" >&2
-  if "$@"; then
-    echo "| $name | \`$*\` | $(( $(date +%s) - t )) |" >> "$LOG.tmp"
+  if [ -x /usr/bin/time ]; then
+    /usr/bin/time -f "%U %S" -o "$tf" "$@" || rc=$?
+    cpu="$(awk 'END{printf "%.0f", $1 + $2}' "$tf" 2>/dev/null || echo –)"
   else
-    echo "| $name | \`$*\` | FAILED (exit $?) after $(( $(date +%s) - t )) s |" >> "$LOG.tmp"
+    "$@" || rc=$?
+  fi
+  rm -f "$tf"
+  if [ "$rc" = 0 ]; then
+    echo "| $name | \`$*\` | $(( $(date +%s) - t )) | $cpu |" >> "$LOG.tmp"
+  else
+    echo "| $name | \`$*\` | FAILED (exit $rc) after $(( $(date +%s) - t )) s | $cpu |" >> "$LOG.tmp"
   fi
 }
 
@@ -184,7 +198,7 @@ if [ "$TOL" = 1 ]; then
     stamp_md "$OUT/tol_sweep_stiff/tol_sweep.md"
   fi
 elif [ "$TOL" = 0 ]; then
-  echo "| tolerance sweep | not rerun (--no-tol-sweep) | – |" >> "$LOG.tmp"
+  echo "| tolerance sweep | not rerun (--no-tol-sweep) | – | – |" >> "$LOG.tmp"
 fi
 
 if ! want scale; then
@@ -193,19 +207,19 @@ elif [ -x "$BUILD/bench/bench_scale" ]; then
   mkdir -p "$OUT/scale"
   if [ "$MODE" = quick ]; then SCALE=(sweep 10000 erk,dirk,cvode 60); else SCALE=(sweep); fi
   run_part "scale" bash -c "nice -n 5 '$BUILD/bench/bench_scale' ${SCALE[*]} > '$OUT/scale/bench_scale.csv'"
-  run_part "scale figure" bash -c "python3 scripts/bench_scale_plot.py '$OUT/scale/bench_scale.csv' '$OUT/scale/bench_scale.png' > '$OUT/scale/bench_scale.md'"
+  run_part "scale figure" bash -c "'$PLOT_PY' scripts/bench_scale_plot.py '$OUT/scale/bench_scale.csv' '$OUT/scale/bench_scale.png' > '$OUT/scale/bench_scale.md'"
   stamp_md "$OUT/scale/bench_scale.md"
 else
-  echo "| scale | skipped: $BUILD/bench/bench_scale not built (cmake --build build --target bench_scale) | – |" >> "$LOG.tmp"
+  echo "| scale | skipped: $BUILD/bench/bench_scale not built (cmake --build build --target bench_scale) | – | – |" >> "$LOG.tmp"
 fi
 
 if ! want cam; then
   :
 elif [ -x "$BUILD/bench/bench_cam" ]; then
-  run_part "cam evaluation" bash -c "nice -n 5 python3 bench/bench_cam_table.py --bin '$BUILD/bench/bench_cam' --reps $([ "$MODE" = quick ] && echo 3 || echo 5) --out '$OUT/bench_cam.md'"
+  run_part "cam evaluation" bash -c "nice -n 5 python3 bench/bench_cam_table.py --bin '$BUILD/bench/bench_cam' $([ "$MODE" = quick ] && echo '--reps 3 --min-time 0.05' || echo '--reps 5') --out '$OUT/bench_cam.md'"
   stamp_md "$OUT/bench_cam.md"
 else
-  echo "| cam evaluation | skipped: $BUILD/bench/bench_cam not built (cmake --build build --target bench_cam) | – |" >> "$LOG.tmp"
+  echo "| cam evaluation | skipped: $BUILD/bench/bench_cam not built (cmake --build build --target bench_cam) | – | – |" >> "$LOG.tmp"
 fi
 
 if ! want one; then
@@ -214,7 +228,7 @@ elif [ -n "${CAMDYN_BEFORE_BIN:-}" ]; then
   run_part "one mechanism" bash -c "nice -n 5 python3 bench/one_mechanism_table.py --bin '$CAMDYN' --before-bin '$CAMDYN_BEFORE_BIN' > '$OUT/one_mechanism.md'"
   stamp_md "$OUT/one_mechanism.md"
 else
-  echo "| one mechanism | skipped: set CAMDYN_BEFORE_BIN to an older camdyn binary (bench/one_mechanism_table.py) | – |" >> "$LOG.tmp"
+  echo "| one mechanism | skipped: set CAMDYN_BEFORE_BIN to an older camdyn binary (bench/one_mechanism_table.py) | – | – |" >> "$LOG.tmp"
 fi
 
 if want valve; then
@@ -232,7 +246,7 @@ if [ "$PEERS" = 1 ]; then
   [ "$MODE" = quick ] && PEER_ARGS+=(--quick --repeats 1)
   run_part "peers" nice -n 5 /usr/bin/python3 bench/peers/peers.py "${PEER_ARGS[@]}"
 elif [ "$PEERS" = 0 ]; then
-  echo "| peers | not rerun (--no-peers) | – |" >> "$LOG.tmp"
+  echo "| peers | not rerun (--no-peers) | – | – |" >> "$LOG.tmp"
 fi
 
 if want wp; then
@@ -279,7 +293,7 @@ fi
 
 if [ "$QUOTE" = 1 ]; then quote; fi
 
-echo "| total | | $(( $(date +%s) - T0 )) |" >> "$LOG.tmp"
+echo "| total | | $(( $(date +%s) - T0 )) | |" >> "$LOG.tmp"
 if [ -n "$ONLY" ] && [ -f "$LOG" ]; then  # a partial run: the full run's record stays, this one is appended
   { echo; echo "## Partial run (--only $ONLY)"; echo; tail -n +3 "$LOG.tmp"; } >> "$LOG"
   rm -f "$LOG.tmp"
