@@ -207,7 +207,7 @@ elif [ -x "$BUILD/bench/bench_scale" ]; then
   mkdir -p "$OUT/scale"
   if [ "$MODE" = quick ]; then SCALE=(sweep 10000 erk,dirk,cvode 60); else SCALE=(sweep); fi
   run_part "scale" bash -c "nice -n 5 '$BUILD/bench/bench_scale' ${SCALE[*]} > '$OUT/scale/bench_scale.csv'"
-  run_part "scale figure" bash -c "'$PLOT_PY' scripts/bench_scale_plot.py '$OUT/scale/bench_scale.csv' '$OUT/scale/bench_scale.png' > '$OUT/scale/bench_scale.md'"
+  run_part "scale figure" bash -c "{ printf '# Cost against mesh size (bench_scale ${SCALE[*]})\n\nWhole Lee runs of case B1 with the bar cut into N elements (bench/bench_scale.cpp); figure: bench_scale.png.\n\n![CPU per step, per rhs evaluation and memory per element against N](bench_scale.png)\n\n'; '$PLOT_PY' scripts/bench_scale_plot.py '$OUT/scale/bench_scale.csv' '$OUT/scale/bench_scale.png'; } > '$OUT/scale/bench_scale.md'"
   stamp_md "$OUT/scale/bench_scale.md"
 else
   echo "| scale | skipped: $BUILD/bench/bench_scale not built (cmake --build build --target bench_scale) | – | – |" >> "$LOG.tmp"
