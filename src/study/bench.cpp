@@ -172,8 +172,8 @@ class Bench {
     // its step is held by the stability bound of the bar's fastest mode, far below what
     // its error test asks at rtol 1e-10, so it is at least as accurate as cvode-bdf there,
     // whose BDF orders 3–5 (allowed at rtol ≤ 1e-8) are held at the stability limit of the
-    // undamped mesh modes instead (docs/bench/measured_tables.md: the stiff bar's
-    // reference costs 6× less; the check row below shows its convergence).
+    // undamped mesh modes instead (docs/background/performance.md, "The quick reference of
+    // an elastic bar"; the check row below shows its convergence).
     const bool explicit_ref = o_.quick && base.follower.kind == FollowerKind::ElasticBar;
     Scene ref = base;
     ref.contact.model = ContactModel::Event;
@@ -340,8 +340,8 @@ class Bench {
     // ---- event-driven over tolerances ----
     // The comparator of Lee at equal accuracy (on the same engine: stiff bars are where the
     // engines differ). Quick: the scene's engine at two tolerances; on an elastic bar
-    // 1e-4 and 1e-5 (its rtol-1e-6 run is the quick sweep's costliest, and its error
-    // would come within 10× of the quick reference's checked error).
+    // 1e-4 and 1e-5 (the quick reference is held to an error 10× below every quick row's,
+    // which a run at 1e-6 would come too close to).
     {
       const std::vector<Integrator> ev_engines =
           o_.quick ? std::vector<Integrator>{base.solver.integrator}
