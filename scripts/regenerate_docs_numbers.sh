@@ -4,7 +4,14 @@
 #
 #   wp_<case>/            camdyn bench <case>: work_precision.csv/.md, headlines.csv, wp_*.png
 #                         for the cases A A7 B1 B2 stiff ohc ohv (full: also B1_1000)
-#   tol_sweep/            camdyn bench --tolerance-sweep (quick: 4 decades of rtol, 5 s budget)
+#   tol_sweep/            camdyn bench --tolerance-sweep (quick: 4 decades of rtol, 5 s budget,
+#                         every scene but the stiff bar over 0.02 s; tol_sweep_stiff/: the
+#                         stiff bar over 0.005 s, references at rtol 1e-8)
+#   bench_cam.md          build/bench/bench_cam (bench/bench_cam_table.py): Cam::evaluate and
+#                         Cam::motion ns per call, the motion-law run landing on its joints
+#                         (when built: cmake --build build --target bench_cam)
+#   headline_factors.md   bench/headline_factors.py: for each headline, both runs' steps, rhs
+#                         evaluations, Newton iterations and CPU per step, from wp_<case>/
 #   scale/                build/bench/bench_scale sweep + scripts/bench_scale_plot.py (when the
 #                         bench targets are built: cmake --build build --target bench_scale)
 #   one_mechanism.md      bench/one_mechanism_table.py, only with CAMDYN_BEFORE_BIN=<older camdyn>
@@ -33,7 +40,8 @@
 #             wp_<case>/ present, each stamped by the run that made it)
 #   --no-tol-sweep  leave tol_sweep/ as it is
 #   --no-peers      leave peers/ as it is
-#   --only PARTS    only these parts (comma-separated: wp, tol, scale, one, valve, newton, peers;
+#   --only PARTS    only these parts (comma-separated: wp, tol, scale, cam, factors, one, valve,
+#             newton, peers;
 #             wp with --cases); their rows are appended to STAMP.md under "partial run"
 #   --check-repeat CASE   only check: rerun `camdyn bench CASE` with the mode of the committed
 #             wp_CASE/ into a temporary directory and compare the rows with
@@ -62,7 +70,7 @@ while [ $# -gt 0 ]; do
     --no-peers) PEERS=0 ;;
     --only) ONLY="$2"; shift ;;
     --check-repeat) CHECK="$2"; shift ;;
-    -h|--help) sed -n '2,40p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d'; exit 0 ;;
     *) echo "regenerate_docs_numbers.sh: unknown argument '$1' (allowed: --quick, --build DIR, --cases LIST, --quote, --quote-only, --no-tol-sweep, --no-peers, --only PARTS, --check-repeat CASE)" >&2; exit 2 ;;
   esac
   shift
@@ -82,8 +90,8 @@ EOF
 }
 for part in ${ONLY//,/ }; do
   case "$part" in
-    wp|tol|scale|one|valve|newton|peers) ;;
-    *) echo "regenerate_docs_numbers.sh: --only: unknown part '$part' (allowed: wp, tol, scale, one, valve, newton, peers)" >&2; exit 2 ;;
+    wp|tol|scale|cam|factors|one|valve|newton|peers) ;;
+    *) echo "regenerate_docs_numbers.sh: --only: unknown part '$part' (allowed: wp, tol, scale, cam, factors, one, valve, newton, peers)" >&2; exit 2 ;;
   esac
 done
 if [ "$QUOTE" = 2 ]; then quote; exit 0; fi
@@ -117,9 +125,15 @@ T0=$(date +%s)
   echo
   echo "$STAMP"
   echo
-  echo "| part | command | wall s |"
-  echo "|---|---|---|"
+  echo "| part | command | wall s | CPU s |"
+  echo "|---|---|---|---|"
 } > "$LOG.tmp"
+
+# The figures need matplotlib (Debian's python3-matplotlib): the first python3 that has it.
+PLOT_PY=python3
+for py in python3 /usr/bin/python3; do
+  if "$py" -c "import matplotlib" 2>/dev/null; then PLOT_PY="$py"; break; fi
+done
 
 want() {  # want PART: is this part run (no --only, or listed in it)?
   [ -z "$ONLY" ] || [[ ",$ONLY," == *",$1,"* ]]
@@ -136,14 +150,22 @@ stamp_md() {  # prepend the stamp to a Markdown file (after its front matter, if
   mv "$f.tmp" "$f"
 }
 
-run_part() {  # run_part NAME CMD...: time it, log it
+run_part() {  # run_part NAME CMD...: time it (wall, and CPU of the part's processes), log it
   local name="$1"; shift
-  local t=$(date +%s)
+  local t=$(date +%s) tf rc=0 cpu="–"
+  tf="$(mktemp)"
   echo "== $name: $*" >&2
-  if "$@"; then
-    echo "| $name | \`$*\` | $(( $(date +%s) - t )) |" >> "$LOG.tmp"
+  if [ -x /usr/bin/time ]; then
+    /usr/bin/time -f "%U %S" -o "$tf" "$@" || rc=$?
+    cpu="$(awk 'END{printf "%.0f", $1 + $2}' "$tf" 2>/dev/null || echo –)"
   else
-    echo "| $name | \`$*\` | FAILED (exit $?) after $(( $(date +%s) - t )) s |" >> "$LOG.tmp"
+    "$@" || rc=$?
+  fi
+  rm -f "$tf"
+  if [ "$rc" = 0 ]; then
+    echo "| $name | \`$*\` | $(( $(date +%s) - t )) | $cpu |" >> "$LOG.tmp"
+  else
+    echo "| $name | \`$*\` | FAILED (exit $rc) after $(( $(date +%s) - t )) s | $cpu |" >> "$LOG.tmp"
   fi
 }
 
@@ -156,18 +178,27 @@ for c in $CASES; do
 done
 
 if [ "$MODE" = quick ]; then
+  # every scene but the stiff bar over 0.02 s; the stiff bar (its cvode-bdf references at
+  # rtol 1e-10 take minutes) over 0.005 s with references at 1e-8, as the hand run of
+  # docs/bench_tolerance_sweep.md
   TOL_ARGS=(--rtols 1e-2,1e-4,1e-6,1e-8 --heavy-rtols 1e-2,1e-4,1e-6 --reference-rtol 1e-10 --budget 5 --t-end 0.02
-            A A7 B1)
+            A A7 B1 B2 ohc ohv)
+  TOL_STIFF_ARGS=(--rtols 1e-2,1e-4,1e-6 --heavy-rtols 1e-2,1e-4,1e-6 --reference-rtol 1e-8 --budget 2 --t-end 0.005 stiff)
 else
   TOL_ARGS=()
+  TOL_STIFF_ARGS=()
 fi
 want tol || TOL=2
 if [ "$TOL" = 1 ]; then
-  rm -rf "$OUT/tol_sweep"
+  rm -rf "$OUT/tol_sweep" "$OUT/tol_sweep_stiff"
   run_part "tolerance sweep" nice -n 5 "$CAMDYN" bench --tolerance-sweep "${TOL_ARGS[@]}" --quiet --out "$OUT/tol_sweep"
   stamp_md "$OUT/tol_sweep/tol_sweep.md"
+  if [ "${#TOL_STIFF_ARGS[@]}" -gt 0 ]; then
+    run_part "tolerance sweep, stiff bar" nice -n 5 "$CAMDYN" bench --tolerance-sweep "${TOL_STIFF_ARGS[@]}" --quiet --out "$OUT/tol_sweep_stiff"
+    stamp_md "$OUT/tol_sweep_stiff/tol_sweep.md"
+  fi
 elif [ "$TOL" = 0 ]; then
-  echo "| tolerance sweep | not rerun (--no-tol-sweep) | – |" >> "$LOG.tmp"
+  echo "| tolerance sweep | not rerun (--no-tol-sweep) | – | – |" >> "$LOG.tmp"
 fi
 
 if ! want scale; then
@@ -176,10 +207,19 @@ elif [ -x "$BUILD/bench/bench_scale" ]; then
   mkdir -p "$OUT/scale"
   if [ "$MODE" = quick ]; then SCALE=(sweep 10000 erk,dirk,cvode 60); else SCALE=(sweep); fi
   run_part "scale" bash -c "nice -n 5 '$BUILD/bench/bench_scale' ${SCALE[*]} > '$OUT/scale/bench_scale.csv'"
-  run_part "scale figure" bash -c "python3 scripts/bench_scale_plot.py '$OUT/scale/bench_scale.csv' '$OUT/scale/bench_scale.png' > '$OUT/scale/bench_scale.md'"
+  run_part "scale figure" bash -c "{ printf '# Cost against mesh size (bench_scale ${SCALE[*]})\n\nWhole Lee runs of case B1 with the bar cut into N elements (bench/bench_scale.cpp); figure: bench_scale.png.\n\n![CPU per step, per rhs evaluation and memory per element against N](bench_scale.png)\n\n'; '$PLOT_PY' scripts/bench_scale_plot.py '$OUT/scale/bench_scale.csv' '$OUT/scale/bench_scale.png'; } > '$OUT/scale/bench_scale.md'"
   stamp_md "$OUT/scale/bench_scale.md"
 else
-  echo "| scale | skipped: $BUILD/bench/bench_scale not built (cmake --build build --target bench_scale) | – |" >> "$LOG.tmp"
+  echo "| scale | skipped: $BUILD/bench/bench_scale not built (cmake --build build --target bench_scale) | – | – |" >> "$LOG.tmp"
+fi
+
+if ! want cam; then
+  :
+elif [ -x "$BUILD/bench/bench_cam" ]; then
+  run_part "cam evaluation" bash -c "nice -n 5 python3 bench/bench_cam_table.py --bin '$BUILD/bench/bench_cam' $([ "$MODE" = quick ] && echo '--reps 3 --min-time 0.05' || echo '--reps 5') --out '$OUT/bench_cam.md'"
+  stamp_md "$OUT/bench_cam.md"
+else
+  echo "| cam evaluation | skipped: $BUILD/bench/bench_cam not built (cmake --build build --target bench_cam) | – | – |" >> "$LOG.tmp"
 fi
 
 if ! want one; then
@@ -188,7 +228,7 @@ elif [ -n "${CAMDYN_BEFORE_BIN:-}" ]; then
   run_part "one mechanism" bash -c "nice -n 5 python3 bench/one_mechanism_table.py --bin '$CAMDYN' --before-bin '$CAMDYN_BEFORE_BIN' > '$OUT/one_mechanism.md'"
   stamp_md "$OUT/one_mechanism.md"
 else
-  echo "| one mechanism | skipped: set CAMDYN_BEFORE_BIN to an older camdyn binary (bench/one_mechanism_table.py) | – |" >> "$LOG.tmp"
+  echo "| one mechanism | skipped: set CAMDYN_BEFORE_BIN to an older camdyn binary (bench/one_mechanism_table.py) | – | – |" >> "$LOG.tmp"
 fi
 
 if want valve; then
@@ -206,7 +246,7 @@ if [ "$PEERS" = 1 ]; then
   [ "$MODE" = quick ] && PEER_ARGS+=(--quick --repeats 1)
   run_part "peers" nice -n 5 /usr/bin/python3 bench/peers/peers.py "${PEER_ARGS[@]}"
 elif [ "$PEERS" = 0 ]; then
-  echo "| peers | not rerun (--no-peers) | – |" >> "$LOG.tmp"
+  echo "| peers | not rerun (--no-peers) | – | – |" >> "$LOG.tmp"
 fi
 
 if want wp; then
@@ -246,9 +286,14 @@ with open(os.path.join(out, "headlines.md"), "w") as f:
 EOF
 fi
 
+if want factors; then
+  run_part "headline factors" bash -c "python3 bench/headline_factors.py --dir '$OUT' --out '$OUT/headline_factors.md'"
+  stamp_md "$OUT/headline_factors.md"
+fi
+
 if [ "$QUOTE" = 1 ]; then quote; fi
 
-echo "| total | | $(( $(date +%s) - T0 )) |" >> "$LOG.tmp"
+echo "| total | | $(( $(date +%s) - T0 )) | |" >> "$LOG.tmp"
 if [ -n "$ONLY" ] && [ -f "$LOG" ]; then  # a partial run: the full run's record stays, this one is appended
   { echo; echo "## Partial run (--only $ONLY)"; echo; tail -n +3 "$LOG.tmp"; } >> "$LOG"
   rm -f "$LOG.tmp"

@@ -220,8 +220,9 @@ int real_main(int argc, char** argv) {
       ->capture_default_str();
   bench->add_flag("--quick", bo.quick,
                   "Reduced sweep: Lee at two tolerances, penalty (both laws) at three k_p on "
-                  "cvode-bdf, event at two tolerances, elastic bars cut to t_end = 0.02 (the "
-                  "references are cached: see --reference-cache)");
+                  "cvode-bdf, event at two tolerances, elastic bars cut to t_end = 0.01 with "
+                  "their reference on arkode-erk (the references are cached: see "
+                  "--reference-cache)");
   bench->add_option("--repeats", bo.repeats, "Timing repeats (median CPU time)")
       ->type_name("N")
       ->capture_default_str();

@@ -25,8 +25,10 @@ struct BenchOptions {
   std::vector<std::string> labels;
   /// Quick mode: Lee at two tolerances (a rigid follower on arkode-erk, others on
   /// arkode-dirk and cvode-bdf), penalty critically damped, both laws, at three k_p and one
-  /// rtol (1e-8 rigid, 1e-6 otherwise) on cvode-bdf, event at two rtol on the scene's
-  /// engine; elastic-bar scenes cut to quick_elastic_t_end (unless t_end is given).
+  /// rtol (1e-8 rigid, 1e-6 otherwise) on cvode-bdf, event at two rtol (1e-4 and 1e-6;
+  /// elastic bars 1e-5) on the scene's engine; elastic-bar scenes cut to
+  /// quick_elastic_t_end (unless t_end is given), their reference (event, rtol 1e-10) on
+  /// arkode-erk instead of cvode-bdf.
   bool quick = false;
   /// Timing repeats (median of Summary::cpu_seconds), ≥ 1 (3 recommended). A run whose
   /// first timing exceeds repeat_cap_seconds is timed once (noted in the row).
@@ -46,7 +48,7 @@ struct BenchOptions {
   /// > 0: overrides every scene's run.t_end.
   double t_end = 0.0;
   /// Quick mode: t_end of elastic scenes when t_end is not given.
-  double quick_elastic_t_end = 0.02;
+  double quick_elastic_t_end = 0.01;
   /// Directory of cached reference runs (bench_compare.hpp: reference_run(), keyed by the
   /// reference scene and the build); empty: every reference is run.
   std::string reference_cache_dir;
