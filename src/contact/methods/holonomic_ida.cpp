@@ -8,8 +8,10 @@
 // contact would open). A contact open at the start that closes (a root of its gap) takes
 // the Newton impact law of the network methods (contact_run.cpp: resolve_impact); held
 // from then on (holonomic contacts never release), IDA restarts on the larger held set.
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include "engine/ida_engine.hpp"
 #include "contact/contact_run.hpp"
@@ -24,6 +26,32 @@ class HolonomicIda final : public ContactRun {
   using ContactRun::ContactRun;
 
  private:
+  // Holonomic contacts never release: a held set whose rows are dependent (a contact that
+  // closes on a chain the others already fix, e.g. a finger's lash closing while cam and
+  // seat hold) has no unique multipliers, and IDA's Newton matrix is singular. Lee's
+  // method and the event method release what complementarity opens; this one cannot.
+  void refuse_dependent(const std::vector<int>& held) const {
+    const int k = int(held.size());
+    if (k < 2) return;
+    const Rows R = rows_at(y_.data());
+    Eigen::MatrixXd W(k, k);
+    for (int i = 0; i < k; ++i)
+      for (int l = 0; l < k; ++l) W(i, l) = R.W(held[i], held[l]);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(W, Eigen::EigenvaluesOnly);
+    const Eigen::VectorXd ev = es.eigenvalues();
+    const double tol = 1e-10 * ev.cwiseAbs().maxCoeff();
+    int rank = 0;
+    for (int i = 0; i < k; ++i) rank += ev[i] > tol;
+    if (rank == k) return;
+    std::string names;
+    for (int j : held) names += (names.empty() ? "'" : ", '") + mk_.contacts()[j].name + "'";
+    throw StepFailure("the held contacts " + names + " are dependent at t = " + fmt(t_) + " (rank " +
+                      std::to_string(rank) + " of " + std::to_string(k) +
+                      "): the holonomic method holds every closed contact for good and cannot share a force "
+                      "between redundant constraints; use contact.model = \"lee\" or \"event\", which release "
+                      "the contacts complementarity opens");
+  }
+
   void run_method() override {
     const auto* mech = dynamic_cast<const Mechanism*>(mech_.get());
     if (!mech) throw StepFailure("solver.integrator = ida needs a linear mechanism (a user follower: arkode or cvode)");
@@ -44,6 +72,7 @@ class HolonomicIda final : public ContactRun {
         ++sum_.engine_restarts;
       }
       const std::vector<int> held = active_list();
+      refuse_dependent(held);
       ida = std::make_unique<IdaHeldSet>(*mech, held, sc_, [this](double t) { return cam_at(t); });
       Eigen::VectorXd lam(held.size());
       for (std::size_t i = 0; i < held.size(); ++i) lam[Eigen::Index(i)] = F_[held[i]];
