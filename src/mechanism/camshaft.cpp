@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "camdyn/initial_state.hpp"  // cam_lift_base
+#include "camdyn/cam.hpp"  // cam_lift_base
 
 namespace camdyn {
 

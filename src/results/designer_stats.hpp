@@ -15,7 +15,7 @@
 
 #include "camdyn/cam.hpp"
 #include "camdyn/scene.hpp"
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 #include "results/designer_columns.hpp"
 #include "results/step_extremes.hpp"
 

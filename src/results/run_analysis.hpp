@@ -24,7 +24,7 @@
 
 #include "camdyn/cam.hpp"
 #include "camdyn/scene.hpp"
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 #include "results/kinematic_path.hpp"
 #include "results/oil_film.hpp"
 #include "results/step_extremes.hpp"
