@@ -133,12 +133,6 @@ struct CamExtremum {
 CamExtremum cam_extremum(const Cam& cam, const std::function<double(const CamPoint&)>& f, bool maximise,
                          int samples = 3600);
 
-/// X_base: the X_C from which a network's or a user follower's cam contact measures the
-/// cam's lift (cam.base_radius for profile "lift"; min over θ of X_C for "points" and
-/// "circle", by a scan of 3600 angles refined by golden section).
-/// @pre `cam` was built from `spec`.
-double cam_lift_base(const Cam& cam, const CamSpec& spec);
-
 /// Cam drive θ(t), ω(t), ω̇(t): constant speed, or a piecewise-linear speed table
 /// (θ integrated exactly, ω̇ piecewise constant).
 class CamDrive {

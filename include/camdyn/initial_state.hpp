@@ -28,7 +28,11 @@
 
 namespace camdyn {
 
-/// cam_lift_base (X_base): camdyn/cam.hpp, included here.
+/// X_base: the X_C from which a network's or a user follower's cam contact measures the
+/// cam's lift (cam.base_radius for profile "lift"; min over θ of X_C for "points" and
+/// "circle", by a scan of 3600 angles refined by golden section).
+/// @pre `cam` was built from `spec`.
+double cam_lift_base(const Cam& cam, const CamSpec& spec);
 
 /// The cam's lift X_C − X_base, Ẋ_C, Ẍ_C at time t (the drive θ(t), ω(t), ω̇(t)): what the
 /// gap of a network's or user follower's cam contact subtracts.

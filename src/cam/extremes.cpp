@@ -1,13 +1,13 @@
 // camdyn — extremes of a designer quantity over one turn of the cam (cam_extremum,
 // include/camdyn/cam.hpp): a scan, golden-section refinement of every local extremum of
 // the scan between its neighbours (the bracket cut at the breakpoints, where the quantity
-// may jump or kink), and the one-sided values at the breakpoints; and cam_lift_base, the
+// may jump or kink), and the one-sided values at the breakpoints; and cam_lift_base (cam/lift_base.hpp), the
 // least X_C over a turn.
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "camdyn/cam.hpp"
+#include "cam/lift_base.hpp"
 
 namespace camdyn {
 

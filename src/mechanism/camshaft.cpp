@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "camdyn/cam.hpp"  // cam_lift_base
+#include "cam/lift_base.hpp"
 
 namespace camdyn {
 
