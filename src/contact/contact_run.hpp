@@ -227,6 +227,11 @@ class ContactRun {
   Eigen::VectorXd trace_y_, trace_F_;
   std::vector<char> trace_in_;
   std::vector<StepSample> trace_samples_;
+  /// The previous traced step's end probe and its state: the next step's start probe when
+  /// that step starts at the same time, from the same state, with the same held set.
+  StepSample trace_prev_end_;
+  Eigen::VectorXd trace_prev_y_;
+  bool trace_prev_valid_ = false;
   /// The check after every accepted step (issue 28): a contact carrying force across an
   /// open gap, or a gap below −kCheckGaps·tol_u (not for penalty: its law penetrates),
   /// stops the run with a StepFailure naming the contact, the time and the cam angle.

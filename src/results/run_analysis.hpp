@@ -61,6 +61,8 @@ class RunAnalysis {
   void step_inside(const std::vector<StepSample>& s, const StepProbe& probe);
   /// The named nodes' displacements are needed in the step samples (run.valve_node).
   bool wants_nodes() const { return valve_ >= 0; }
+  /// Every contact's gap and gap rate are needed in the step samples (the seats' landings).
+  bool wants_gaps() const { return !seats_.empty(); }
   /// An event of contact `j`.
   void event(const ContactEvent& e, int j);
   /// Film, lift deviation, ramp velocity and landings into `s`.
