@@ -318,6 +318,12 @@ ContactRun::StepEnergy ContactRun::step_energy(
     forces(tau, y, cm, F);
     e.work += 0.5 * h * wg[g] * (cam_power(F, cm) + mk_.input_power(tau, y.data(), y.data() + n_));
     e.dissipated += 0.5 * h * wg[g] * dissipation_power(tau, y);
+    if (g == 1) {
+      se_mid_t0_ = t0;
+      se_mid_t1_ = t1;
+      se_mid_y_ = y;
+      se_mid_F_ = F;
+    }
   }
   return e;
 }

@@ -10,7 +10,7 @@ namespace camdyn {
 namespace detail {
 
 void ContactRun::trace_step(double t0, double t1, const StateFn& state, const ForcesFn& forces,
-                            const std::vector<int>& set) {
+                            const std::vector<int>& set, bool energy_alike) {
   const double h = t1 - t0;
   if (!(h > 0)) return;
   traced_ = true;
@@ -22,16 +22,19 @@ void ContactRun::trace_step(double t0, double t1, const StateFn& state, const Fo
   // from its own step)
   const double eps = 1e-12 * h;
   auto one_sided_theta = [&](double tau) { return drive_.theta(std::min(t1 - eps, std::max(t0 + eps, tau))); };
-  // the sample at x from the state at tau already in trace_y_
-  auto fill = [&](double x, double tau, StepSample& s) {
+  // the sample at x from the state at tau already in trace_y_ (and its forces in trace_F_
+  // when `have_forces`)
+  auto fill = [&](double x, double tau, StepSample& s, bool have_forces = false) {
     s.x = x;
     s.t = tau;
     s.theta = one_sided_theta(tau);
     s.cam_valid = false;
     s.omega = drive_.omega(tau);
     const CamMotion cm = cam_at(tau);
-    trace_F_.setZero(m_);
-    forces(tau, trace_y_, cm, trace_F_);
+    if (!have_forces) {
+      trace_F_.setZero(m_);
+      forces(tau, trace_y_, cm, trace_F_);
+    }
     s.X = cm.X;
     s.Xdot = cm.Xdot;
     s.forces.assign(trace_F_.data(), trace_F_.data() + m_);
@@ -74,7 +77,18 @@ void ContactRun::trace_step(double t0, double t1, const StateFn& state, const Fo
   } else {
     fill(0.0, t0, s[0]);
   }
-  for (int k = 1; k < kStepSamples; ++k) probe(double(k) / (kStepSamples - 1), s[std::size_t(k)]);
+  for (int k = 1; k < kStepSamples; ++k) {
+    const double x = double(k) / (kStepSamples - 1);
+    // the middle: step_energy's middle Gauss point of this step, when it is the same
+    if (energy_alike && 2 * k == kStepSamples - 1 && se_mid_t0_ == t0 && se_mid_t1_ == t1 &&
+        se_mid_F_.size() == m_) {
+      trace_y_ = se_mid_y_;
+      trace_F_ = se_mid_F_;
+      fill(x, t0 + x * h, s[std::size_t(k)], true);
+    } else {
+      probe(x, s[std::size_t(k)]);
+    }
+  }
   trace_prev_end_ = s[kStepSamples - 1];
   trace_prev_y_ = trace_y_;  // the state at t1 (the last probe)
   trace_prev_valid_ = true;
