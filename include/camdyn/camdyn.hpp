@@ -4,8 +4,11 @@
 //
 //   scene.hpp            Scene (the TOML file as a struct), load_scene_file, parse_scene,
 //                        validate, to_toml, SceneError; network.hpp (valve-train networks)
-//   simulator.hpp        Simulator, Observer (on_output, on_event, on_step, on_progress),
-//                        HistoryRow, ContactEvent, StepInfo, Summary, simulate()
+//   simulator.hpp        Simulator, simulate() (includes the three below)
+//   history.hpp          HistoryRow, ContactEvent, EventKind, history_columns()
+//   observer.hpp         Observer (on_output, on_event, on_step, on_progress), StepInfo
+//   summary.hpp          Summary (BriefReport, FullReport), Termination and the results
+//                        a Summary holds (contacts, elements, verdict, criteria, contract)
 //   follower_system.hpp  FollowerSystem: bring your own follower
 //   initial_state.hpp    initial_state_on_cam and the cam's lift base
 //   cam.hpp, motion_law.hpp, hertz.hpp   the cam's profile, motion laws, Hertz stress
@@ -23,15 +26,18 @@
 #include "camdyn/designer.hpp"
 #include "camdyn/follower_system.hpp"
 #include "camdyn/hertz.hpp"
+#include "camdyn/history.hpp"
 #include "camdyn/initial_state.hpp"
 #include "camdyn/lift_table.hpp"
 #include "camdyn/model_description.hpp"
 #include "camdyn/motion_law.hpp"
 #include "camdyn/network.hpp"
+#include "camdyn/observer.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/scene_keys.hpp"
 #include "camdyn/scene_warnings.hpp"
 #include "camdyn/simulator.hpp"
 #include "camdyn/spectrum.hpp"
+#include "camdyn/summary.hpp"
 #include "camdyn/synthesis.hpp"

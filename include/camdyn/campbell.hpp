@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "camdyn/scene.hpp"
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 #include "camdyn/spectrum.hpp"
 
 namespace camdyn {

@@ -18,7 +18,7 @@
 
 #include "camdyn/batch.hpp"
 #include "camdyn/scene.hpp"
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 
 namespace camdyn {
 

@@ -8,7 +8,7 @@
 #include <ctime>
 #include <stdexcept>
 
-#include "camdyn/initial_state.hpp"
+#include "cam/lift_base.hpp"
 #include "contact/active_set.hpp"
 #include "mechanism/element_set.hpp"
 #include "cam/joints.hpp"  // one_sided_motion
@@ -60,7 +60,7 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
   }
   if (sc.cam.land_on_breaks) break_angles_ = cam_.breakpoints();
   // The base circle, so that a cam contact's gap sees the lift X_C − X_base
-  // (cam_lift_base, include/camdyn/initial_state.hpp: cam.base_radius for a lift table,
+  // (cam_lift_base, cam/lift_base.hpp: cam.base_radius for a lift table,
   // min over θ of X_C otherwise).
   // A cam_lift_absolute mechanism's gap sees the cam's X_C itself (u_c = q₀).
   if (!mk_.traits().cam_lift_absolute && (sc.cam.profile == CamProfileKind::Lift || mk_.cam_contacts() > 0))
@@ -319,6 +319,12 @@ ContactRun::StepEnergy ContactRun::step_energy(
     forces(tau, y, cm, F);
     e.work += 0.5 * h * wg[g] * (cam_power(F, cm) + mk_.input_power(tau, y.data(), y.data() + n_));
     e.dissipated += 0.5 * h * wg[g] * dissipation_power(tau, y);
+    if (g == 1) {
+      se_mid_t0_ = t0;
+      se_mid_t1_ = t1;
+      se_mid_y_ = y;
+      se_mid_F_ = F;
+    }
   }
   return e;
 }

@@ -28,7 +28,8 @@
 #include "camdyn/cam.hpp"
 #include "cam/joints.hpp"
 #include "cam/stops.hpp"
-#include "camdyn/simulator.hpp"
+#include "camdyn/observer.hpp"
+#include "camdyn/summary.hpp"
 #include "results/designer_stats.hpp"
 #include "results/run_analysis.hpp"
 #include "contact/flight_log.hpp"
@@ -222,14 +223,22 @@ class ContactRun {
   /// contacts held over it. The designer extremes located inside the step
   /// (results/step_extremes.hpp; contact_run_trace.cpp): each contact's least force and side
   /// load, DesignerStats::step_inside, RunAnalysis::step_inside. Once a method traces its
-  /// steps, the rows add no extreme (the output grid changes no result).
+  /// steps, the rows add no extreme (the output grid changes no result). `energy_alike`:
+  /// step_energy was just called on [t0, t1] with the same state and forces functions, so
+  /// its middle Gauss point is the middle sample.
   using StateFn = std::function<void(double, Eigen::VectorXd&)>;
   using ForcesFn = std::function<void(double, const Eigen::VectorXd&, const CamMotion&, Eigen::VectorXd&)>;
-  void trace_step(double t0, double t1, const StateFn& state, const ForcesFn& forces, const std::vector<int>& set);
+  void trace_step(double t0, double t1, const StateFn& state, const ForcesFn& forces, const std::vector<int>& set,
+                  bool energy_alike = false);
   bool traced_ = false;
   Eigen::VectorXd trace_y_, trace_F_;
   std::vector<char> trace_in_;
   std::vector<StepSample> trace_samples_;
+  /// The previous traced step's end probe and its state: the next step's start probe when
+  /// that step starts at the same time, from the same state, with the same held set.
+  StepSample trace_prev_end_;
+  Eigen::VectorXd trace_prev_y_;
+  bool trace_prev_valid_ = false;
   /// The check after every accepted step (issue 28): a contact carrying force across an
   /// open gap, or a gap below −kCheckGaps·tol_u (not for penalty: its law penetrates),
   /// stops the run with a StepFailure naming the contact, the time and the cam angle.
@@ -291,6 +300,10 @@ class ContactRun {
   SparseMatrix shaft_kr_pattern_;                // shaft_newton's stiffness pattern
   Eigen::VectorXd shaft_y_, shaft_F_, shaft_dF_;  // shaft_newton's state and forces
   mutable Eigen::VectorXd se_y_, se_F_;  // step_energy's state and forces
+  // step_energy's middle Gauss point (x = ½) of the last interval [t0, t1] it integrated:
+  // trace_step's middle sample when the method hands both the same state and forces
+  mutable double se_mid_t0_ = NAN, se_mid_t1_ = NAN;
+  mutable Eigen::VectorXd se_mid_y_, se_mid_F_;
   double x_base_ = 0.0;     // the base circle's X_C: cam_at() returns the lift X_C − x_base_
   bool unilateral_ = true;
   bool observer_stop_ = false;  // an observer returned ObserverAction::Stop  // false: contact.separation = false or holonomic (never release)

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 
 namespace camdyn {
 namespace detail {

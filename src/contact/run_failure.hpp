@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 #include "cam/format.hpp"
 #include "engine/sundials_error.hpp"
 

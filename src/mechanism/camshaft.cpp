@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "camdyn/initial_state.hpp"  // cam_lift_base
+#include "cam/lift_base.hpp"
 
 namespace camdyn {
 

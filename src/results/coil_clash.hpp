@@ -2,7 +2,7 @@
 // docs/guide/elements.md "A spring whose coils clash").
 #pragma once
 
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 
 namespace camdyn {
 namespace detail {

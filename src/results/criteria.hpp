@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "camdyn/scene.hpp"
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 
 namespace camdyn {
 namespace detail {

@@ -24,8 +24,11 @@ void DesignerStats::geometry_init(const Scene& scene, const Cam& cam) {
 }
 
 DesignerStats::Design DesignerStats::design_at(double theta, double F, double omega) const {
+  return design_at(cam_->evaluate(theta), F, omega);
+}
+
+DesignerStats::Design DesignerStats::design_at(const CamPoint& cp, double F, double omega) const {
   if (!(F > 0.0)) F = 0.0;
-  const CamPoint cp = cam_->evaluate(theta);
   const ContactDesign d = cols_->eval(cp, F, omega);
   Design r;
   r.hertz = d.stress;
@@ -86,20 +89,20 @@ void DesignerStats::step_inside(const std::vector<StepSample>& s, const StepProb
   }
   if (!cam_) return;
   Design d[kStepSamples];
-  for (int k = 0; k < n; ++k) d[k] = design_at(s[k].theta, s[k].F, s[k].omega);
+  for (int k = 0; k < n; ++k) d[k] = design_at(s[k].cam_point(*cam_), s[k].F, s[k].omega);
   // each quantity: its samples, its record, and where it is located
   auto locate = [&](double Design::*m, int sign, double record, bool absolute) {
     for (int k = 0; k < n; ++k) q[k] = absolute ? std::fabs(d[k].*m) : d[k].*m;
     const LocatedExtreme e = locate_extreme(x, q, n, sign, absolute ? std::fabs(record) : record, [&](double xx) {
       probe(xx, tmp);
-      const double v = design_at(tmp.theta, tmp.F, tmp.omega).*m;
+      const double v = design_at(tmp.cam_point(*cam_), tmp.F, tmp.omega).*m;
       return absolute ? std::fabs(v) : v;
     });
     if (!e.found) return;
     for (int k = 0; k < n; ++k)
       if (e.x == x[k]) return;  // a sample: kept already
     probe(e.x, tmp);  // the located point: every quantity there is a sample too
-    keep_extremes(tmp.theta, design_at(tmp.theta, tmp.F, tmp.omega));
+    keep_extremes(tmp.theta, design_at(tmp.cam_point(*cam_), tmp.F, tmp.omega));
   };
   for (int k = 0; k < n; ++k) keep_extremes(s[k].theta, d[k]);
   locate(&Design::hertz, 1, max_hertz_, false);

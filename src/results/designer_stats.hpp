@@ -15,7 +15,7 @@
 
 #include "camdyn/cam.hpp"
 #include "camdyn/scene.hpp"
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 #include "results/designer_columns.hpp"
 #include "results/step_extremes.hpp"
 
@@ -90,6 +90,7 @@ class DesignerStats {
     double hertz = NAN, side = NAN, torque = NAN, power = NAN, friction = NAN, friction_power = NAN;
   };
   Design design_at(double theta, double F, double omega) const;
+  Design design_at(const CamPoint& cp, double F, double omega) const;
   void keep_extremes(double theta, const Design& d);
 };
 

@@ -209,7 +209,7 @@ void RunAnalysis::step_inside(const std::vector<StepSample>& s, const StepProbe&
   double x[kStepSamples], q[kStepSamples];
   for (int k = 0; k < n; ++k) x[k] = s[k].x;
   if (film_ && s[0].Fc > 0) {
-    auto h_at = [&](const StepSample& p) { return film(cam_->evaluate(p.theta), p.omega, p.Fc); };
+    auto h_at = [&](const StepSample& p) { return film(p.cam_point(*cam_), p.omega, p.Fc); };
     for (int k = 0; k < n; ++k) q[k] = h_at(s[k]);
     const LocatedExtreme e = locate_extreme(x, q, n, -1, min_h_, [&](double xx) {
       probe(xx, tmp);

@@ -26,7 +26,7 @@
 
 #include "camdyn/cam.hpp"
 #include "camdyn/scene.hpp"
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 #include "results/kinematic_path.hpp"
 #include "results/oil_film.hpp"
 #include "results/step_extremes.hpp"
@@ -66,6 +66,8 @@ class RunAnalysis {
   /// The named nodes' displacements are needed in the step samples (run.valve_node, a
   /// camshaft's valve timing).
   bool wants_nodes() const { return valve_ >= 0 || timing_.active(); }
+  /// Every contact's gap and gap rate are needed in the step samples (the seats' landings).
+  bool wants_gaps() const { return !seats_.empty(); }
   /// An event of contact `j`.
   void event(const ContactEvent& e, int j);
   /// Film, lift deviation, ramp velocity, landings and valve timing into `s`.

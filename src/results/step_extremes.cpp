@@ -1,6 +1,7 @@
 // camdyn — extremes located inside an accepted step (step_extremes.hpp).
 #include "results/step_extremes.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace camdyn {
@@ -61,6 +62,10 @@ LocatedExtreme locate_extreme(const double* x, const double* q, int n, int sign,
   double lo = x[k > 0 ? k - 1 : 0], hi = x[k < n - 1 ? k + 1 : n - 1];
   if (!(xv > lo && xv < hi)) return out;
   const double yv = y1 + d01 * (xv - x1) + a2 * (xv - x0) * (xv - x1);  // parabola at xv
+  // the vertex no better than the best sample by more than the search's resolution: the
+  // search could add no more than that
+  const double scale = std::max({std::fabs(y0), std::fabs(y1), std::fabs(y2)});
+  if (!(yv - s * q[k] > kSearchGain * scale)) return out;
   if (!std::isnan(record) && !(std::max(yv, s * q[k]) > s * record)) return out;
   const double flo = s * q[k > 0 ? k - 1 : 0], fhi = s * q[k < n - 1 ? k + 1 : n - 1];
   const LocatedExtreme g = golden_max([&](double xx) { return s * f(xx); }, lo, flo, hi, fhi);

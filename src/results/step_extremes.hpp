@@ -16,6 +16,8 @@
 #include <functional>
 #include <vector>
 
+#include "camdyn/cam.hpp"
+
 namespace camdyn {
 namespace detail {
 
@@ -32,6 +34,17 @@ struct StepSample {
   std::vector<double> forces, gaps, gap_rates;  ///< per contact
   std::vector<char> in_set;                     ///< per contact: held over the step
   std::vector<double> nodes;                    ///< named nodes' displacements (when asked for)
+  /// The cam at theta, evaluated on first use and kept: the side load, the designer's
+  /// quantities and the film all read it. Every reader passes the run's cam.
+  const CamPoint& cam_point(const Cam& cam) const {
+    if (!cam_valid) {
+      cam_pt = cam.evaluate(theta);
+      cam_valid = true;
+    }
+    return cam_pt;
+  }
+  mutable CamPoint cam_pt;         ///< cam_point's value (valid when cam_valid)
+  mutable bool cam_valid = false;  ///< cleared whenever theta is set
 };
 /// The step's state at x (fills every field of the sample).
 using StepProbe = std::function<void(double x, StepSample&)>;
@@ -46,11 +59,17 @@ struct LocatedExtreme {
   bool found = false;  ///< false: every sample was NaN
 };
 
+/// The least gain, relative to the samples' magnitude, that the parabola's vertex must
+/// promise over the best sample for locate_extreme to search (below it the search could
+/// move the extreme by less than that).
+constexpr double kSearchGain = 1e-13;
+
 /// The largest (sign = +1) or least (sign = −1) value of a quantity over one step from its
 /// samples q[k] at x[k] (k = 0..n−1, ascending, x[0] = 0, x[n−1] = 1; NaN samples are
 /// skipped): the best sample; and where the parabola through the best sample and its two
-/// neighbours has its extreme inside the step (between the neighbours) beyond `record`
-/// (the extreme so far, NaN: none), golden-section search of f (the quantity on the step's
+/// neighbours has its extreme inside the step (between the neighbours), better than the
+/// best sample by more than kSearchGain of the samples' magnitude and beyond `record` (the
+/// extreme so far, NaN: none), golden-section search of f (the quantity on the step's
 /// interpolant) between those neighbours, to 1e-9 of the step.
 LocatedExtreme locate_extreme(const double* x, const double* q, int n, int sign, double record,
                               const std::function<double(double)>& f);

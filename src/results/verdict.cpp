@@ -7,7 +7,7 @@
 #include <map>
 
 #include "camdyn/designer.hpp"
-#include "camdyn/initial_state.hpp"
+#include "cam/lift_base.hpp"
 #include "camdyn/output.hpp"
 #include "results/designer_stats.hpp"  // angle_deg_mod360
 #include "mechanism/mechanism.hpp"

@@ -12,7 +12,7 @@
 
 #include "camdyn/cam.hpp"
 #include "camdyn/scene.hpp"
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 
 namespace camdyn {
 class MechanicalSystem;

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "camdyn/scene.hpp"
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 
 namespace camdyn {
 namespace detail {

@@ -16,31 +16,6 @@
 
 namespace camdyn {
 
-double cam_lift_base(const Cam& cam, const CamSpec& spec) {
-  if (spec.profile == CamProfileKind::Lift) return spec.base_radius;
-  const double d = 2.0 * M_PI / 3600.0;
-  double best = INFINITY, th_best = 0.0;
-  for (int i = 0; i < 3600; ++i) {
-    const double X = cam.evaluate(i * d).X_C;
-    if (X < best) {
-      best = X;
-      th_best = i * d;
-    }
-  }
-  double a = th_best - d, b = th_best + d;
-  const double gr = 0.6180339887498949;
-  double c = b - gr * (b - a), e = a + gr * (b - a);
-  double fc = cam.evaluate(c).X_C, fe = cam.evaluate(e).X_C;
-  for (int i = 0; i < 60; ++i) {
-    if (fc < fe) {
-      b = e; e = c; fe = fc; c = b - gr * (b - a); fc = cam.evaluate(c).X_C;
-    } else {
-      a = c; c = e; fc = fe; e = a + gr * (b - a); fe = cam.evaluate(e).X_C;
-    }
-  }
-  return std::min({best, fc, fe});
-}
-
 CamMotion cam_lift_motion(const CamSpec& spec, double t) {
   const Cam cam(spec);
   const CamDrive drive(spec);

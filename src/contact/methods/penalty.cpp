@@ -246,7 +246,7 @@ class PenaltyMethod final : public ContactRun {
       trace_step(
           t_ - h, t_, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
           [this](double tau, const Eigen::VectorXd& y, const CamMotion&, Eigen::VectorXd& F) { forces(tau, y, F); },
-          active_list());
+          active_list(), /*energy_alike=*/true);
       const CamMotion cm = cam_at(t_);
       for (int j = 0; j < m_; ++j) {
         const bool now = F_[j] > 0.0 || (eng_->hit_root() && eng_->root_info()[j] < 0);
