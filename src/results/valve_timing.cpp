@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "camdyn/cam.hpp"
-#include "camdyn/initial_state.hpp"  // cam_lift_base
+#include "cam/lift_base.hpp"  // cam_lift_base
 #include "results/designer_stats.hpp"  // angle_deg_mod360
 
 namespace camdyn {

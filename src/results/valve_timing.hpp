@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "camdyn/scene.hpp"
-#include "camdyn/simulator.hpp"
+#include "camdyn/summary.hpp"
 #include "results/kinematic_path.hpp"
 #include "results/step_extremes.hpp"
 
