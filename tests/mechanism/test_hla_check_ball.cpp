@@ -24,6 +24,7 @@
 #include "camdyn/simulator.hpp"
 #include "mechanism/elements/hydraulic_lash_adjuster.hpp"
 #include "../network_run_support.hpp"
+#include "hla_test_support.hpp"
 
 namespace camdyn {
 namespace {
@@ -64,33 +65,7 @@ ElementSpec ball_hla(double kb, double cb, double ks) {
 /// A plunger of kMass on the HLA to ground, pushed down by a constant load, a stop `lash`
 /// above it.
 Scene plunger_scene(const ElementSpec& e, double load, double lash, Integrator integ, ContactModel model) {
-  Scene s = default_scene();
-  s.title = "hla ball";
-  s.follower.kind = FollowerKind::Network;
-  NodeSpec n;
-  n.name = "plunger";
-  n.mass = kMass;
-  s.network.nodes = {n};
-  ElementSpec ld;
-  ld.name = "load";
-  ld.kind = ElementKind::Spring;
-  ld.nodes = {"plunger", "ground"};
-  ld.stiffness = 0.0;
-  ld.preload = load;
-  s.network.elements = {e, ld};
-  ContactPointSpec stop;
-  stop.name = "stop";
-  stop.kind = ContactPointKind::Stop;
-  stop.nodes = {"plunger"};
-  stop.side = StopSide::Above;
-  stop.clearance = lash;
-  s.network.contacts = {stop};
-  s.contact.model = model;
-  s.solver.integrator = integ;
-  s.solver.rtol = 1e-10;
-  s.solver.atol = 1e-15;
-  s.run.element_forces = true;
-  return s;
+  return camdyn_test::hla_plunger_scene(e, kMass, load, lash, integ, model);
 }
 
 /// The test's own model of the HLA with the ball (the formulas of docs/interface.md).
