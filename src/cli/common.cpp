@@ -18,6 +18,7 @@
 #include "camdyn/cam.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/simulator.hpp"
+#include "cam/shared_cam.hpp"
 
 namespace camdyn_cli {
 
@@ -93,7 +94,7 @@ ValidatedScene build_scene(const std::string& file, const std::string& case_name
   // Cam geometry (convexity, self-intersection) is checked by the Cam itself; name the
   // file or --set the offending key came from, not the Cam's own "<cam>".
   try {
-    const Cam cam(sc->cam);
+    camdyn::detail::shared_cam(sc->cam);  // built once: the run shares it
   } catch (const SceneError& e) {
     if (e.file() != "<cam>") throw;
     bool from_set = false;

@@ -15,6 +15,7 @@
 #include "contact/run_clock.hpp"
 #include "contact/run_failure.hpp"
 #include "contact/step_control.hpp"
+#include "cam/shared_cam.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -31,8 +32,8 @@ constexpr double kCheckGaps = 10.0;  // the step check's gap tolerance in tol_u
 
 ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                        const std::atomic<bool>* stop)
-    : sc_(sc), mech_(std::move(mech)), mk_(*mech_), cam_(sc.cam), drive_(sc.cam), obs_(obs),
-      stop_(stop), n_(mk_.n()), m_(mk_.m()), ns_(mk_.states()), ny_(2 * n_ + ns_), designer_(sc, cam_),
+    : sc_(sc), mech_(std::move(mech)), mk_(*mech_), cam_owner_(shared_cam(sc.cam)), cam_(*cam_owner_), drive_(sc.cam), obs_(obs),
+      stop_(stop), n_(mk_.n()), m_(mk_.m()), ns_(mk_.states()), ny_(2 * n_ + ns_), designer_(sc, cam_owner_),
       analysis_(sc, contact_names(*mech_), mech_->node_names(), cam_.lift(), &cam_),
       flights_(contact_names(*mech_), sc.contact.model == ContactModel::Penalty ? 0.0 : sc.contact.tol_u),
       surge_(mech_->surge_names(), drive_.theta(0.0)), surge_buf_(mech_->surge_names().size(), 0.0) {

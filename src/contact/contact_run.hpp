@@ -38,6 +38,7 @@
 #include "engine/ode_engine.hpp"
 #include "contact/run_failure.hpp"
 #include "contact/step_control.hpp"
+#include "cam/shared_cam.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -259,7 +260,8 @@ class ContactRun {
   std::shared_ptr<const MechanicalSystem> mech_;
   const MechanicalSystem& mk_;
   std::string atol_note_;  // absolute_tolerances(): the warning when the floor was used
-  Cam cam_;
+  std::shared_ptr<const Cam> cam_owner_;  // the run's cam, shared (cam/shared_cam.hpp)
+  const Cam& cam_;
   CamDrive drive_;
   CamStops stops_{sc_, cam_};
   CamJoints joints_{sc_, cam_};

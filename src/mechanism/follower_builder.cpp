@@ -10,6 +10,7 @@
 #include "camdyn/cam.hpp"
 #include "mechanism/follower_matrices.hpp"
 #include "mechanism/mechanism.hpp"
+#include "cam/shared_cam.hpp"
 
 namespace camdyn {
 
@@ -24,7 +25,8 @@ void Mechanism::build_follower(const Scene& scene) {
   v0_ = Eigen::VectorXd::Zero(n_);
   // Touching at t = 0 (no initial gap): node 0 moves with the cam.
   if (scene.contact.initial_gap == 0.0) {
-    const Cam cam(scene.cam);
+    const std::shared_ptr<const Cam> cam_owner = detail::shared_cam(scene.cam);
+    const Cam& cam = *cam_owner;
     const CamDrive drive(scene.cam);
     v0_[0] = cam.motion(drive.theta(0.0), drive.omega(0.0), drive.omega_dot(0.0)).Xdot;
   }

@@ -15,6 +15,7 @@
 
 #include "camdyn/cam.hpp"
 #include "scene/linear_solver.hpp"  // resolve_linear_solver
+#include "cam/shared_cam.hpp"
 
 namespace camdyn {
 
@@ -37,7 +38,8 @@ FollowerMatrices follower_matrices(const Scene& scene) {
   ModelDescription& desc = r.description;
   const double preload = k * scene.spring.precompression;
   r.spring_preload = preload;
-  const Cam cam(scene.cam);
+  const std::shared_ptr<const Cam> cam_owner = detail::shared_cam(scene.cam);
+  const Cam& cam = *cam_owner;
   const CamDrive drive(scene.cam);
   const double x0 = cam.evaluate(drive.theta(0.0)).X_C + scene.contact.initial_gap;
 

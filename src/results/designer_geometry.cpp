@@ -14,8 +14,9 @@ namespace {
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 }
 
-void DesignerStats::geometry_init(const Scene& scene, const Cam& cam) {
-  cam_ = std::make_shared<const Cam>(cam);  // a copy: the run's Cam outlives no guarantee here
+void DesignerStats::geometry_init(const Scene& scene, std::shared_ptr<const Cam> cam_ptr) {
+  cam_ = std::move(cam_ptr);
+  const Cam& cam = *cam_;
   cols_ = std::make_shared<const DesignerColumns>(scene);
   // Extremes over the cam located between the samples and at the joints (cam_extremum).
   const CamExtremum phi = cam_extremum(cam, [](const CamPoint& p) { return std::fabs(p.pressure_angle); }, true);

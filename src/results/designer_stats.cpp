@@ -32,8 +32,11 @@ DesignerStats::DesignerStats(const Scene& scene, double lift) : drive_(scene.cam
   tol_ = scene.run.period_tol;
 }
 
-DesignerStats::DesignerStats(const Scene& scene, const Cam& cam) : DesignerStats(scene, cam.lift()) {
-  geometry_init(scene, cam);
+DesignerStats::DesignerStats(const Scene& scene, const Cam& cam)
+    : DesignerStats(scene, std::make_shared<const Cam>(cam)) {}
+
+DesignerStats::DesignerStats(const Scene& scene, std::shared_ptr<const Cam> cam) : DesignerStats(scene, cam->lift()) {
+  geometry_init(scene, std::move(cam));
 }
 
 void DesignerStats::sample_force(double t, double theta, double F) {

@@ -32,6 +32,8 @@ class DesignerStats {
   /// Also the cam-geometry results (issue 24): pressure angle, radius of curvature, side
   /// load, Hertz stress (cam.width > 0), cam torque T = F s′(θ) and power T ω.
   DesignerStats(const Scene& scene, const Cam& cam);
+  /// The same on a shared cam (no copy). @pre cam is not null.
+  DesignerStats(const Scene& scene, std::shared_ptr<const Cam> cam);
 
   /// A contact force sample F ≥ 0 at time t, cam angle θ, while in contact.
   void sample_force(double t, double theta, double F);
@@ -80,7 +82,7 @@ class DesignerStats {
   // cam friction (cols_->friction()): torque and power integrals as T, P above
   double Tf_int_ = 0, Pf_int_ = 0, pend_Tf0_ = 0, pend_Pf0_ = 0, pend_Tf1_ = 0, pend_Pf1_ = 0;
   double Ff_max_ = NAN, Pf_peak_ = NAN;
-  void geometry_init(const Scene& scene, const Cam& cam);
+  void geometry_init(const Scene& scene, std::shared_ptr<const Cam> cam);
   void geometry_sample(double t, double theta, double F);
   void geometry_step(double t);
   void geometry_finish(Summary& s) const;

@@ -11,6 +11,7 @@
 #include "camdyn/output.hpp"
 #include "results/designer_stats.hpp"  // angle_deg_mod360
 #include "mechanism/mechanism.hpp"
+#include "cam/shared_cam.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -111,7 +112,8 @@ std::vector<VerdictItem> make_verdict(const Scene& sc, const MechanicalSystem* m
     Role role;
     double clearance;
   };
-  const Cam cam(sc.cam);
+  const std::shared_ptr<const Cam> cam_owner = detail::shared_cam(sc.cam);
+  const Cam& cam = *cam_owner;
   const CamRegions reg(cam, sc.cam);
   const CamDrive drive(sc.cam);
   std::vector<C> cs;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "camdyn/cam.hpp"
+#include "cam/shared_cam.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -24,7 +25,7 @@ void check_tolerance_scale(const Scene& sc) {
   if (!(tol_u > 0)) return;  // 0 = automatic (resolved before a run)
   double lift = 0;
   try {
-    lift = Cam(sc.cam).lift();
+    lift = detail::shared_cam(sc.cam)->lift();
   } catch (const std::exception&) {
     return;  // the cam's own error is reported where the cam is built
   }

@@ -13,11 +13,13 @@
 #include "run/initial_check.hpp"
 #include "mechanism/mechanism.hpp"
 #include "cam/format.hpp"  // detail::fmt
+#include "cam/shared_cam.hpp"
 
 namespace camdyn {
 
 CamMotion cam_lift_motion(const CamSpec& spec, double t) {
-  const Cam cam(spec);
+  const std::shared_ptr<const Cam> cam_owner = detail::shared_cam(spec);
+  const Cam& cam = *cam_owner;
   const CamDrive drive(spec);
   CamMotion m = cam.motion(drive.theta(t), drive.omega(t), drive.omega_dot(t));
   m.X -= cam_lift_base(cam, spec);
@@ -92,7 +94,8 @@ void check_start(const Scene& sc, const MechanicalSystem& mech, StartKeys keys) 
   // X_C itself (u_c = q₀).
   const bool absolute = mech.traits().cam_lift_absolute;
   const int n = mech.n(), m = mech.m();
-  const Cam cam(sc.cam);
+  const std::shared_ptr<const Cam> cam_owner = detail::shared_cam(sc.cam);
+  const Cam& cam = *cam_owner;
   const CamDrive drive(sc.cam);
   const double base = !absolute && mech.cam_contacts() > 0 ? cam_lift_base(cam, sc.cam) : 0.0;
   const CamMotion cm = cam.motion(drive.theta(0.0), drive.omega(0.0), drive.omega_dot(0.0));

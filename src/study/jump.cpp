@@ -13,6 +13,7 @@
 #include "results/designer_stats.hpp"
 #include "results/verdict.hpp"
 #include "study/speed_map.hpp"
+#include "cam/shared_cam.hpp"
 
 namespace camdyn {
 
@@ -65,7 +66,8 @@ double contact_loss_speed(const ReqTerms& r) {
 }
 
 JumpResult jump_closed_form(const Scene& s, const JumpOptions& o, double dir) {
-  const Cam cam(s.cam);
+  const std::shared_ptr<const Cam> cam_owner = detail::shared_cam(s.cam);
+  const Cam& cam = *cam_owner;
   const double x0 = spring_origin(s, cam);
   auto w = [&](double th) {
     ReqTerms r = req_terms(s, cam, x0, th);
@@ -131,7 +133,8 @@ JumpResult jump_closed_form(const Scene& s, const JumpOptions& o, double dir) {
 
 double required_contact_force(const Scene& scene, double theta, double omega, double omega_dot) {
   require_rigid(scene, "required_contact_force");
-  const Cam cam(scene.cam);
+  const std::shared_ptr<const Cam> cam_owner = detail::shared_cam(scene.cam);
+  const Cam& cam = *cam_owner;
   const ReqTerms r = req_terms(scene, cam, spring_origin(scene, cam), theta);
   return r.A * omega * omega + r.B * omega + r.C * omega_dot + r.S;
 }
@@ -175,7 +178,8 @@ JumpResult jump_speed(const Scene& scene_in, const JumpOptions& o) {
   if (scene.follower.kind == FollowerKind::Rigid && !o.force_simulation) {
     JumpResult r = jump_closed_form(scene, o, dir);
     if (std::isfinite(r.theta_deg)) {
-      const Cam cam(scene.cam);
+      const std::shared_ptr<const Cam> cam_owner = detail::shared_cam(scene.cam);
+      const Cam& cam = *cam_owner;
       const detail::CamRegions reg(cam, scene.cam);
       r.phenomenon = detail::region_kind(reg.at(r.theta_deg * (kTwoPi / 360.0)));
       char b[64];
