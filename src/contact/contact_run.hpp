@@ -192,7 +192,7 @@ class ContactRun {
   void emit_row();
   void emit_row_at(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& F,
                    const std::vector<char>& active, double W, double D);
-  /// Inside the lash take-up window at t (simulator.hpp ContactResult).
+  /// Inside the lash take-up window at t (summary.hpp ContactResult).
   bool in_take_up(double t) const;
   /// The side loads |F_j tan φ| of the closed cam contacts at an accepted step end
   /// (ContactResult::max_side_load).

@@ -444,7 +444,7 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
     o.raw("poincare", t);
   }
   if (!s.contacts.empty()) {
-    // per contact (issue 28; the lash take-up window: include/camdyn/simulator.hpp)
+    // per contact (issue 28; the lash take-up window: include/camdyn/summary.hpp)
     o.raw("contacts", object_array(o, s.contacts, [](JsonObject& k, const ContactResult& c) {
       k.str("name", c.name);
       k.num("min_force", c.min_force);
@@ -496,7 +496,7 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
   }));
   o.boolean("criteria_pass", s.criteria_pass);
   if (!s.valve_timing.empty()) {
-    // a [camshaft]: each valve's timing (include/camdyn/simulator.hpp ValveTimingResult)
+    // a [camshaft]: each valve's timing (include/camdyn/summary.hpp ValveTimingResult)
     o.raw("valve_timing", object_array(o, s.valve_timing, [](JsonObject& k, const ValveTimingResult& v) {
       k.str("valve", v.valve);
       k.str("contact", v.contact);
@@ -512,7 +512,7 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
     }));
   }
   if (!s.coil_clash.empty()) {
-    // springs whose coils clash (include/camdyn/simulator.hpp CoilClashResult)
+    // springs whose coils clash (include/camdyn/summary.hpp CoilClashResult)
     o.raw("coil_clash", object_array(o, s.coil_clash, [](JsonObject& k, const CoilClashResult& c) {
       k.str("spring", c.spring);
       k.integer("impacts", c.impacts);
@@ -522,7 +522,7 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
     }));
   }
   if (!s.surge.empty()) {
-    // springs with coil masses (include/camdyn/simulator.hpp SurgeResult)
+    // springs with coil masses (include/camdyn/summary.hpp SurgeResult)
     o.raw("surge", object_array(o, s.surge, [](JsonObject& k, const SurgeResult& c) {
       k.str("spring", c.spring);
       k.num("amplitude", c.amplitude);

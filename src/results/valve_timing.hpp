@@ -1,5 +1,5 @@
 // camdyn (private) — each valve's timing on a camshaft (issue 40 item 4; summary.json
-// "valve_timing", include/camdyn/simulator.hpp ValveTimingResult).
+// "valve_timing", include/camdyn/summary.hpp ValveTimingResult).
 //
 //   The valves: for every cam contact of a scene with a [camshaft], each seat (a stop contact
 //   on side "below") whose node its kinematic path reaches (results/kinematic_path.hpp); a
