@@ -18,6 +18,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <functional>
@@ -42,6 +43,21 @@
 
 namespace camdyn {
 namespace detail {
+
+/// The cam's scales over one turn (360 samples): the largest |X_C| (the scale of a cam
+/// contact's gap) and the largest |dX_C/dθ|.
+struct CamScales {
+  double X = 0.0, dX = 0.0;
+};
+inline CamScales cam_scales(const Cam& cam) {
+  CamScales s;
+  for (int k = 0; k < 360; ++k) {
+    const CamPoint p = cam.evaluate(6.283185307179586 * k / 360);
+    s.X = std::max(s.X, std::abs(p.X_C));
+    s.dX = std::max(s.dX, std::abs(p.dX_dtheta));
+  }
+  return s;
+}
 
 class ContactRun {
  public:

@@ -21,17 +21,12 @@ namespace detail {
 
 namespace {
 constexpr double kAtolRoundoff = 100.0;
-constexpr int kScaleSamples = 720;
 }  // namespace
 
 Eigen::VectorXd ContactRun::absolute_tolerances() {
   const double atol = sc_.solver.atol, eps = std::numeric_limits<double>::epsilon();
-  double X = 0.0, dX = 0.0;
-  for (int k = 0; k < kScaleSamples; ++k) {
-    const CamPoint p = cam_.evaluate(2.0 * M_PI * k / kScaleSamples);
-    X = std::max(X, std::abs(p.X_C));
-    dX = std::max(dX, std::abs(p.dX_dtheta));
-  }
+  const CamScales scale = cam_scales(cam_);
+  const double X = scale.X, dX = scale.dX;
   double rev_s = std::abs(sc_.cam.speed_rev_s);
   for (double w : sc_.cam.speed_table_rev_s) rev_s = std::max(rev_s, std::abs(w));
   double fluct = 1.0;  // a camshaft's crank orders: θ̇ up to ω(1 + Σ n_k a_k)

@@ -31,13 +31,6 @@ inline double event_gap_tolerance(double tol_u, double rtol, double X) {
   return std::min(tol_u, std::max(rtol * x, 1000.0 * 2.220446049250313e-16 * x));
 }
 
-/// The largest |X_C| over one turn (360 samples): the scale of a cam contact's gap.
-inline double cam_x_scale(const Cam& cam) {
-  double x = 0;
-  for (int k = 0; k < 360; ++k) x = std::max(x, std::abs(cam.evaluate(6.283185307179586 * k / 360).X_C));
-  return x;
-}
-
 class EventMethod : public ContactRun {
  public:
   /// max_order: cvode-bdf's largest BDF order on a network (0: CVODE's default 5). An
@@ -148,7 +141,7 @@ class EventMethod : public ContactRun {
   // cam's largest X_C), at least 1000 ulps of X: an impact is located to the integrator's
   // accuracy, so the event times fall with rtol, and tol_u caps the offset
   // (docs/tolerances.md "The event method").
-  double gap_tol_ = event_gap_tolerance(sc_.contact.tol_u, sc_.solver.rtol, cam_x_scale(cam_));
+  double gap_tol_ = event_gap_tolerance(sc_.contact.tol_u, sc_.solver.rtol, cam_scales(cam_).X);
   double gap_thr_ = 1e-3 * gap_tol_;
   // A contact released where its force reaches zero leaves the cam from the root's state
   // put on the held set's manifold (g = ġ = 0 exactly), so its gap root is the normal one
