@@ -7,6 +7,21 @@
 
 namespace camdyn_test {
 
+/// One classic RK4 step of ẏ = f(y) (N unknowns; f(const double* y, double* ẏ)) of size h,
+/// in place: the tests' own integration of the element's equations.
+template <int N, class F>
+void rk4_step(const F& f, double (&y)[N], double h) {
+  double k1[N], k2[N], k3[N], k4[N], z[N];
+  f(y, k1);
+  for (int j = 0; j < N; ++j) z[j] = y[j] + 0.5 * h * k1[j];
+  f(z, k2);
+  for (int j = 0; j < N; ++j) z[j] = y[j] + 0.5 * h * k2[j];
+  f(z, k3);
+  for (int j = 0; j < N; ++j) z[j] = y[j] + h * k3[j];
+  f(z, k4);
+  for (int j = 0; j < N; ++j) y[j] += h / 6 * (k1[j] + 2 * k2[j] + 2 * k3[j] + k4[j]);
+}
+
 inline camdyn::Scene hla_plunger_scene(const camdyn::ElementSpec& e, double mass, double load, double lash,
                                        camdyn::Integrator integ, camdyn::ContactModel model) {
   using namespace camdyn;

@@ -104,8 +104,8 @@ struct TestBallHla {
 /// The element's ball rows (ṡ₃, ṡ₄) at a fixed gauge pressure p, by classic RK4 from (x0, w0).
 std::vector<double> element_ball_rk4(const HydraulicLashAdjuster& h, double p, double x0, double dt, long steps) {
   const double xx[2] = {0.0, 0.0}, vv[2] = {0.0, 0.0};
-  auto f = [&](double x, double w, double* d) {
-    const double st[5] = {1 + p / kPref, 0.0, 0.0, x, w};
+  auto f = [&](const double* y, double* d) {
+    const double st[5] = {1 + p / kPref, 0.0, 0.0, y[0], y[1]};
     ElementState e;
     e.x = xx;
     e.xd = vv;
@@ -116,15 +116,10 @@ std::vector<double> element_ball_rk4(const HydraulicLashAdjuster& h, double p, d
     d[1] = r[4];
   };
   std::vector<double> xs{x0};
-  double x = x0, w = 0.0, k1[2], k2[2], k3[2], k4[2];
+  double y[2] = {x0, 0.0};
   for (long i = 0; i < steps; ++i) {
-    f(x, w, k1);
-    f(x + 0.5 * dt * k1[0], w + 0.5 * dt * k1[1], k2);
-    f(x + 0.5 * dt * k2[0], w + 0.5 * dt * k2[1], k3);
-    f(x + dt * k3[0], w + dt * k3[1], k4);
-    x += dt / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0]);
-    w += dt / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1]);
-    xs.push_back(x);
+    camdyn_test::rk4_step(f, y, dt);
+    xs.push_back(y[0]);
   }
   return xs;
 }
@@ -299,16 +294,8 @@ Traj rk4(const TestBallHla& m, double load, double h, int steps, int every) {
   };
   double y[5] = {0.0, 0.0, m.e.initial_pressure, m.rest_lift(m.e.initial_pressure), 0.0};
   Traj t{{y[0]}, {y[2]}, {y[3]}};
-  double k1[5], k2[5], k3[5], k4[5], z[5];
   for (int i = 1; i <= steps; ++i) {
-    f(y, k1);
-    for (int j = 0; j < 5; ++j) z[j] = y[j] + 0.5 * h * k1[j];
-    f(z, k2);
-    for (int j = 0; j < 5; ++j) z[j] = y[j] + 0.5 * h * k2[j];
-    f(z, k3);
-    for (int j = 0; j < 5; ++j) z[j] = y[j] + h * k3[j];
-    f(z, k4);
-    for (int j = 0; j < 5; ++j) y[j] += h / 6 * (k1[j] + 2 * k2[j] + 2 * k3[j] + k4[j]);
+    camdyn_test::rk4_step(f, y, h);
     if (i % every == 0) {
       t.u.push_back(y[0]);
       t.p.push_back(y[2]);

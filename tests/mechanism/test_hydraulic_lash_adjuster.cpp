@@ -99,16 +99,8 @@ Traj rk4(const TestHla& m, double load, double p0, double v0, double h, int step
   };
   double y[3] = {0.0, v0, p0};
   Traj t{{y[0]}, {y[2]}};
-  double k1[3], k2[3], k3[3], k4[3], z[3];
   for (int i = 1; i <= steps; ++i) {
-    f(y, k1);
-    for (int j = 0; j < 3; ++j) z[j] = y[j] + 0.5 * h * k1[j];
-    f(z, k2);
-    for (int j = 0; j < 3; ++j) z[j] = y[j] + 0.5 * h * k2[j];
-    f(z, k3);
-    for (int j = 0; j < 3; ++j) z[j] = y[j] + h * k3[j];
-    f(z, k4);
-    for (int j = 0; j < 3; ++j) y[j] += h / 6 * (k1[j] + 2 * k2[j] + 2 * k3[j] + k4[j]);
+    camdyn_test::rk4_step(f, y, h);
     if (i % every == 0) {
       t.u.push_back(y[0]);
       t.p.push_back(y[2]);
