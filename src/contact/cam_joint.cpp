@@ -29,7 +29,7 @@ bool ContactRun::cam_joint_impact() {
   if (struck.empty() && leaving.empty()) return false;
   for (int j : leaving) {
     active_[j] = 0;
-    ++sum_.separations;
+    ++rec_.separations;
     record_event(EventKind::Separation, j, 0.0);
   }
   if (struck.empty()) {

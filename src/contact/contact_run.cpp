@@ -1,4 +1,4 @@
-// camdyn — the run machinery of the network (several-contact) methods (contact_run.hpp).
+// camdyn — the run machinery every contact method shares (contact_run.hpp).
 #include "contact/contact_run.hpp"
 
 #include <Eigen/Dense>
@@ -37,23 +37,19 @@ ContactRun::ContactRun(const Scene& sc, std::shared_ptr<const MechanicalSystem> 
       analysis_(sc, contact_names(*mech_), mech_->node_names(), cam_.lift(), &cam_),
       flights_(contact_names(*mech_), sc.contact.model == ContactModel::Penalty ? 0.0 : sc.contact.tol_u),
       surge_(mech_->surge_names(), drive_.theta(0.0)), surge_buf_(mech_->surge_names().size(), 0.0) {
-  sum_.scene = sc.title;
-  sum_.integrator = to_string(sc.solver.integrator);
-  sum_.contact_model = to_string(sc.contact.model);
-  sum_.model = mk_.description();
-  sum_.min_gap = INFINITY;
+  rec_.model = mk_.description();
   for (const MechanismContact& c : mk_.contacts()) {
-    sum_.contacts.emplace_back();
-    sum_.contacts.back().name = c.name;
-    sum_.contacts.back().coil_spring = c.coil_spring;
+    rec_.contacts.emplace_back();
+    rec_.contacts.back().name = c.name;
+    rec_.contacts.back().coil_spring = c.coil_spring;
   }
   unilateral_ = sc.contact.separation && sc.contact.model != ContactModel::Holonomic;
   element_force_count_ = mk_.element_force_names().size();
   if (!mk_.linear() && mk_.traits().named_contacts && element_force_count_ > 0) {
     element_results_ = true;
     for (const std::string& name : mk_.element_force_names()) {
-      sum_.elements.emplace_back();
-      sum_.elements.back().name = name;
+      rec_.elements.emplace_back();
+      rec_.elements.back().name = name;
     }
     element_buf_.assign(element_force_count_, 0.0);
     element_cyc_min_.assign(element_force_count_, INFINITY);
@@ -331,18 +327,18 @@ ContactRun::StepEnergy ContactRun::step_energy(
 }
 
 void ContactRun::after_step(double h, double dW, double P_prev, double P_end, double dD) {
-  ++sum_.steps;
+  ++rec_.steps;
   sample_elements();
   const CamMotion cm = cam_at(t_);
   const double P = std::isnan(P_end) ? dissipation_power(t_, y_) : P_end;
   work_ += dW;
   dissipated_ += std::isnan(dD) ? 0.5 * h * (P_prev + P) : dD;
-  sum_.contract.energy_scale = std::max({sum_.contract.energy_scale, std::abs(work_), std::abs(dissipated_)});
+  rec_.energy_scale = std::max({rec_.energy_scale, std::abs(work_), std::abs(dissipated_)});
   for (int j = 0; j < m_; ++j) {
     const double g = gap(j, y_, cm);
-    sum_.min_gap = std::min(sum_.min_gap, g);
-    sum_.max_penetration = std::max(sum_.max_penetration, -g);
-    sum_.max_contact_force = std::max(sum_.max_contact_force, F_[j]);
+    rec_.min_gap = std::min(rec_.min_gap, g);
+    rec_.max_penetration = std::max(rec_.max_penetration, -g);
+    rec_.max_contact_force = std::max(rec_.max_contact_force, F_[j]);
     if (!active_[j]) flights_.sample(j, g);
   }
   check_complementarity(cm);
@@ -354,16 +350,16 @@ void ContactRun::after_step(double h, double dW, double P_prev, double P_end, do
     StepInfo info;
     info.t0 = t_ - h;
     info.h = h;
-    info.step = sum_.steps;
+    info.step = rec_.steps;
     info.contacts = m_;
     info.force_start = step_F0_.data();
     info.force_end = F_.data();
     obs_->on_step(info);
   }
   step_F0_ = F_;
-  for (int j = 0; j < m_ && !unilateral_ && sum_.first_tensile_time < 0; ++j)
+  for (int j = 0; j < m_ && !unilateral_ && rec_.first_tensile_time < 0; ++j)
     if (active_[j] && F_[j] < 0.0) {  // a bilateral contact pulls: where a follower would leave
-      sum_.first_tensile_time = t_;
+      rec_.first_tensile_time = t_;
       record_event(EventKind::Tensile, j, 0.0);
     }
   const int p = mk_.primary();
@@ -385,10 +381,10 @@ void ContactRun::after_step(double h, double dW, double P_prev, double P_end, do
   }
   if (observer_stop_) throw StepFailure(Termination::StoppedByObserver, "stopped by observer");
   if (stop_ && stop_->load()) throw StepFailure(Termination::StoppedByCaller, stop_reason_);
-  if (sum_.steps + sum_.rejected_steps > sc_.run.max_steps)
+  if (rec_.steps + rec_.rejected_steps > sc_.run.max_steps)
     throw StepFailure(Termination::MaxSteps, "run.max_steps = " + std::to_string(sc_.run.max_steps) + " reached");
   if (!y_.allFinite() || !F_.allFinite()) throw StepFailure(Termination::NonFinite, "non-finite state");
-  if (obs_ && (sum_.steps & 255) == 0) obs_->on_progress(t_, sc_.run.t_end, sum_.steps);
+  if (obs_ && (rec_.steps & 255) == 0) obs_->on_progress(t_, sc_.run.t_end, rec_.steps);
 }
 
 double ContactRun::contact_acceleration(int p) const {
@@ -431,7 +427,7 @@ double ContactRun::fit_step(double h, double t_next) const { return fit_step_siz
 double ContactRun::initial_step() const { return first_step_size(sc_); }
 double ContactRun::next_output_time() const { return output_time(sc_, next_out_); }
 
-Summary ContactRun::run() {
+const RunRecord& ContactRun::run() {
   Clock clock;
   y_.resize(ny_);
   y_.head(n_) = mk_.q0();
@@ -468,38 +464,33 @@ Summary ContactRun::run() {
   }
   next_out_ = 1;
   auto end_run = [&](Termination kind, const char* what) {
-    sum_.finished = false;
-    sum_.termination = kind;
-    sum_.message = "at t = " + fmt(t_) + ": " + what;
+    rec_.finished = false;
+    rec_.termination = kind;
+    rec_.message = "at t = " + fmt(t_) + ": " + what;
     if (last_row_t_ < t_ && !observer_stop_) emit_row();  // keep the last accepted state
   };
-  run_to_end(sum_, end_run, [&] {
+  run_to_end(rec_, end_run, [&] {
     if (observer_stop_) throw StepFailure(Termination::StoppedByObserver, "stopped by observer");
     run_method();
   });
-  sum_.t_end = t_;
+  rec_.t_end = t_;
   for (const auto& e : engines_) {
-    sum_.rhs_evals += e->stats().rhs_evals;
-    sum_.lin_setups += e->stats().lin_setups;
-    sum_.lin_analyses += e->stats().lin_analyses;
-    sum_.nonlin_iters += e->stats().nonlin_iters;
-    sum_.nonlin_conv_fails += e->stats().nonlin_conv_fails;
-    sum_.err_test_fails += e->stats().err_test_fails;
-    sum_.engine_restarts += e->stats().reinits;
+    rec_.rhs_evals += e->stats().rhs_evals;
+    rec_.lin_setups += e->stats().lin_setups;
+    rec_.lin_analyses += e->stats().lin_analyses;
+    rec_.nonlin_iters += e->stats().nonlin_iters;
+    rec_.nonlin_conv_fails += e->stats().nonlin_conv_fails;
+    rec_.err_test_fails += e->stats().err_test_fails;
+    rec_.engine_restarts += e->stats().reinits;
   }
-  sum_.cpu_seconds = clock.cpu();
-  sum_.wall_seconds = clock.wall();
-  if (!std::isfinite(sum_.min_gap)) sum_.min_gap = 0.0;
+  rec_.cpu_seconds = clock.cpu();
+  rec_.wall_seconds = clock.wall();
   const double E = mk_.kinetic_energy(y_.data() + n_) + potential(t_, y_);
-  sum_.energy_residual = std::abs(work_ - (E - E0_) - dissipated_);
-  sum_.contract.energy_magnitude =
-      std::max({std::abs(E0_), std::abs(E), sum_.max_contact_force * cam_.lift()});
-  designer_.finish(sum_);
-  analysis_.finish(sum_);
-  flights_.finish(sum_);
-  surge_.finish(sum_);
-  if (!atol_note_.empty()) sum_.warnings.push_back(atol_note_);
-  return sum_;
+  rec_.energy_residual = std::abs(work_ - (E - E0_) - dissipated_);
+  rec_.energy_magnitude =
+      std::max({std::abs(E0_), std::abs(E), rec_.max_contact_force * cam_.lift()});
+  if (!atol_note_.empty()) rec_.warnings.push_back(atol_note_);
+  return rec_;
 }
 
 }  // namespace detail
@@ -508,36 +499,37 @@ Summary ContactRun::run() {
 namespace camdyn {
 namespace detail {
 
-std::unique_ptr<ContactRun> make_network_lee(const Scene&, std::shared_ptr<const MechanicalSystem>, Observer*,
+// One factory per method file (methods/*.cpp); each runs every follower kind.
+std::unique_ptr<ContactRun> make_lee_located(const Scene&, std::shared_ptr<const MechanicalSystem>, Observer*,
                                              const std::atomic<bool>*);
-std::unique_ptr<ContactRun> make_network_penalty(const Scene&, std::shared_ptr<const MechanicalSystem>,
-                                                 Observer*, const std::atomic<bool>*);
-std::unique_ptr<ContactRun> make_network_event(const Scene&, std::shared_ptr<const MechanicalSystem>,
-                                               Observer*, const std::atomic<bool>*);
-std::unique_ptr<ContactRun> make_network_lee_cvode(const Scene&, std::shared_ptr<const MechanicalSystem>,
-                                                   Observer*, const std::atomic<bool>*);
-std::unique_ptr<ContactRun> make_network_ida(const Scene&, std::shared_ptr<const MechanicalSystem>, Observer*,
-                                             const std::atomic<bool>*);
+std::unique_ptr<ContactRun> make_penalty_method(const Scene&, std::shared_ptr<const MechanicalSystem>,
+                                                Observer*, const std::atomic<bool>*);
+std::unique_ptr<ContactRun> make_event_method(const Scene&, std::shared_ptr<const MechanicalSystem>,
+                                              Observer*, const std::atomic<bool>*);
+std::unique_ptr<ContactRun> make_lee_in_cvode(const Scene&, std::shared_ptr<const MechanicalSystem>,
+                                              Observer*, const std::atomic<bool>*);
+std::unique_ptr<ContactRun> make_holonomic_ida(const Scene&, std::shared_ptr<const MechanicalSystem>, Observer*,
+                                               const std::atomic<bool>*);
 
-// The network methods: Lee's located step (lee; holonomic = Lee with contacts that never
+// The contact methods: Lee's located step (lee; holonomic = Lee with contacts that never
 // release; on cvode-bdf Lee's levels inside CVODE's own step, methods/lee_cvode.cpp), the
 // penalty baseline, the event-driven method; on ida (validated: holonomic only) the held
 // contacts as a DAE (methods/holonomic_ida.cpp).
 std::unique_ptr<ContactRun> make_contact_method(const Scene& scene, std::shared_ptr<const MechanicalSystem> mech,
                                                 Observer* obs, const std::atomic<bool>* stop) {
-  if (scene.solver.integrator == Integrator::Ida) return make_network_ida(scene, std::move(mech), obs, stop);
+  if (scene.solver.integrator == Integrator::Ida) return make_holonomic_ida(scene, std::move(mech), obs, stop);
   switch (scene.contact.model) {
     case ContactModel::Lee:
     case ContactModel::Holonomic:
       if (scene.solver.integrator == Integrator::CvodeBdf)
-        return make_network_lee_cvode(scene, std::move(mech), obs, stop);
-      return make_network_lee(scene, std::move(mech), obs, stop);
+        return make_lee_in_cvode(scene, std::move(mech), obs, stop);
+      return make_lee_located(scene, std::move(mech), obs, stop);
     case ContactModel::Penalty:
-      return make_network_penalty(scene, std::move(mech), obs, stop);
+      return make_penalty_method(scene, std::move(mech), obs, stop);
     case ContactModel::Event:
-      return make_network_event(scene, std::move(mech), obs, stop);
+      return make_event_method(scene, std::move(mech), obs, stop);
   }
-  throw std::logic_error("no network method for this contact.model");
+  throw std::logic_error("no contact method for this contact.model");
 }
 
 }  // namespace detail

@@ -5,7 +5,9 @@
 //   (src/mechanism/mechanism.hpp) → OdeEngine (src/engine/ode_engine.hpp) or IDA (src/engine/ida_engine.hpp) + a
 //   contact method (a ContactRun subclass, one file each: methods/lee_located.cpp,
 //   methods/lee_cvode.cpp, methods/penalty.cpp, methods/event.cpp, methods/holonomic_ida.cpp; chosen
-//   by make_contact_method, contact_run.cpp) → HistoryRow stream + Summary.
+//   by make_contact_method, contact_run.cpp) → HistoryRow stream + RunRecord (run_record.hpp)
+//   and the parts (RunParts), of which SummaryBuilder (src/run/summary_builder.hpp) makes
+//   the Summary.
 //
 // The state is y = [q; v; s] over the mechanism's unknowns q (v = q̇) and its elements'
 // internal states s (MechanicalSystem::states(), often none; continuous: impacts and
@@ -38,6 +40,7 @@
 #include "mechanism/mechanism.hpp"
 #include "engine/ode_engine.hpp"
 #include "contact/run_failure.hpp"
+#include "contact/run_record.hpp"
 #include "contact/step_control.hpp"
 #include "cam/shared_cam.hpp"
 
@@ -67,7 +70,13 @@ class ContactRun {
   ContactRun(const ContactRun&) = delete;
   ContactRun& operator=(const ContactRun&) = delete;
   void set_stop_reason(std::string reason) { stop_reason_ = std::move(reason); }
-  Summary run();
+  /// Runs the method from the start state to run.t_end (or until it stops or fails: the
+  /// record's termination says which) and returns what it measured. The parts() hold the
+  /// rest of the run's results; SummaryBuilder (src/run/summary_builder.hpp) makes the
+  /// Summary of both. Call once.
+  const RunRecord& run();
+  /// The run's parts that contribute their sections of the Summary (valid while this lives).
+  RunParts parts() const { return RunParts{designer_, analysis_, flights_, surge_}; }
 
   /// Names of HistoryRow::extra for a mechanism.
   /// element_forces: with the elements' force_<name> columns (run.element_forces).
@@ -305,7 +314,7 @@ class ContactRun {
   bool element_results_ = false;
   long element_rev_ = -1;  // the camshaft revolution of the last sample
   std::vector<double> element_buf_, element_cyc_min_, element_cyc_max_;
-  Summary sum_;
+  RunRecord rec_;  // what the run measures (the methods write it; never a Summary)
   double t_ = 0, work_ = 0, dissipated_ = 0, E0_ = 0, V0_ = 0, last_row_t_ = -1;
   Eigen::VectorXd y_, F_;
   Eigen::VectorXd step_F0_;  // the forces the last accepted step ended with (StepInfo::force_start)
@@ -356,7 +365,7 @@ class ContactRun {
   mutable int acc_last_ = 0;
 };
 
-/// The network method a scene asks for (contact.model: lee | penalty | event | holonomic).
+/// The contact method a scene asks for (contact.model: lee | penalty | event | holonomic).
 std::unique_ptr<ContactRun> make_contact_method(const Scene& scene,
                                                 std::shared_ptr<const MechanicalSystem> mech,
                                                 Observer* obs, const std::atomic<bool>* stop);

@@ -147,10 +147,10 @@ void ContactRun::record_event(EventKind type, int contact, double v, double impu
     const bool on_lift = !c.cam || X > c.g0 + kFloatLift * cam_.lift();
     if (e.type != EventKind::Separation || on_lift) designer_.event(e);
   }
-  sum_.events.push_back(e);
+  rec_.events.push_back(e);
   analysis_.event(e, contact);
   flights_.event(type, contact, te, v);
-  ContactResult& cr = sum_.contacts[contact];
+  ContactResult& cr = rec_.contacts[contact];
   const double th = angle_deg_mod360(e.theta);
   if (type == EventKind::Separation) {
     ++cr.separations;
@@ -174,7 +174,7 @@ void ContactRun::sample_side_loads(double theta) {
   const double tan_phi = std::tan(cam_.evaluate(theta).pressure_angle);
   for (int j = 0; j < m_; ++j) {
     if (!mk_.contacts()[j].cam || !active_[j]) continue;
-    ContactResult& cr = sum_.contacts[j];
+    ContactResult& cr = rec_.contacts[j];
     const double side = std::abs(F_[j] * tan_phi);
     if (std::isnan(cr.max_side_load) || side > cr.max_side_load) {
       cr.max_side_load = side;
@@ -196,7 +196,7 @@ void ContactRun::sample_held_force(int j, double t, double F) {
 }
 
 void ContactRun::sample_contact(int j, double F, double theta_deg) {
-  ContactResult& cr = sum_.contacts[j];
+  ContactResult& cr = rec_.contacts[j];
   if (std::isnan(cr.min_force) || F < cr.min_force) {
     cr.min_force = std::max(F, 0.0);
     cr.min_force_theta_deg = theta_deg;
@@ -210,7 +210,7 @@ void ContactRun::sample_elements() {
   const long rev = long(std::floor(turn * (1 + 1e-12)));
   const bool new_rev = element_rev_ >= 0 && rev != element_rev_;
   for (std::size_t i = 0; i < element_force_count_; ++i) {
-    ElementResult& r = sum_.elements[i];
+    ElementResult& r = rec_.elements[i];
     const double x = element_buf_[i];
     r.min = std::isnan(r.min) ? x : std::min(r.min, x);
     r.max = std::isnan(r.max) ? x : std::max(r.max, x);

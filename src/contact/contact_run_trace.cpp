@@ -98,7 +98,7 @@ void ContactRun::trace_step(double t0, double t1, const StateFn& state, const Fo
   for (int k = 0; k < kStepSamples; ++k) x[k] = s[std::size_t(k)].x;
   auto tan_phi = [&](const StepSample& a) { return std::tan(a.cam_point(cam_).pressure_angle); };
   for (int j : set) {
-    ContactResult& cr = sum_.contacts[std::size_t(j)];
+    ContactResult& cr = rec_.contacts[std::size_t(j)];
     auto force = [&](const StepSample& a) { return in_take_up(a.t) ? NAN : std::max(a.forces[std::size_t(j)], 0.0); };
     for (int k = 0; k < kStepSamples; ++k) q[k] = force(s[std::size_t(k)]);
     const LocatedExtreme lf = locate_extreme(x, q, kStepSamples, -1, cr.min_force, [&](double xx) {

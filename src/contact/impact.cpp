@@ -1,4 +1,4 @@
-// camdyn — the closed contacts' switches of the network methods (contact_run.hpp): the
+// camdyn — the closed contacts' switches every contact method shares (contact_run.hpp): the
 // acceleration level settling which closed contacts keep force (settle_active), and the
 // Newton impact law on several contacts (resolve_impact). Moved out of contact_run.cpp.
 #include <Eigen/Dense>
@@ -34,7 +34,7 @@ void ContactRun::settle_active(const CamMotion& cm) {
     if (margin[j] < -thr) {
       active_[j] = 0;
       F_[j] = 0.0;
-      ++sum_.separations;
+      ++rec_.separations;
       record_event(EventKind::Separation, j, 0.0);
     }
 }
@@ -209,7 +209,7 @@ void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion
   dissipated_ += W_imp - (T_after - T_before);
   for (int j : closing) {
     if (-gd[j] > 0.0) {
-      ++sum_.impacts;
+      ++rec_.impacts;
       record_event(EventKind::Impact, j, -gd[j], P[j]);
     }
     if (stick[j] && std::find(S.begin(), S.end(), j) != S.end()) active_[j] = 1;
@@ -221,7 +221,7 @@ void ContactRun::resolve_impact(const std::vector<int>& closing, const CamMotion
     if (active_[j] && !is_closing[j] && std::find(S.begin(), S.end(), j) == S.end() &&
         gap_rate(j, y_, cm) > v_eps) {
       active_[j] = 0;
-      ++sum_.separations;
+      ++rec_.separations;
       record_event(EventKind::Separation, j, 0.0);
     }
   settle_active(cm);

@@ -1,11 +1,12 @@
 // camdyn (private) — how a run ends early: the failures a contact method throws (each with
-// its Termination) and run_to_end, which turns them into the Summary's termination.
+// its Termination) and run_to_end, which turns them into the run record's termination.
 #pragma once
 
 #include <stdexcept>
 #include <string>
 
 #include "camdyn/summary.hpp"
+#include "contact/run_record.hpp"
 #include "cam/format.hpp"
 #include "engine/sundials_error.hpp"
 
@@ -46,7 +47,7 @@ class StepSizeUnderflow : public StepFailure {
 /// end_run(kind, what) for a StepFailure (its kind), a SundialsError (SolverError) or any
 /// other exception (Error).
 template <class EndRun, class Body>
-void run_to_end(Summary& sum, EndRun end_run, Body body) {
+void run_to_end(RunRecord& sum, EndRun end_run, Body body) {
   try {
     body();
     sum.finished = true;

@@ -44,7 +44,7 @@ void ContactRun::note_shaft_frequencies() {
   std::string line = "natural frequencies with the trains attached (the start's closed contacts held, crank held):";
   for (std::size_t i = 0; i < std::min<std::size_t>(f.size(), 6); ++i) line += (i ? ", " : " ") + fmt(f[i]) + " Hz";
   if (f.empty()) line += " none (the held contacts fix every unknown)";
-  sum_.model.network.push_back(line);
+  rec_.model.network.push_back(line);
 }
 
 // K̃ −= ∂(T̃ᵀF)/∂q at fixed F: the row's station entry −X_L′(φ_s) gives κF_j on (s, s),

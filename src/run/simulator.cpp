@@ -3,9 +3,11 @@
 //   Simulator takes a validated scene (a ValidatedScene is not checked again; a Scene is
 //   validated once) and builds the mechanism once (any follower kind, or the user's
 //   FollowerSystem); each run() makes the contact method the scene asks for
-//   (make_contact_method, src/contact/contact_run.hpp) and runs it.
+//   (make_contact_method, src/contact/contact_run.hpp), runs it (→ its RunRecord and parts)
+//   and builds the Summary of them (build_summary, src/run/summary_builder.hpp).
 #include "camdyn/simulator.hpp"
-#include "run/contract.hpp"
+#include "run/contract.hpp"  // check_tolerance_scale
+#include "run/summary_builder.hpp"
 #include "camdyn/scene_warnings.hpp"
 
 #include <algorithm>
@@ -15,11 +17,8 @@
 #include <sstream>
 
 #include "contact/contact_run.hpp"
-#include "results/criteria.hpp"
 #include "results/designer_columns.hpp"
 #include "results/run_analysis.hpp"
-#include "results/verdict.hpp"
-#include "results/coil_clash.hpp"
 #include "run/initial_check.hpp"
 #include "mechanism/mechanism.hpp"
 #include "cam/format.hpp"  // detail::fmt
@@ -144,47 +143,6 @@ void check_tolerances(const Scene& sc) {
 
 }  // namespace
 
-namespace detail {
-
-void describe_tolerance(const Scene& sc, Summary& sum) {
-  const bool lee = sc.contact.model == ContactModel::Lee;
-  const bool elastic = sc.follower.kind != FollowerKind::Rigid;
-  std::string m;
-  char b[96];
-  std::snprintf(b, sizeof b, "rtol %.3g, atol %.3g", sc.solver.rtol, sc.solver.atol);
-  m = b;
-  switch (sc.solver.integrator) {
-    case Integrator::ArkodeErk:
-      m += " bound each step's local error (Dormand-Prince 5(4), embedded 4th-order estimate, weighted RMS over the state)";
-      break;
-    case Integrator::ArkodeDirk:
-      m += " bound each step's local error (SDIRK 5-stage 4(3), embedded 3rd-order estimate, weighted RMS over the state)";
-      break;
-    case Integrator::CvodeBdf:
-      m += elastic ? " bound each step's local error of BDF orders 1-2 (A-stable; they damp the follower's resolved modes, so the global error grows faster than on the one-step engines)"
-                   : " bound each step's local error of BDF orders 1-5";
-      break;
-    case Integrator::Ida:
-      m += " bound each step's local error of IDA's BDF (the held contact as an index-2 DAE)";
-      break;
-  }
-  if (lee) {
-    std::snprintf(b, sizeof b, "; contact.tol_u %.3g", sc.contact.tol_u);
-    m += b;
-    m += " bounds the displacement residual of a held step, and the contact force's acceleration-level error is held to rtol·|F| + 2 tol_u/(M* h²)";
-  }
-  sum.tolerance_meaning = m;
-  sum.tolerance_warning.clear();
-  // The numbers in the warning: docs/tolerances.md (case B1 over 1 s at rtol 1e-6).
-  if (sc.solver.integrator == Integrator::CvodeBdf && elastic && sc.solver.rtol > 1e-9)
-    sum.tolerance_warning =
-        "cvode-bdf on an elastic follower: BDF orders 1-2 damp the modes the step resolves, so this "
-        "rtol buys less accuracy than on arkode-erk/arkode-dirk (case B1, rtol 1e-6: 1 ms impulse errors "
-        "2.3e-3 against 2.6e-5 on arkode-erk); tighten rtol or use a one-step engine";
-}
-
-}  // namespace detail
-
 namespace {
 
 // Keys of the retired single-follower stack (one release of grace): a scene that still
@@ -262,15 +220,8 @@ Summary Simulator::run(Observer* observer, const std::atomic<bool>* stop,
                        const std::string& stop_reason) {
   auto method = detail::make_contact_method(scene_, mech_, observer, stop);
   method->set_stop_reason(stop_reason);
-  Summary sum = method->run();
-  detail::describe_tolerance(scene_, sum);
-  detail::check_contract(scene_, sum);
-  sum.warnings.insert(sum.warnings.begin(), warnings_.begin(), warnings_.end());  // the scene's, then the run's
-  sum.verdict = detail::make_verdict(scene_, mech_->traits().named_contacts ? mech_.get() : nullptr, sum.events);
-  sum.verdict_text = detail::verdict_one_line(sum.verdict);
-  detail::collect_coil_clash(sum);
-  detail::judge_criteria(scene_, sum);
-  return sum;
+  const detail::RunRecord& record = method->run();
+  return detail::build_summary(scene_, *mech_, warnings_, record, method->parts());
 }
 
 namespace {

@@ -1,4 +1,4 @@
-// camdyn — the event-driven method on a network: the active contacts are constraint rows,
+// camdyn — the event-driven method (any follower): the active contacts are constraint rows,
 //   M q̈ = f₀ − K q − C q̇ + T_Aᵀ F_A,   W_AA F_A = Ẍ_C,A − T_A M⁻¹(f₀ − K q − C q̇)
 // (the acceleration level of every active contact, g̈_A = 0), integrated natively with the
 // engine's error control. Rootfinding on one function per contact: the force F_j of an
@@ -294,7 +294,7 @@ void EventMethod::run_method() {
         if (root_info(j) >= 0) continue;  // only downward crossings act
         if (active_[j]) {
           active_[j] = 0;
-          ++sum_.separations;
+          ++rec_.separations;
           record_event(EventKind::Separation, j, 0.0);
           released = true;
         } else if (gap_rate(j, y_, cm) < 0.0) {
@@ -417,8 +417,8 @@ void EventMethod::enter_segment() {
   }
 }
 
-std::unique_ptr<ContactRun> make_network_event(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
-                                               Observer* obs, const std::atomic<bool>* stop) {
+std::unique_ptr<ContactRun> make_event_method(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
+                                              Observer* obs, const std::atomic<bool>* stop) {
   return std::make_unique<EventMethod>(sc, std::move(mech), obs, stop);
 }
 

@@ -1,4 +1,4 @@
-// camdyn (private) — the held-contact machinery of the network methods that integrate
+// camdyn (private) — the held-contact machinery of the contact methods that integrate
 // natively (methods/event.cpp): the active contacts' acceleration level as the contact
 // force inside the right-hand side, their displacement and velocity levels by the engine's
 // projection (CVODE: CVodeSetProjFn), rootfinding for separations (the force reaching zero)

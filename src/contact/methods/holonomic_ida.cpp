@@ -6,7 +6,7 @@
 // level's forces on IDA's state instead, below), the cam's work W = Σ ∫ λ_j Ẋ_C dt a DAE
 // component. A root of λ_j (decreasing) is the first tensile time (where a unilateral
 // contact would open). A contact open at the start that closes (a root of its gap) takes
-// the Newton impact law of the network methods (contact_run.cpp: resolve_impact); held
+// the Newton impact law every contact method shares (contact_run.cpp: resolve_impact); held
 // from then on (holonomic contacts never release), IDA restarts on the larger held set.
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -69,7 +69,7 @@ class HolonomicIda final : public ContactRun {
         st.nonlin_conv_fails += s.nonlin_conv_fails;
         st.err_test_fails += s.err_test_fails;
         rejected += ida->rejected_steps();
-        ++sum_.engine_restarts;
+        ++rec_.engine_restarts;
       }
       const std::vector<int> held = active_list();
       refuse_dependent(held);
@@ -77,9 +77,9 @@ class HolonomicIda final : public ContactRun {
       Eigen::VectorXd lam(held.size());
       for (std::size_t i = 0; i < held.size(); ++i) lam[Eigen::Index(i)] = F_[held[i]];
       ida->init(t_, y_, lam, sc_.run.t_end);
-      if (sum_.first_tensile_time >= 0) ida->stop_tensile_roots();
-      sum_.model.linear_solver = to_string(ida->linear_solver());
-      sum_.model.unknowns = ida->unknowns();
+      if (rec_.first_tensile_time >= 0) ida->stop_tensile_roots();
+      rec_.model.linear_solver = to_string(ida->linear_solver());
+      rec_.model.unknowns = ida->unknowns();
     };
     start();
     while (t_ < sc_.run.t_end * (1 - 1e-15)) {
@@ -92,8 +92,8 @@ class HolonomicIda final : public ContactRun {
       // after the short step that lands on an output time: case A at rtol 1e-11, 2e-5 N at
       // one row (3.9e-9 of the peak) where the state's own force is 5e-10 off.
       F_ = held_forces(t_, y_, cam_at(t_), ida->held());
-      if (ida->tensile_contact() >= 0 && sum_.first_tensile_time < 0) {
-        sum_.first_tensile_time = t_;
+      if (ida->tensile_contact() >= 0 && rec_.first_tensile_time < 0) {
+        rec_.first_tensile_time = t_;
         record_event(EventKind::Tensile, ida->tensile_contact(), 0.0);
         ida->stop_tensile_roots();
       }
@@ -105,25 +105,25 @@ class HolonomicIda final : public ContactRun {
         settle_active(cm);
       }
       after_step(t_ - t_prev, dW, P_prev, NAN, dD);
-      sum_.steps = st.steps + ida->stats().steps;  // after_step counts output intervals: IDA's steps
+      rec_.steps = st.steps + ida->stats().steps;  // after_step counts output intervals: IDA's steps
       if (closing >= 0) start();
     }
     const EngineStats s = ida->stats();
-    sum_.steps = st.steps + s.steps;
-    sum_.rejected_steps = rejected + ida->rejected_steps();
-    sum_.rhs_evals += st.rhs_evals + s.rhs_evals;
-    sum_.lin_setups += st.lin_setups + s.lin_setups;
-    sum_.lin_analyses += st.lin_analyses + s.lin_analyses;
-    sum_.nonlin_iters += st.nonlin_iters + s.nonlin_iters;
-    sum_.nonlin_conv_fails += st.nonlin_conv_fails + s.nonlin_conv_fails;
-    sum_.err_test_fails += st.err_test_fails + s.err_test_fails;
+    rec_.steps = st.steps + s.steps;
+    rec_.rejected_steps = rejected + ida->rejected_steps();
+    rec_.rhs_evals += st.rhs_evals + s.rhs_evals;
+    rec_.lin_setups += st.lin_setups + s.lin_setups;
+    rec_.lin_analyses += st.lin_analyses + s.lin_analyses;
+    rec_.nonlin_iters += st.nonlin_iters + s.nonlin_iters;
+    rec_.nonlin_conv_fails += st.nonlin_conv_fails + s.nonlin_conv_fails;
+    rec_.err_test_fails += st.err_test_fails + s.err_test_fails;
   }
 };
 
 }  // namespace
 
-std::unique_ptr<ContactRun> make_network_ida(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
-                                             Observer* obs, const std::atomic<bool>* stop) {
+std::unique_ptr<ContactRun> make_holonomic_ida(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
+                                               Observer* obs, const std::atomic<bool>* stop) {
   return std::make_unique<HolonomicIda>(sc, std::move(mech), obs, stop);
 }
 

@@ -23,7 +23,7 @@
 //                        unknowns free; a separation alone keeps its history
 //                        (methods/event.hpp).
 //
-// This is the held-contact machinery of the network event method (methods/event.hpp),
+// This is the held-contact machinery of the event method (methods/event.hpp),
 // which Lee's three levels and this one coincide with once the levels are solved inside
 // the step: what differs is the output. The event method lands its steps on the output
 // times; here, as Lee's located step on the one-step engines (run.land_on_output = false),
@@ -189,8 +189,8 @@ class LeeInCvode final : public EventMethod {
 
 }  // namespace
 
-std::unique_ptr<ContactRun> make_network_lee_cvode(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
-                                                   Observer* obs, const std::atomic<bool>* stop) {
+std::unique_ptr<ContactRun> make_lee_in_cvode(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
+                                              Observer* obs, const std::atomic<bool>* stop) {
   return std::make_unique<LeeInCvode>(sc, std::move(mech), obs, stop);
 }
 

@@ -47,7 +47,7 @@ void LeeLocated::run_method() {
       err_e = solve_step(set, hs, t1, y1);
     } catch (const IterationFailure& e) {
       trial_error_ = e.what();
-      ++sum_.rejected_steps;
+      ++rec_.rejected_steps;
       h = 0.5 * hs;
       if (h <= 1e-14 * std::max(1.0, std::abs(t_))) throw StepSizeUnderflow(h, trial_error_);
       continue;
@@ -56,8 +56,8 @@ void LeeLocated::run_method() {
       // under a trial force): the step is rejected and retried at half the size; its
       // message names the cause if the steps underflow (a non-finite force)
       trial_error_ = e.what();
-      ++sum_.rejected_steps;
-      ++sum_.iteration_failures;
+      ++rec_.rejected_steps;
+      ++rec_.iteration_failures;
       h = 0.5 * hs;
       if (h <= 1e-14 * std::max(1.0, std::abs(t_))) throw StepSizeUnderflow(h, trial_error_);
       continue;
@@ -68,7 +68,7 @@ void LeeLocated::run_method() {
     const Eigen::VectorXd Fa = held_forces(t1, y1, cm1, set, &margin_a);
     double err_c = 0.0, pc = 5.0;
     for (int j : set) {
-      ++sum_.level_a.total;
+      ++rec_.level_a.total;
       const double Fscale = std::max(std::abs(F_[j]), std::abs(Fa[j]));
       const double Wh2 = rows_at(y_.data()).W(j, j) * hs * hs;
       const double tolF = rtol * Fscale + 2.0 * tol_u / Wh2;
@@ -79,8 +79,8 @@ void LeeLocated::run_method() {
       }
     }
     if (!set.empty()) {
-      sum_.level_a.max = std::max(sum_.level_a.max, 1);
-      ++sum_.level_a.steps;
+      rec_.level_a.max = std::max(rec_.level_a.max, 1);
+      ++rec_.level_a.steps;
     }
     const double fe = err_e > 0 ? 0.9 * std::pow(err_e, -1.0 / q) : 5.0;
     const double fc = err_c > 0 ? 0.9 * std::pow(err_c, -1.0 / pc) : 5.0;
@@ -90,7 +90,7 @@ void LeeLocated::run_method() {
         release_now(sep_target);  // the separation's root is within round-off of t_
         continue;
       }
-      ++sum_.rejected_steps;
+      ++rec_.rejected_steps;
       steps_.failed(hs);
       h = grid_step(hs * std::min(0.9, fac));
       continue;
@@ -116,7 +116,7 @@ void LeeLocated::run_method() {
       mk_.state_rate(t1, y1.data(), y1.data() + n_, states_of(y1), s.r1.data());
     }
     if (const double r = held_drift(s); r > 1.0) {  // the step does not resolve the cam
-      ++sum_.rejected_steps;
+      ++rec_.rejected_steps;
       steps_.failed(hs);
       h = grid_step(hs * std::max(0.2, std::min(0.5, 0.9 * std::pow(r, -0.25))));
       continue;
@@ -198,7 +198,7 @@ void LeeLocated::run_method() {
         release_now(who);
         continue;
       }
-      ++sum_.relocated_steps;
+      ++rec_.relocated_steps;
       if (in_set[who]) {
         reloc_sep_ = who;
         reloc_from_h_ = hs;
@@ -239,7 +239,7 @@ void LeeLocated::run_method() {
         active_[j] = 0;
         F_[j] = 0.0;
         slope_[j] = 0.0;
-        ++sum_.separations;
+        ++rec_.separations;
         record_event(EventKind::Separation, j, 0.0);
         changed = true;
       }
@@ -285,7 +285,7 @@ void LeeLocated::run_method() {
   }
 }
 
-std::unique_ptr<ContactRun> make_network_lee(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
+std::unique_ptr<ContactRun> make_lee_located(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
                                              Observer* obs, const std::atomic<bool>* stop) {
   return std::make_unique<LeeLocated>(sc, std::move(mech), obs, stop);
 }

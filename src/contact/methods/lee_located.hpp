@@ -1,4 +1,4 @@
-// camdyn (private) — Lee's method on a network with several contacts (the located step for a vector
+// camdyn (private) — Lee's located step on any mechanism, any number of contacts (the located step for a vector
 // of contact forces).
 //
 //   Over a step t → t + h, each active contact j carries the force shape
@@ -114,7 +114,7 @@ class LeeLocated final : public ContactRun {
   // every kPartRefreshSteps accepted steps.
   Eigen::SimplicialLDLT<SparseMatrix> part_M_;
   SparseMatrix part_Ke_, part_Ce_;
-  long part_step_ = -1;  // sum_.steps when the tangent was taken (-1: not yet)
+  long part_step_ = -1;  // rec_.steps when the tangent was taken (-1: not yet)
   bool part_stale_ = false;
   static constexpr long kPartRefreshSteps = 16;
   Eigen::VectorXd part_r_;
@@ -318,7 +318,7 @@ class LeeLocated final : public ContactRun {
   // A bilateral contact (holonomic) whose force turns tensile inside the accepted step:
   // Summary::first_tensile_time where it crosses zero (bisection on the held interpolant).
   void first_tensile_inside(const StepData& s, int j) {
-    if (sum_.first_tensile_time >= 0 || !(s.F0[j] >= 0.0 && s.F1[j] < 0.0)) return;
+    if (rec_.first_tensile_time >= 0 || !(s.F0[j] >= 0.0 && s.F1[j] < 0.0)) return;
     const double hs = s.t1 - s.t0;
     auto force = [&](double x) {
       const double tau = s.t0 + x * hs;
@@ -327,14 +327,14 @@ class LeeLocated final : public ContactRun {
       return hf_[j];
     };
     const double x = bisect_fall(force, 0.0, 1.0, hs, s.t1);
-    sum_.first_tensile_time = s.t0 + x * hs;
-    record_event(EventKind::Tensile, j, 0.0, 0.0, sum_.first_tensile_time);
+    rec_.first_tensile_time = s.t0 + x * hs;
+    record_event(EventKind::Tensile, j, 0.0, 0.0, rec_.first_tensile_time);
   }
 
   // A held contact separates at the current step start.
   void release_now(int j) {
     active_[j] = 0;
-    ++sum_.separations;
+    ++rec_.separations;
     record_event(EventKind::Separation, j, 0.0);
     settle_active(cam_at(t_));
     slope_.setZero();

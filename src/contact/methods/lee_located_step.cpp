@@ -44,7 +44,7 @@ LeeLocated::Responses& LeeLocated::responses(double hs, const std::vector<int>& 
     r->Ec[j] = resp_eng_->local_error() / amp;
     homogeneous_ = false;
     r->have[j] = 1;
-    sum_.contact_iterations += 2;
+    rec_.contact_iterations += 2;
   }
   F0_ = keep0;
   F1_ = keep1;
@@ -99,16 +99,16 @@ double LeeLocated::solve_step(const std::vector<int>& set, double hs, double t1,
     }
     if (it > 0 && (affine || (rmax_u < sc_.contact.tol_u && rmax_v < tol_v))) break;
     if (it >= sc_.contact.max_iterations) {
-      ++sum_.iteration_failures;
+      ++rec_.iteration_failures;
       throw IterationFailure();
     }
     d = lu.solve(r);
     if (!d.allFinite()) {
-      ++sum_.iteration_failures;
+      ++rec_.iteration_failures;
       throw IterationFailure(non_finite_cause(t1, y1));
     }
     ++it;
-    ++sum_.contact_iterations;
+    ++rec_.contact_iterations;
     if (linearised) lin_y_ = y1;
     for (int l = 0; l < k; ++l) {
       const int j = set[l];
@@ -134,16 +134,16 @@ double LeeLocated::solve_step(const std::vector<int>& set, double hs, double t1,
         err = eng_->wrms(le, y_);
         break;
       }
-      if (sum_.steps - part_step_ >= kPartRefreshSteps) part_stale_ = true;
+      if (rec_.steps - part_step_ >= kPartRefreshSteps) part_stale_ = true;
       err = integrate(t_, y_, hs, y1);
     } else {
       err = integrate(t_, y_, hs, y1);
     }
   }
-  sum_.level_u.total += it;
-  sum_.level_u.max = std::max(sum_.level_u.max, it);
-  ++sum_.level_u.steps;
-  sum_.level_v = sum_.level_u;
+  rec_.level_u.total += it;
+  rec_.level_u.max = std::max(rec_.level_u.max, it);
+  ++rec_.level_u.steps;
+  rec_.level_v = rec_.level_u;
   return err;
 }
 
@@ -176,7 +176,7 @@ void LeeLocated::refresh_part() {
   dynamic_cast<const Mechanism&>(mk_).elements().tangent(t_, y_.data(), y_.data() + n_, part_Ke_, part_Ce_);
   for (Responses& c : cache_) c.h = -1.0;
   ++resp_gen_;
-  part_step_ = sum_.steps;
+  part_step_ = rec_.steps;
   part_stale_ = false;
 }
 

@@ -1,4 +1,4 @@
-// camdyn — the penalty baseline on a network: every contact its own spring–damper law,
+// camdyn — the penalty baseline (every follower kind): every contact its own spring–damper law,
 //   F_j = max(0, k_p,j s_j + c_p,j ŝ_j)  (linear)   or   k_p,j s_jⁿ(1 + c_p,j ŝ_j)  (Hunt–Crossley)
 // while s_j = −g_j > 0 (ŝ_j = −ġ_j), inside the right-hand side; the engine steps natively
 // with its own error control, lands on the output times, and restarts where a gap
@@ -251,10 +251,10 @@ class PenaltyMethod final : public ContactRun {
       for (int j = 0; j < m_; ++j) {
         const bool now = F_[j] > 0.0 || (eng_->hit_root() && eng_->root_info()[j] < 0);
         if (!active_[j] && now) {
-          ++sum_.impacts;
+          ++rec_.impacts;
           record_event(EventKind::Impact, j, -gap_rate(j, y_, cm));
         } else if (active_[j] && !now) {
-          ++sum_.separations;
+          ++rec_.separations;
           record_event(EventKind::Separation, j, 0.0);
         }
         active_[j] = now;
@@ -267,8 +267,8 @@ class PenaltyMethod final : public ContactRun {
 
 }  // namespace
 
-std::unique_ptr<ContactRun> make_network_penalty(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
-                                                 Observer* obs, const std::atomic<bool>* stop) {
+std::unique_ptr<ContactRun> make_penalty_method(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech,
+                                                Observer* obs, const std::atomic<bool>* stop) {
   return std::make_unique<PenaltyMethod>(sc, std::move(mech), obs, stop);
 }
 
