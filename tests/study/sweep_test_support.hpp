@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -12,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../cli_run_support.hpp"
 #include "../test_support.hpp"
 
 namespace camdyn_test {
@@ -66,21 +66,9 @@ class SweepTest : public ::testing::Test {
     std::error_code ec;
     if (!HasFailure()) fs::remove_all(dir_, ec);
   }
-  struct R {
-    int status = -1;
-    std::string out, err;
-  };
-  R camdyn(const std::string& args) {
-    const fs::path o = dir_ / "stdout.txt", e = dir_ / "stderr.txt";
-    const std::string cmd = "cd '" + dir_.string() + "' && '" + kCli + "' " + args + " >'" + o.string() + "' 2>'" +
-                            e.string() + "' </dev/null";
-    const int raw = std::system(cmd.c_str());
-    R r;
-    r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(o);
-    r.err = slurp(e);
-    return r;
-  }
+  using R = CliResult;
+  /// Run "camdyn ARGS" in the test's directory.
+  R camdyn(const std::string& args) { return run_cli(kCli, dir_, args); }
   fs::path dir_;
 };
 
