@@ -13,6 +13,8 @@ import json
 import subprocess
 import sys
 
+from markdown_out import write_markdown
+
 FILTER = "SmallSteps|RandomJumps|MotionSmallSteps|LawRunSteps"
 PROFILES = ["paper", "circle", "lift", "law", "arc"]
 
@@ -83,11 +85,7 @@ def main():
                          f"{b['cpu_time'] * scale:.2f} ms")
         lines.append(f"| {law} | {cells[0]} | {cells[1]} |")
     text = "\n".join(lines) + "\n"
-    if a.out == "-":
-        sys.stdout.write(text)
-    else:
-        with open(a.out, "w") as f:
-            f.write(text)
+    write_markdown(text, a.out)
 
 
 if __name__ == "__main__":

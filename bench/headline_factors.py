@@ -19,6 +19,8 @@ import math
 import os
 import sys
 
+from markdown_out import write_markdown
+
 CASES = ["A", "A7", "B1", "B2", "stiff", "ohc", "ohv", "B1_1000"]
 
 
@@ -124,11 +126,7 @@ def main():
     if not found:
         sys.exit(f"headline_factors.py: no wp_<case>/work_precision.csv with both runs under {a.dir}")
     text = "\n".join(out) + "\n"
-    if a.out == "-":
-        sys.stdout.write(text)
-    else:
-        with open(a.out, "w") as f:
-            f.write(text)
+    write_markdown(text, a.out)
 
 
 if __name__ == "__main__":

@@ -22,6 +22,8 @@ import subprocess
 import sys
 import tempfile
 
+from markdown_out import write_markdown
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENE = os.path.join(ROOT, "examples", "stiff_bar.toml")
 SETS = {"contact.model": "penalty", "contact.penalty_stiffness": 1e7, "contact.penalty_damping": 632,
@@ -81,11 +83,7 @@ def main(argv=None):
                   "Some steps were cut by Newton or the step count does not follow BDF2's error test: "
                   "the check (steps within 2× of the error test's need) is NOT met."))
     text = "\n".join(out) + "\n"
-    if a.out:  # a page of the docs site outside its toctree
-        with open(a.out, "w") as f:
-            f.write("---\norphan: true\n---\n\n" + text)
-    else:
-        sys.stdout.write(text)
+    write_markdown(text, a.out, orphan=True)
     return 0
 
 

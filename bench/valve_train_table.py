@@ -17,6 +17,8 @@ import subprocess
 import sys
 import tempfile
 
+from markdown_out import write_markdown
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLES = [("OHC", "examples/ohc_bucket_tappet.toml"), ("OHV", "examples/ohv_pushrod_train.toml")]
 RUNS = [("Lee / arkode-erk", {"contact.model": "lee", "solver.integrator": "arkode-erk"}),
@@ -55,11 +57,7 @@ def main(argv=None):
                     return 2
     text = ("Measured: one revolution at 25 rev/s, rtol 1e-8 (`python3 bench/valve_train_table.py`, single "
             "runs, CPU of the run itself).\n\n" + "\n".join(lines) + "\n")
-    if a.out:  # a page of the docs site outside its toctree
-        with open(a.out, "w") as f:
-            f.write("---\norphan: true\n---\n\n" + text)
-    else:
-        sys.stdout.write(text)
+    write_markdown(text, a.out, orphan=True)
     return 0
 
 

@@ -25,10 +25,8 @@ class CvodeOde final : public EngineBase {
     void* mem = mem_.get();
     check(CVodeInit(mem, &EngineBase::rhs_cb, 0.0, y_.get()), "CVodeInit");
     check(CVodeSetUserData(mem, this), "CVodeSetUserData");
-    if (sys_.atol.size())
-      check(CVodeSVtolerances(mem, spec.rtol, atol_vector(1.0)), "CVodeSVtolerances");
-    else
-      check(CVodeSStolerances(mem, spec.rtol, spec.atol), "CVodeSStolerances");
+    set_tolerances(mem, CVodeSVtolerances, "CVodeSVtolerances", CVodeSStolerances, "CVodeSStolerances", spec.rtol,
+                   spec.atol);
     check(CVodeSetMaxNumSteps(mem, trial ? kTrialMaxSteps : -1), "CVodeSetMaxNumSteps");
     check(CVodeSetErrHandlerFn(mem, &detail::capture_sundials_message, &sundials_message_), "CVodeSetErrHandlerFn");
     if (spec.max_step > 0) check(CVodeSetMaxStep(mem, spec.max_step), "CVodeSetMaxStep");

@@ -60,10 +60,8 @@ class ErkOde final : public EngineBase {
     if (trial_) {
       check(ERKStepSStolerances(mem, kHugeTol, kHugeTol), "ERKStepSStolerances");
     } else {
-      if (sys_.atol.size())
-        check(ERKStepSVtolerances(mem, spec.rtol, atol_vector(1.0)), "ERKStepSVtolerances");
-      else
-        check(ERKStepSStolerances(mem, spec.rtol, spec.atol), "ERKStepSStolerances");
+      set_tolerances(mem, ERKStepSVtolerances, "ERKStepSVtolerances", ERKStepSStolerances, "ERKStepSStolerances",
+                     spec.rtol, spec.atol);
       // Trial steps are sized by the caller: no max_step there (it would clip h).
       if (spec.max_step > 0) check(ERKStepSetMaxStep(mem, spec.max_step), "ERKStepSetMaxStep");
     }
@@ -165,19 +163,15 @@ class DirkOde final : public EngineBase {
       // Newton test (coefficient 0.01 scaled alike) and the difference-quotient increments
       // see the same weighted norms as in native mode.
       const double scale = kHugeTol / spec.rtol;
-      if (sys_.atol.size())
-        check(ARKStepSVtolerances(mem, kHugeTol, atol_vector(scale)), "ARKStepSVtolerances");
-      else
-        check(ARKStepSStolerances(mem, kHugeTol, spec.atol * scale), "ARKStepSStolerances");
+      set_tolerances(mem, ARKStepSVtolerances, "ARKStepSVtolerances", ARKStepSStolerances, "ARKStepSStolerances",
+                     kHugeTol, spec.atol, scale);
       if (sys_.linear)
         check(ARKStepSetLinear(mem, 0), "ARKStepSetLinear");  // one Newton iteration, exact J
       else
         check(ARKStepSetNonlinConvCoef(mem, 0.01 / scale), "ARKStepSetNonlinConvCoef");
     } else {
-      if (sys_.atol.size())
-        check(ARKStepSVtolerances(mem, spec.rtol, atol_vector(1.0)), "ARKStepSVtolerances");
-      else
-        check(ARKStepSStolerances(mem, spec.rtol, spec.atol), "ARKStepSStolerances");
+      set_tolerances(mem, ARKStepSVtolerances, "ARKStepSVtolerances", ARKStepSStolerances, "ARKStepSStolerances",
+                     spec.rtol, spec.atol);
       // The Newton matrix is reused across steps: a Newton tolerance of 0.01 of the error
       // test (ARKODE's default 0.1 costs a stiff penalty run accuracy: method_notes.md).
       check(ARKStepSetNonlinConvCoef(mem, 0.01), "ARKStepSetNonlinConvCoef");

@@ -202,13 +202,23 @@ class EngineBase : public OdeEngine {
   NVec y_, tmp_;
   NVec atol_;  // the per-unknown absolute tolerances (OdeSystem::atol), when given
 
-  /// sys_.atol × scale as an N_Vector SUNDIALS keeps (copied at the *SVtolerances call).
-  N_Vector atol_vector(double scale) {
+  /// The integrator's tolerances: `rtol` with the per-unknown sys_.atol × atol_scale when the
+  /// system gives them (`sv`, its *SVtolerances; SUNDIALS copies the vector), else the
+  /// scalar `atol` × atol_scale (`ss`, its *SStolerances). `sv_name`, `ss_name`: the calls'
+  /// names for check(). @throws std::invalid_argument for an sys_.atol of the wrong size or
+  /// with an entry ≤ 0; SundialsError for a failed call.
+  template <class SetVector, class SetScalar>
+  void set_tolerances(void* mem, SetVector sv, const char* sv_name, SetScalar ss, const char* ss_name,
+                      double rtol, double atol, double atol_scale = 1.0) {
+    if (!sys_.atol.size()) {
+      check(ss(mem, rtol, atol * atol_scale), ss_name);
+      return;
+    }
     if (sys_.atol.size() != n_ || !(sys_.atol.array() > 0.0).all())
       throw std::invalid_argument("OdeEngine: OdeSystem::atol needs size() entries, each > 0");
     atol_ = make_nvec(n_, ctx_.ctx);
-    map(atol_.get()) = scale * sys_.atol;
-    return atol_.get();
+    map(atol_.get()) = atol_scale * sys_.atol;
+    check(sv(mem, rtol, atol_.get()), sv_name);
   }
   Eigen::MatrixXd J_;
   Eigen::VectorXd corr_;

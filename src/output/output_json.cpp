@@ -11,8 +11,6 @@
 #include <system_error>
 #include <vector>
 
-#include "results/verdict.hpp"
-
 namespace camdyn {
 
 // ---- JSON formatting -----------------------------------------------------------------
@@ -309,6 +307,19 @@ std::string model_json(const ModelDescription& m, int indent) {
   return t;
 }
 
+// summary.json's "verdict" array (indent: of the enclosing object's keys).
+std::string verdict_json(const std::vector<VerdictItem>& v, int indent) {
+  const std::string in1(size_t(indent + 2), ' '), in0(size_t(indent), ' ');
+  std::string t = "[";
+  for (size_t i = 0; i < v.size(); ++i) {
+    const VerdictItem& x = v[i];
+    t += (i ? ",\n" : "\n") + in1 + "{\"kind\": " + json_string(x.kind) + ", \"contact\": " + json_string(x.contact) +
+         ", \"theta_deg\": " + json_number(x.theta_deg) + ", \"speed_rev_s\": " + json_number(x.speed_rev_s) +
+         ", \"count\": " + std::to_string(x.count) + ", \"text\": " + json_string(x.text) + "}";
+  }
+  return t + "\n" + in0 + "]";
+}
+
 }  // namespace
 
 const char* summary_status(const Summary& s) {
@@ -542,7 +553,7 @@ std::string summary_json(const Summary& s, const Scene& resolved, const char* st
     }));
   }
   if (!s.verdict.empty()) {
-    o.raw("verdict", detail::verdict_json(s.verdict, o.child_indent()));
+    o.raw("verdict", verdict_json(s.verdict, o.child_indent()));
     o.str("verdict_text", s.verdict_text);
   }
   o.raw("model", model_json(s.model, o.child_indent()));

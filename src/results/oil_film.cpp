@@ -4,18 +4,18 @@
 #include <cmath>
 #include <string>
 
-#include "camdyn/output.hpp"
+#include "cam/format.hpp"
 #include "camdyn/scene.hpp"
 
 namespace camdyn {
 
 void Lubricant::validate() const {
   if (!(viscosity > 0) || !std::isfinite(viscosity))
-    throw SceneError("Lubricant", 0, "viscosity", format_double(viscosity), "must be > 0");
+    throw SceneError("Lubricant", 0, "viscosity", fmt_num(viscosity), "must be > 0");
   if (!(pressure_viscosity >= 0) || !std::isfinite(pressure_viscosity))
-    throw SceneError("Lubricant", 0, "pressure_viscosity", format_double(pressure_viscosity), "must be >= 0");
+    throw SceneError("Lubricant", 0, "pressure_viscosity", fmt_num(pressure_viscosity), "must be >= 0");
   if (!(composite_roughness >= 0) || !std::isfinite(composite_roughness))
-    throw SceneError("Lubricant", 0, "composite_roughness", format_double(composite_roughness), "must be >= 0");
+    throw SceneError("Lubricant", 0, "composite_roughness", fmt_num(composite_roughness), "must be >= 0");
 }
 
 double effective_modulus(double E_a, double nu_a, double E_b, double nu_b) {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <complex>
 
-#include "camdyn/output.hpp"
+#include "cam/format.hpp"
 #include "camdyn/scene.hpp"
 
 namespace camdyn {
@@ -21,7 +21,7 @@ void SpectrumOptions::validate() const {
     throw SceneError("SpectrumOptions", 0, "samples_per_revolution", std::to_string(samples_per_revolution),
                      "must be between 8 and 1048576");
   if (!(max_order > 0) || !(max_order <= 0.5 * samples_per_revolution))
-    throw SceneError("SpectrumOptions", 0, "max_order", format_double(max_order),
+    throw SceneError("SpectrumOptions", 0, "max_order", fmt_num(max_order),
                      "must be > 0 and <= samples_per_revolution / 2 = " +
                          std::to_string(samples_per_revolution / 2));
 }
@@ -38,12 +38,12 @@ OrderSpectrum order_spectrum(const std::vector<double>& theta, const std::vector
   for (std::size_t i = 0; i < theta.size(); ++i) {
     phi[i] = dir * (theta[i] - theta.front());
     if (i > 0 && phi[i] < phi[i - 1])
-      throw SceneError("order_spectrum", 0, "theta", format_double(theta[i]),
+      throw SceneError("order_spectrum", 0, "theta", fmt_num(theta[i]),
                        "the cam angle must be monotone (the cam turns one way at sample " + std::to_string(i) + ")");
   }
   const int complete = int(std::floor(phi.back() / kTwoPi + 1e-9));
   if (complete < 1)
-    throw SceneError("order_spectrum", 0, "theta", format_double(phi.back()) + " rad",
+    throw SceneError("order_spectrum", 0, "theta", fmt_num(phi.back()) + " rad",
                      "the record covers less than one revolution");
   const int R = o.revolutions > 0 ? std::min(o.revolutions, complete) : complete;
   const double phi0 = phi.back() - kTwoPi * R;  // the last R revolutions

@@ -6,9 +6,7 @@
 #include <cstdio>
 #include <map>
 
-#include "camdyn/designer.hpp"
 #include "cam/lift_base.hpp"
-#include "camdyn/output.hpp"
 #include "results/designer_stats.hpp"  // angle_deg_mod360
 #include "mechanism/mechanism.hpp"
 #include "cam/shared_cam.hpp"
@@ -218,43 +216,5 @@ std::string verdict_one_line(const std::vector<VerdictItem>& v) {
   return s;
 }
 
-std::string verdict_json(const std::vector<VerdictItem>& v, int indent) {
-  const std::string in1(size_t(indent + 2), ' '), in0(size_t(indent), ' ');
-  std::string t = "[";
-  for (size_t i = 0; i < v.size(); ++i) {
-    const VerdictItem& x = v[i];
-    t += (i ? ",\n" : "\n") + in1 + "{\"kind\": " + json_string(x.kind) + ", \"contact\": " + json_string(x.contact) +
-         ", \"theta_deg\": " + json_number(x.theta_deg) + ", \"speed_rev_s\": " + json_number(x.speed_rev_s) +
-         ", \"count\": " + std::to_string(x.count) + ", \"text\": " + json_string(x.text) + "}";
-  }
-  return t + "\n" + in0 + "]";
-}
-
 }  // namespace detail
-}  // namespace camdyn
-
-namespace camdyn {
-
-std::string jump_speed_text(const JumpResult& r) {
-  char b[160];
-  if (!std::isfinite(r.jump_speed_rev_s)) return r.jump_speed_rev_s > 0 ? "+inf" : "-inf";
-  if (r.method != "simulation") {
-    std::snprintf(b, sizeof b, "%.10g rev/s (closed form)", r.jump_speed_rev_s);
-    return b;
-  }
-  const double lo = std::min(r.lo_rev_s, r.hi_rev_s), hi = std::max(r.lo_rev_s, r.hi_rev_s);
-  const double w = hi - lo, mid = 0.5 * (lo + hi);
-  if (!(w > 0)) {
-    std::snprintf(b, sizeof b, "%.17g rev/s, bracket [%.17g, %.17g] rev/s, width 0 rev/s", mid, lo, hi);
-    return b;
-  }
-  const int p = int(std::floor(std::log10(w)));  // the decimal place of the width
-  const double q0 = std::pow(10.0, p), q = q0 / 10.0;
-  const double mid_r = std::round(mid / q0) * q0;                            // to the width's place
-  const double lo_r = std::floor(lo / q + 1e-9) * q, hi_r = std::ceil(hi / q - 1e-9) * q;  // outwards, one place
-  std::snprintf(b, sizeof b, "%.*f rev/s, bracket [%.*f, %.*f] rev/s, width %.2g rev/s", std::max(0, -p), mid_r,
-                std::max(0, 1 - p), lo_r, std::max(0, 1 - p), hi_r, w);
-  return b;
-}
-
 }  // namespace camdyn

@@ -53,8 +53,6 @@ std::vector<VerdictItem> make_verdict(const Scene& scene, const MechanicalSystem
                                       const std::vector<ContactEvent>& events);
 /// The one-liner: the items' texts joined by "; ".
 std::string verdict_one_line(const std::vector<VerdictItem>& v);
-/// summary.json's "verdict" array (indent: of the enclosing object's keys).
-std::string verdict_json(const std::vector<VerdictItem>& v, int indent);
 
 }  // namespace detail
 }  // namespace camdyn

@@ -25,7 +25,6 @@
 
 #include <toml++/toml.h>
 
-#include "camdyn/cam.hpp"
 #include "scene/detail.hpp"
 #include "scene/element_kinds.hpp"
 #include "scene/fields.hpp"

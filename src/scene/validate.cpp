@@ -20,7 +20,6 @@
 
 #include <toml++/toml.h>
 
-#include "camdyn/cam.hpp"
 #include "scene/detail.hpp"
 #include "scene/fields.hpp"
 #include "scene/validation_count.hpp"

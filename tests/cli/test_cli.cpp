@@ -1,6 +1,7 @@
 // The command-line tool and the output files (docs/interface.md), driven as a user would:
 // the camdyn binary is run through the shell in a fresh temporary directory.
 #include <gtest/gtest.h>
+#include "../cli_run_support.hpp"
 #include "../test_support.hpp"
 
 #include <sys/wait.h>
@@ -23,22 +24,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using camdyn_test::CliResult;
+using camdyn_test::shell_quote;
 using camdyn_test::slurp;
 using camdyn_test::split;
 
 const std::string kCli = CAMDYN_CLI_PATH;
 const std::string kSource = CAMDYN_SOURCE_DIR;
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) {
-    if (c == '\'')
-      q += "'\\''";
-    else
-      q += c;
-  }
-  return q + "'";
-}
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> out;
@@ -57,11 +49,6 @@ bool parses_as_double(const std::string& s) {
   return end && *end == '\0';
 }
 
-struct CliResult {
-  int status = -1;
-  std::string out, err;
-};
-
 class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -78,18 +65,7 @@ class CliTest : public ::testing::Test {
   }
 
   /// Run "camdyn ARGS" in the test directory; ARGS is shell text.
-  CliResult camdyn(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = "cd " + quote(dir_.string()) + " && " + quote(kCli) + " " + args +
-                            " >" + quote(out.string()) + " 2>" + quote(err.string()) +
-                            " </dev/null";
-    const int raw = std::system(cmd.c_str());
-    CliResult r;
-    r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
-  }
+  CliResult camdyn(const std::string& args) { return camdyn_test::run_cli(kCli, dir_, args); }
 
   fs::path write_file(const std::string& name, const std::string& text) {
     const fs::path p = dir_ / name;
@@ -201,7 +177,7 @@ TEST_F(CliTest, CamPointsOption) {
 // ---- scene ------------------------------------------------------------------------------
 
 TEST_F(CliTest, SceneResolvedReparses) {
-  const auto r = camdyn("scene " + quote(example("case_A.toml")) + " --resolved");
+  const auto r = camdyn("scene " + shell_quote(example("case_A.toml")) + " --resolved");
   ASSERT_EQ(r.status, 0) << r.err;
   ASSERT_FALSE(r.out.empty());
   camdyn::Scene again;
@@ -294,7 +270,7 @@ TEST_F(CliTest, BadInputExitsTwoWithKeyAndRule) {
 
 TEST_F(CliTest, ShortRunWritesAllOutputs) {
   const auto r =
-      camdyn("run " + quote(example("case_A.toml")) + " --set run.t_end=0.02 --out D");
+      camdyn("run " + shell_quote(example("case_A.toml")) + " --set run.t_end=0.02 --out D");
   ASSERT_EQ(r.status, 0) << r.err;
   const fs::path d = dir_ / "D";
   const std::string history = slurp(d / "history.csv");
@@ -324,7 +300,7 @@ TEST_F(CliTest, ShortRunWritesAllOutputs) {
 }
 
 TEST_F(CliTest, QuietRunPrintsNothing) {
-  const auto r = camdyn("run " + quote(example("case_A.toml")) +
+  const auto r = camdyn("run " + shell_quote(example("case_A.toml")) +
                         " --set run.t_end=0.005 --out D --quiet");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out, "");
@@ -333,7 +309,7 @@ TEST_F(CliTest, QuietRunPrintsNothing) {
 }
 
 TEST_F(CliTest, FailedRunKeepsWhatItComputed) {
-  const auto r = camdyn("run " + quote(example("case_A.toml")) +
+  const auto r = camdyn("run " + shell_quote(example("case_A.toml")) +
                         " --set run.max_steps=50 --set run.output_dt=0 --out D --quiet");
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_NE(r.err.find("simulation failed at t ="), std::string::npos) << r.err;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "camdyn/scene.hpp"
+#include "camdyn/simulator.hpp"
 #include "engine/ode_engine.hpp"
 #include "mechanism/follower_matrices.hpp"
 #include "mechanism/mechanism.hpp"
@@ -336,6 +337,37 @@ TEST(FollowerMatrices, DescriptionListsOnlyRequestedEffects) {
     }
     EXPECT_EQ(fm.C.nonZeros() > 0, c.damping) << c.name;
   }
+}
+
+
+// The full report lists the assembled network, and only what the scene asks for.
+TEST(NetworkDescription, ListsTheAssembledNetworkOnly) {
+  const Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohv_pushrod_train.toml");
+  const Simulator sim(s);
+  const ModelDescription& d = sim.description();
+  EXPECT_EQ(d.follower, "network");
+  // lifter, rocker_in, valve + 3 inside pushrod nodes + 6 spring masses (rocker_tip is the
+  // lever's output, not an unknown)
+  EXPECT_EQ(d.nodes, 12);
+  EXPECT_EQ(d.unknowns, 24);
+  ASSERT_EQ(d.network.size(), 7u);  // 4 elements, 3 contacts
+  EXPECT_NE(d.network[1].find("lever 'rocker'"), std::string::npos) << d.network[1];
+  EXPECT_NE(d.network[4].find("contact 'cam'"), std::string::npos) << d.network[4];
+  EXPECT_EQ(d.rhs_terms, (std::vector<std::string>{"inertia", "stiffness", "preload", "damping", "levers",
+                                                   "contacts"}));
+  EXPECT_NE(d.ToString().find("contact 'seat' (stop, stop below valve"), std::string::npos) << d.ToString();
+  // an undamped network without preload or levers has none of those terms
+  Scene bare = s;
+  bare.network.elements.erase(bare.network.elements.begin() + 1);  // the lever
+  bare.network.nodes.erase(bare.network.nodes.begin() + 2);        // rocker_tip
+  bare.network.contacts.erase(bare.network.contacts.begin() + 1);  // the lash
+  for (ElementSpec& e : bare.network.elements) {
+    e.preload = 0;
+    e.damping = 0;
+    e.rayleigh_beta = 0;
+  }
+  const Simulator sb(bare);
+  EXPECT_EQ(sb.description().rhs_terms, (std::vector<std::string>{"inertia", "stiffness", "contacts"}));
 }
 
 }  // namespace

@@ -2,14 +2,14 @@
 //   * two masses, a spring and a lash between them, cam at rest: impact time, approach
 //     velocity and impulse m₂(1 + e)v (the cam holds the lower mass);
 //   * a valve dropped on its seat: impact times and velocities v, ev, e²v, … (a
-//     conservative oscillator between impacts), and with e = 0 it stays;
+//     conservative oscillator between impacts), and with e = 0 it stays; its fourth impact
+//     time's error follows the tolerance;
 //   * a rigid train (tappet, rocker lever, valve, springs): the float speed from the
 //     required-force closed form, simulated at ±1e-4 around it;
 //   * a multi-mass valve spring: first surge frequency → ½√(k/m_s) like N⁻²;
 //   * a single-contact network against the same follower as a rigid / elastic_bar scene
-//     (a second formulation);
-//   * a two-contact train: Lee, event-driven and penalty agree on 1 ms contact impulses,
-//     and the energy balance closes.
+//     (a second formulation).
+// The methods against each other on two-contact trains: tests/contact/test_network_methods_agree.cpp.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -365,201 +365,6 @@ TEST(SingleContactNetwork, MatchesTheRigidFollowerScene) {
   EXPECT_EQ(a.sum.impacts, b.sum.impacts);
 }
 
-}  // namespace
-}  // namespace camdyn
-
-namespace camdyn {
-namespace {
-
-// ---- two contacts: Lee, event-driven and penalty agree; the energy balance closes ------
-// The OHC bucket-tappet example (cam with 0.2 mm lash, valve seat) over one lift event:
-// the impulse of each contact in 1 ms windows, ∫F dt over the window (trapezoid on the
-// output rows, 1 µs apart) plus the impact impulses at instants inside it.
-std::map<std::string, std::vector<double>> window_impulses(const Scene& s, const NetRun& r) {
-  std::map<std::string, std::vector<double>> w;
-  const int nw = int(std::round(s.run.t_end / 1e-3));
-  for (const ContactPointSpec& c : s.network.contacts) {
-    std::vector<double> v(nw, 0.0);
-    const std::string col = "F_" + c.name;
-    for (size_t i = 1; i < r.rows.size(); ++i) {
-      const double ta = r.rows[i - 1].t, tb = r.rows[i].t;
-      const int k = std::min(nw - 1, int(0.5 * (ta + tb) / 1e-3));
-      v[k] += 0.5 * (tb - ta) * (r.col(r.rows[i - 1], col) + r.col(r.rows[i], col));
-    }
-    for (const ContactEvent& e : r.sum.events)
-      if (e.contact == c.name && e.impulse != 0.0) v[std::min(nw - 1, int(e.t / 1e-3))] += e.impulse;
-    w[c.name] = v;
-  }
-  return w;
-}
-
-TEST(TwoContacts, LeeEventAndPenaltyAgreeOnImpulsesAndEnergyCloses) {
-  Scene base = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_bucket_tappet.toml");
-  base.run.t_end = 0.036;  // one lift event (the cam turns at 25 rev/s)
-  base.run.output_dt = 1e-6;
-  base.solver.rtol = 1e-9;
-  base.solver.atol = 1e-13;
-  base.contact.tol_u = 1e-10;
-  Scene lee = base, ev = base, pen = base;
-  ev.contact.model = ContactModel::Event;
-  pen.contact.model = ContactModel::Penalty;
-  // k_p ≫ the stem's 5e7 N/m; c_p over-damps the contact on the tappet (ζ ≈ 2): at
-  // critical damping the penalty contacts rebound for 5 µs after each impact and ring the
-  // stem (1e-3 window differences). Penalty lands its steps on output times: rows at every
-  // step (output_dt = 0) resolve its 2 µs force pulses for the window quadrature.
-  pen.contact.penalty_stiffness = 1e11;
-  pen.contact.penalty_damping = 4e5;
-  pen.solver.rtol = 1e-8;
-  pen.run.output_dt = 0.0;
-  const NetRun a = run(lee), b = run(ev), c = run(pen);
-  ASSERT_TRUE(a.sum.finished) << a.sum.message;
-  ASSERT_TRUE(b.sum.finished) << b.sum.message;
-  ASSERT_TRUE(c.sum.finished) << c.sum.message;
-  const auto wa = window_impulses(lee, a), wb = window_impulses(ev, b), wc = window_impulses(pen, c);
-  for (const auto& kv : wa) {
-    const std::vector<double>& x = kv.second;
-    double scale = 0, d_ev = 0, d_pen = 0;
-    for (size_t k = 0; k < x.size(); ++k) {
-      scale = std::max(scale, std::abs(x[k]));
-      d_ev = std::max(d_ev, std::abs(x[k] - wb.at(kv.first)[k]));
-      d_pen = std::max(d_pen, std::abs(x[k] - wc.at(kv.first)[k]));
-    }
-    std::printf("contact %s: max window impulse %.6g N·s; |Lee − event| %.3g, |Lee − penalty| %.3g (relative)\n",
-                kv.first.c_str(), scale, d_ev / scale, d_pen / scale);
-    EXPECT_LT(d_ev, 1e-3 * scale) << kv.first;
-    EXPECT_LT(d_pen, 1e-3 * scale) << kv.first;
-  }
-  // the energy balance W = ΔT + ΔV + D against the energy that flows (the cam's work)
-  double W = 0;
-  for (const HistoryRow& row : a.rows) W = std::max(W, std::abs(row.work_cam));
-  std::printf("energy residual: Lee %.3g, event %.3g, penalty %.3g of the cam's work %.4g J\n",
-              a.sum.energy_residual / W, b.sum.energy_residual / W, c.sum.energy_residual / W, W);
-  EXPECT_LT(a.sum.energy_residual, 1e-5 * W);
-  EXPECT_LT(b.sum.energy_residual, 1e-5 * W);
-  EXPECT_LT(c.sum.energy_residual, 1e-3 * W);
-}
-
-// A network on IDA (holonomic): the held contacts as an index-2 GGL DAE, the cam contact's
-// closing by the Newton impact law and an IDA restart on the larger held set
-// (methods/holonomic_ida.cpp) — against the second formulation, Lee's located step with contacts
-// that never release (holonomic on arkode-erk): displacements, forces, the impact and the
-// first tensile time.
-TEST(HolonomicIda, HolonomicAgreesWithLeeHolonomicOnErk) {
-  for (const char* ex : {"ohc_bucket_tappet", "ohv_pushrod_train"}) {
-    Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/" + ex + ".toml");
-    s.contact.model = ContactModel::Holonomic;
-    s.run.t_end = 0.015;
-    s.solver.integrator = Integrator::Ida;
-    const RunResult a = simulate(s);
-    s.solver.integrator = Integrator::ArkodeErk;
-    const RunResult b = simulate(s);
-    ASSERT_TRUE(a.summary.finished) << a.summary.message;
-    ASSERT_TRUE(b.summary.finished) << b.summary.message;
-    EXPECT_EQ(a.summary.integrator, "ida");
-    ASSERT_EQ(a.rows.size(), b.rows.size());
-    double du = 0, dF = 0, Fmax = 0;
-    for (size_t i = 0; i < a.rows.size(); ++i) {
-      ASSERT_EQ(a.rows[i].t, b.rows[i].t);
-      du = std::max(du, std::abs(a.rows[i].u_c - b.rows[i].u_c));
-      dF = std::max(dF, std::abs(a.rows[i].contact_force - b.rows[i].contact_force));
-      Fmax = std::max(Fmax, std::abs(b.rows[i].contact_force));
-    }
-    ASSERT_EQ(a.summary.events.size(), b.summary.events.size()) << ex;
-    ASSERT_GE(a.summary.events.size(), 2u) << ex;  // the lash closes, the seat turns tensile
-    double dt = 0;
-    for (size_t i = 0; i < a.summary.events.size(); ++i) {
-      EXPECT_EQ(a.summary.events[i].type, b.summary.events[i].type) << ex;
-      dt = std::max(dt, std::abs(a.summary.events[i].t - b.summary.events[i].t));
-    }
-    std::printf("%s: ida vs erk |du| %.2e m, |dF|/Fmax %.2e, events %zu, |dt| %.2e s\n", ex, du, dF / Fmax,
-                a.summary.events.size(), dt);
-    EXPECT_LT(du, 1e-10) << ex;          // measured 1.7e-14, 1.5e-14
-    EXPECT_LT(dF, 1e-6 * Fmax) << ex;    // measured 2.2e-12, 2.1e-9
-    EXPECT_LT(dt, 1e-9) << ex;           // measured 5e-16 … 1e-12
-  }
-}
-
-// The full report lists the assembled network, and only what the scene asks for.
-TEST(NetworkDescription, ListsTheAssembledNetworkOnly) {
-  const Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohv_pushrod_train.toml");
-  const Simulator sim(s);
-  const ModelDescription& d = sim.description();
-  EXPECT_EQ(d.follower, "network");
-  // lifter, rocker_in, valve + 3 inside pushrod nodes + 6 spring masses (rocker_tip is the
-  // lever's output, not an unknown)
-  EXPECT_EQ(d.nodes, 12);
-  EXPECT_EQ(d.unknowns, 24);
-  ASSERT_EQ(d.network.size(), 7u);  // 4 elements, 3 contacts
-  EXPECT_NE(d.network[1].find("lever 'rocker'"), std::string::npos) << d.network[1];
-  EXPECT_NE(d.network[4].find("contact 'cam'"), std::string::npos) << d.network[4];
-  EXPECT_EQ(d.rhs_terms, (std::vector<std::string>{"inertia", "stiffness", "preload", "damping", "levers",
-                                                   "contacts"}));
-  EXPECT_NE(d.ToString().find("contact 'seat' (stop, stop below valve"), std::string::npos) << d.ToString();
-  // an undamped network without preload or levers has none of those terms
-  Scene bare = s;
-  bare.network.elements.erase(bare.network.elements.begin() + 1);  // the lever
-  bare.network.nodes.erase(bare.network.nodes.begin() + 2);        // rocker_tip
-  bare.network.contacts.erase(bare.network.contacts.begin() + 1);  // the lash
-  for (ElementSpec& e : bare.network.elements) {
-    e.preload = 0;
-    e.damping = 0;
-    e.rayleigh_beta = 0;
-  }
-  const Simulator sb(bare);
-  EXPECT_EQ(sb.description().rhs_terms, (std::vector<std::string>{"inertia", "stiffness", "contacts"}));
-}
-
-}  // namespace
-}  // namespace camdyn
-
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-
-namespace camdyn {
-namespace {
-
-// camdyn sweep on a network: one row per speed, the float seen only above the jump speed
-// (OHC: 67.8 rev/s), the same numbers as a single run.
-TEST(NetworkSweep, SpeedSweepOfTheOhcTrain) {
-  Scene s = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/ohc_bucket_tappet.toml");
-  s.run.t_end = 0.02;
-  SweepOptions o;
-  o.axes = {SweepAxis{"cam.speed_rev_s", {25.0, 75.0}}};
-  o.jobs = 2;
-  o.timing = false;
-  o.out_dir = (std::filesystem::temp_directory_path() / "camdyn_network_sweep").string();
-  std::filesystem::remove_all(o.out_dir);
-  const SweepResult r = run_sweep(s, o);
-  EXPECT_EQ(r.computed, 2);
-  EXPECT_EQ(r.failed, 0);
-  std::ifstream f(r.csv_path);
-  std::string header, row25, row75;
-  std::getline(f, header);
-  std::getline(f, row25);
-  std::getline(f, row75);
-  auto field = [&](const std::string& row, const std::string& name) {
-    std::stringstream h(header), v(row);
-    std::string hn, vv;
-    while (std::getline(h, hn, ',') && std::getline(v, vv, ','))
-      if (hn == name) return vv;
-    return std::string("?");
-  };
-  EXPECT_EQ(field(row25, "finished"), "1");
-  EXPECT_EQ(field(row75, "finished"), "1");
-  EXPECT_EQ(field(row25, "first_separation_theta_deg"), "nan");  // no float at 25 rev/s
-  EXPECT_NE(field(row75, "first_separation_theta_deg"), "nan");  // floats at 75 rev/s
-  Scene s75 = s;
-  s75.cam.speed_rev_s = 75.0;
-  EXPECT_EQ(field(row75, "separations"), std::to_string(simulate(s75).summary.separations));
-}
-
-}  // namespace
-}  // namespace camdyn
-
-namespace camdyn {
-namespace {
-
 // The tolerance controls the error at impacts on a network: the bouncing valve's fourth
 // impact time (closed form) against rtol, for Lee and the event-driven method.
 TEST(NetworkTolerance, ImpactTimeErrorFollowsTheTolerance) {
@@ -598,65 +403,6 @@ TEST(NetworkTolerance, ImpactTimeErrorFollowsTheTolerance) {
     EXPECT_LT(err[2], err[0]) << method.name << ": the error does not fall with the tolerance";
   }
 }
-
-}  // namespace
-}  // namespace camdyn
-
-namespace camdyn {
-namespace {
-
-// ---- Lee on cvode-bdf on a network: the OHC train's cam impact and seat separation -----
-// A trial step whose force CVODE could not follow once made CVODE step with t + h = t
-// forever (t_end 0.01 and 0.02 hung; 0.015 ran): now a trial step's work is bounded, the
-// iteration's matrix comes from DIRK responses, a gap at zero that is not closing at a
-// step's start is no switch, and a separation that keeps relocating is released. At
-// 12 rev/s every step size then failed just before the seat let go (the start residual
-// read by the acceleration-level test); at 40 rev/s iterating tighter diverged. On the OHV
-// train's rocker chatter a seat that re-closed 0.27 µs after letting go was missed (the
-// gap started a round-off below zero). The run must reach t_end with the event-driven
-// method's events (a second formulation, on ERK): the same kinds on the same contacts,
-// times to dt, impulses to a relative dP (the chatter's small impulses: 1e-3). Since the
-// levels are solved inside CVODE's own step (methods/lee_cvode.cpp) the times agree to
-// 2.1e-10 s (40 rev/s) and better, the impulses to 3.4e-5 (OHC) and 5.3e-5 (OHV chatter;
-// before: dt 1e-8 and 5e-8 s, dP 0.1).
-struct CvodeCase {
-  const char* name;
-  const char* scene;
-  double t_end, speed;  // s, rev/s
-  double dt, dP;
-};
-class NetworkLeeOnCvode : public ::testing::TestWithParam<CvodeCase> {};
-
-TEST_P(NetworkLeeOnCvode, TrainReachesTEndWithTheEventMethodsEvents) {
-  Scene lee = load_scene_file(std::string(CAMDYN_SOURCE_DIR) + "/examples/" + GetParam().scene + ".toml");
-  lee.run.t_end = GetParam().t_end;
-  lee.cam.speed_rev_s = GetParam().speed;
-  lee.run.output_dt = 1e-4;
-  lee.solver.integrator = Integrator::CvodeBdf;
-  Scene ev = lee;
-  ev.contact.model = ContactModel::Event;
-  ev.solver.integrator = Integrator::ArkodeErk;
-  const NetRun a = run(lee), b = run(ev);
-  ASSERT_TRUE(a.sum.finished) << a.sum.message;
-  ASSERT_TRUE(b.sum.finished) << b.sum.message;
-  ASSERT_EQ(a.sum.events.size(), b.sum.events.size());
-  ASSERT_GE(a.sum.events.size(), 2u);  // the cam's impact and the seat's separation
-  for (size_t i = 0; i < a.sum.events.size(); ++i) {
-    const ContactEvent &x = a.sum.events[i], &y = b.sum.events[i];
-    EXPECT_EQ(to_string(x.type), std::string(to_string(y.type))) << i;
-    EXPECT_EQ(x.contact, y.contact) << i;
-    EXPECT_NEAR(x.t, y.t, GetParam().dt) << i << ' ' << to_string(x.type) << ' ' << x.contact;
-    EXPECT_NEAR(x.impulse, y.impulse, GetParam().dP * std::abs(y.impulse)) << i;
-  }
-}
-
-INSTANTIATE_TEST_SUITE_P(Runs, NetworkLeeOnCvode,
-                         ::testing::Values(CvodeCase{"ohc_t_end_10ms", "ohc_bucket_tappet", 0.01, 25.0, 1e-9, 1e-4},
-                                           CvodeCase{"ohc_t_end_20ms", "ohc_bucket_tappet", 0.02, 25.0, 1e-9, 1e-4},
-                                           CvodeCase{"ohc_12_rev_s", "ohc_bucket_tappet", 0.025, 12.0, 1e-9, 1e-4},
-                                           CvodeCase{"ohc_40_rev_s", "ohc_bucket_tappet", 0.012, 40.0, 1e-9, 1e-4},
-                                           CvodeCase{"ohv_chatter", "ohv_pushrod_train", 0.012, 25.0, 1e-9, 1e-3}),
-                         [](const ::testing::TestParamInfo<CvodeCase>& i) { return std::string(i.param.name); });
 
 }  // namespace
 }  // namespace camdyn
