@@ -22,6 +22,7 @@
 #include <arkode/arkode_arkstep.h>
 #include <arkode/arkode_erkstep.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -165,10 +166,20 @@ class DirkOde final : public EngineBase {
       const double scale = kHugeTol / spec.rtol;
       set_tolerances(mem, ARKStepSVtolerances, "ARKStepSVtolerances", ARKStepSStolerances, "ARKStepSStolerances",
                      kHugeTol, spec.atol, scale);
-      if (sys_.linear)
+      if (sys_.linear) {
         check(ARKStepSetLinear(mem, 0), "ARKStepSetLinear");  // one Newton iteration, exact J
-      else
-        check(ARKStepSetNonlinConvCoef(mem, 0.01 / scale), "ARKStepSetNonlinConvCoef");
+      } else {
+        // Every trial step starts from a reset: each stage's Newton iteration starts from
+        // y_n (ARKODE's predictor after a reset) and the Newton matrix is set up there at
+        // the first stage. The contraction rate the first stage measures is kept for the
+        // step's later stages (no decay floor: the measured rate itself), so a stage whose
+        // first iterate is already within the Newton tolerance stops there. A first
+        // iterate's error, the Jacobian's change over the stage's distance from y_n times
+        // that distance, grows with c_i/c_1 over the first stage's: the Newton coefficient
+        // 0.01 is divided by the table's largest c_i/c_1.
+        check(ARKStepSetNonlinCRDown(mem, kRateFloor), "ARKStepSetNonlinCRDown");
+        check(ARKStepSetNonlinConvCoef(mem, 0.01 / (stage_reach(mem) * scale)), "ARKStepSetNonlinConvCoef");
+      }
     } else {
       set_tolerances(mem, ARKStepSVtolerances, "ARKStepSVtolerances", ARKStepSStolerances, "ARKStepSStolerances",
                      spec.rtol, spec.atol);
@@ -184,7 +195,19 @@ class DirkOde final : public EngineBase {
       if (spec.max_step > 0) check(ARKStepSetMaxStep(mem, spec.max_step), "ARKStepSetMaxStep");
     }
   }
-  ~DirkOde() override { mem_.reset(); }  // ARKStepFree before the solver and matrix it uses
+  ~DirkOde() override { mem_.reset(); }
+  // The smallest contraction-rate estimate ARKODE may keep (ARKStepSetNonlinCRDown: the
+  // estimate after an iteration is max(kRateFloor · the previous one, the measured ratio)).
+  static constexpr double kRateFloor = 1e-12;
+  // The implicit table's largest c_i over its first stage's c_1 (> 0 for an SDIRK).
+  double stage_reach(void* mem) {
+    ARKodeButcherTable Bi = nullptr, Be = nullptr;
+    check(ARKStepGetCurrentButcherTables(mem, &Bi, &Be), "ARKStepGetCurrentButcherTables");
+    if (!Bi || !(Bi->c[0] > 0.0)) throw std::logic_error("DirkOde: the implicit table's first stage has no c_1 > 0");
+    double r = 1.0;
+    for (int i = 0; i < Bi->stages; ++i) r = std::max(r, Bi->c[i] / Bi->c[0]);
+    return r;
+  }  // ARKStepFree before the solver and matrix it uses
   void newton_count(bool count = true) {  // count = false: set the counters' base
     long nni = 0, ncf = 0, netf = 0;
     check(ARKStepGetNumNonlinSolvIters(mem_.get(), &nni), "ARKStepGetNumNonlinSolvIters");

@@ -100,38 +100,56 @@ void ElementSet::finish(int n) {
   }
 }
 
-ElementState ElementSet::gather(const Placed& p, double t, const double* q, const double* v,
-                                const double* st) const {
+namespace {
+// Element p's state at (t, q, v, s): its nodes' x and ẋ into x, xd (nodes() entries each).
+ElementState state_into(const ElementSet::Placed& p, double t, const double* q, const double* v, const double* st,
+                        double* x, double* xd) {
   const int k = p.element->nodes();
-  Scratch& s = scratch(k);
   for (int i = 0; i < k; ++i) {
-    double x = 0.0, xd = 0.0;
+    double xi = 0.0, xdi = 0.0;
     for (const auto& e : p.rows[std::size_t(i)]) {
-      x += e.second * q[e.first];
-      if (v) xd += e.second * v[e.first];
+      xi += e.second * q[e.first];
+      if (v) xdi += e.second * v[e.first];
     }
-    s.x[std::size_t(i)] = x;
-    s.xd[std::size_t(i)] = xd;
+    x[i] = xi;
+    xd[i] = xdi;
   }
   ElementState e;
   e.t = t;
-  e.x = s.x.data();
-  e.xd = s.xd.data();
+  e.x = x;
+  e.xd = xd;
   if (p.element->states() > 0) {
     if (!st) throw std::logic_error("ElementSet: element '" + p.element->name() + "' needs its internal states");
     e.s = st + p.state_offset;
   }
   return e;
 }
+// Elements of up to this many nodes keep x, ẋ and f on the stack in the calls made at every
+// right-hand side (add_force, dissipated_power); larger ones use the per-thread scratch.
+constexpr int kStackNodes = 8;
+}  // namespace
+
+ElementState ElementSet::gather(const Placed& p, double t, const double* q, const double* v,
+                                const double* st) const {
+  Scratch& s = scratch(p.element->nodes());
+  return state_into(p, t, q, v, st, s.x.data(), s.xd.data());
+}
 
 void ElementSet::add_force(double t, const double* q, const double* v, double* r, const double* st) const {
+  double x[kStackNodes], xd[kStackNodes], fl[kStackNodes];
   for (const Placed& p : placed_) {
-    const ElementState e = gather(p, t, q, v, st);
     const int k = p.element->nodes();
-    double* f = scratch(k).f.data();
+    double* f = fl;
+    ElementState e;
+    if (k <= kStackNodes) {
+      e = state_into(p, t, q, v, st, x, xd);
+    } else {
+      e = gather(p, t, q, v, st);
+      f = scratch(k).f.data();
+    }
     p.element->force(e, f);
     for (int i = 0; i < k; ++i)
-      for (const auto& e : p.rows[std::size_t(i)]) r[e.first] += e.second * f[i];
+      for (const auto& en : p.rows[std::size_t(i)]) r[en.first] += en.second * f[i];
   }
 }
 
@@ -215,8 +233,10 @@ double ElementSet::stored_energy(const double* q, const double* st) const {
 
 double ElementSet::dissipated_power(double t, const double* q, const double* v, const double* st) const {
   double P = 0.0;
-  for (const Placed& p : placed_)
-    P += p.element->dissipated_power(gather(p, t, q, v, st));  // also without ẋ: an external force's work
+  double x[kStackNodes], xd[kStackNodes];
+  for (const Placed& p : placed_)  // also without ẋ: an external force's work
+    P += p.element->dissipated_power(p.element->nodes() <= kStackNodes ? state_into(p, t, q, v, st, x, xd)
+                                                                        : gather(p, t, q, v, st));
   return P;
 }
 

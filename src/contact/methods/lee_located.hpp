@@ -130,7 +130,7 @@ class LeeLocated final : public ContactRun {
   // The estimated error of a correction dy (= y1 after − y1 before) applied through the
   // linear part's responses over a step of hs ending at t1; into lin_err_ (ny_ entries).
   void linearisation_error(double t1, double hs, const Eigen::VectorXd& y1_before, const Eigen::VectorXd& y1_after);
-  Eigen::VectorXd lin_err_, lin_a_, lin_b_, lin_y_;
+  Eigen::VectorXd lin_err_, lin_a_, lin_b_, lin_y_, lin_dy_;
   Eigen::VectorXd F0_, F1_, Fc_, fs_, slope_;
 
   void rhs(double t, const double* y, double* yd) {

@@ -152,24 +152,24 @@ void LeeLocated::linearisation_error(double t1, double hs, const Eigen::VectorXd
   // The responses carry the correction δy through the linear part
   // M δÿ = −(K + K_e⁰) δy − (C + C_e⁰) δẏ + Tᵀ δF (K_e⁰, C_e⁰ the frozen tangent); the
   // mechanism's own correction differs by the rest of its elements' force change,
-  // m = Δf_e − K_e⁰δy − C_e⁰δẏ with Δf_e = f_e(y + δy) − f_e(y). δy starts from zero at the
-  // step's start and grows like x³ (δq) and x² (δẏ) under a ramp or bubble shape
-  // (x = (τ − t)/h), so m's effect on the end state is about h²/20 (δq) and h/4 (δẏ) times
-  // M⁻¹m(t1); taken as h²/6 and h/2 (a margin of 2–3), with
-  // M⁻¹m(t1) = a(y + δy) − a(y) − a_part(δy) at t1 (no contact forces: they cancel).
-  const Eigen::VectorXd none;
+  // m = Δr_e + K_e⁰δq + C_e⁰δẏ with Δr_e = r_e(y + δy) − r_e(y) (r_e the elements'
+  // generalised force; M, C, K and the contact forces are linear and cancel). δy starts
+  // from zero at the step's start and grows like x³ (δq) and x² (δẏ) under a ramp or
+  // bubble shape (x = (τ − t)/h), so m's effect on the end state is about h²/20 (δq) and
+  // h/4 (δẏ) times M⁻¹m(t1); taken as h²/6 and h/2 (a margin of 2–3).
+  const ElementSet& el = dynamic_cast<const Mechanism&>(mk_).elements();
   lin_err_.setZero(ny_);
-  lin_a_.resize(n_);
-  lin_b_.resize(n_);
-  mk_.acceleration(t1, y1_after.data(), y1_after.data() + n_, none, lin_a_.data());
-  mk_.acceleration(t1, y1_before.data(), y1_before.data() + n_, none, lin_b_.data());
+  lin_a_.setZero(n_);
+  lin_b_.setZero(n_);
+  el.add_force(t1, y1_after.data(), y1_after.data() + n_, lin_a_.data());
+  el.add_force(t1, y1_before.data(), y1_before.data() + n_, lin_b_.data());
   lin_a_ -= lin_b_;
-  const Eigen::VectorXd dy = y1_after - y1_before;
-  mk_.acceleration(t1, dy.data(), dy.data() + n_, none, lin_b_.data(), true);
-  add_part_tangent(dy.data(), dy.data() + n_, lin_b_.data());
-  lin_a_ -= lin_b_;
-  lin_err_.head(n_) = (hs * hs / 6.0) * lin_a_;
-  lin_err_.segment(n_, n_) = (0.5 * hs) * lin_a_;
+  lin_dy_ = y1_after - y1_before;
+  lin_a_.noalias() += part_Ke_ * lin_dy_.head(n_);
+  if (part_Ce_.size()) lin_a_.noalias() += part_Ce_ * lin_dy_.segment(n_, n_);
+  lin_b_ = part_M_.solve(lin_a_);
+  lin_err_.head(n_) = (hs * hs / 6.0) * lin_b_;
+  lin_err_.segment(n_, n_) = (0.5 * hs) * lin_b_;
 }
 
 void LeeLocated::refresh_part() {

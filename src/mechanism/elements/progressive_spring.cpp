@@ -40,6 +40,14 @@ MonotoneCurve::MonotoneCurve(std::vector<double> x, std::vector<double> y) : x_(
     m_[0] = end(h[0], h[1], d[0], d[1]);
     m_[n - 1] = end(h[n - 2], h[n - 3], d[n - 2], d[n - 3]);
   }
+  poly_.assign(4 * (n - 1), 0.0);
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    double* c = &poly_[4 * k];
+    c[0] = y_[k];
+    c[1] = m_[k];
+    c[2] = (3 * d[k] - 2 * m_[k] - m_[k + 1]) / h[k];
+    c[3] = (m_[k] + m_[k + 1] - 2 * d[k]) / (h[k] * h[k]);
+  }
   // ∫ of the Hermite cubic over a whole segment: h(y0 + y1)/2 + h²(m0 − m1)/12
   area_.assign(n, 0.0);
   for (std::size_t k = 0; k + 1 < n; ++k)
@@ -62,9 +70,9 @@ double MonotoneCurve::value(double x) const {
   if (x <= x_[0]) return y_[0] + m_[0] * (x - x_[0]);
   if (x >= x_[n - 1]) return y_[n - 1] + m_[n - 1] * (x - x_[n - 1]);
   const std::size_t k = segment(x);
-  const double h = x_[k + 1] - x_[k], t = (x - x_[k]) / h, t2 = t * t, t3 = t2 * t;
-  return (2 * t3 - 3 * t2 + 1) * y_[k] + (t3 - 2 * t2 + t) * h * m_[k] + (-2 * t3 + 3 * t2) * y_[k + 1] +
-         (t3 - t2) * h * m_[k + 1];
+  const double* c = &poly_[4 * k];
+  const double u = x - x_[k];
+  return c[0] + u * (c[1] + u * (c[2] + u * c[3]));
 }
 
 double MonotoneCurve::slope(double x) const {
@@ -72,9 +80,9 @@ double MonotoneCurve::slope(double x) const {
   if (x <= x_[0]) return m_[0];
   if (x >= x_[n - 1]) return m_[n - 1];
   const std::size_t k = segment(x);
-  const double h = x_[k + 1] - x_[k], t = (x - x_[k]) / h, t2 = t * t;
-  return ((6 * t2 - 6 * t) * y_[k] + (6 * t - 6 * t2) * y_[k + 1]) / h + (3 * t2 - 4 * t + 1) * m_[k] +
-         (3 * t2 - 2 * t) * m_[k + 1];
+  const double* c = &poly_[4 * k];
+  const double u = x - x_[k];
+  return c[1] + u * (2 * c[2] + 3 * u * c[3]);
 }
 
 double MonotoneCurve::integral(double x) const {

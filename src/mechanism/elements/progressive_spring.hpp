@@ -31,6 +31,8 @@ class MonotoneCurve {
  private:
   std::size_t segment(double x) const;  // k with x_k ≤ x < x_{k+1}, clamped to [0, n − 2]
   std::vector<double> x_, y_, m_, area_;  // knots, values, slopes, ∫ from x_0 to x_k
+  // per segment k, the cubic in u = x − x_k: y = c₀ + c₁u + c₂u² + c₃u³ (4k … 4k + 3)
+  std::vector<double> poly_;
 };
 
 class ProgressiveSpring final : public Element {
