@@ -244,6 +244,8 @@ void EventMethod::run_method() {
     set_cam_window(on_break_ ? t_ : NAN, tout == t_brk ? tout : NAN);
     const double P_prev = dissipation_power(t_, y_);
     double t1 = eng_->advance(tout, y1);
+    // the step's interpolant is read with this step's held set until the events below
+    eng_->keep_dense_rhs(true);
     int scanned = -1;
     if (unilateral_ && !eng_->hit_root()) scan_switches(t_, t1, y1, scanned);
     const bool hit = eng_->hit_root() || scanned >= 0;
@@ -285,6 +287,7 @@ void EventMethod::run_method() {
         },
         set_);
     after_advance(t_ - h, P_prev);
+    eng_->keep_dense_rhs(false);
     const double P_end = dissipation_power(t_, y_);
     bool changed = false, released_only = false;
     if (hit && unilateral_) {
