@@ -141,7 +141,9 @@ class OdeEngine {
   /// the state there. After a root: hit_root() and root_info().
   virtual double advance(double tout, Eigen::VectorXd& y_out) = 0;
   /// Native mode: the solution at t inside the last internal step (SUNDIALS' own
-  /// interpolant, GetDky with k = 0). @pre t within the last step.
+  /// interpolant, GetDky with k = 0). @pre t within the last step. At the time advance()
+  /// returned it gives advance()'s state bit for bit (ARKODE's Hermite and CVODE's Nordsieck
+  /// interpolants weigh y_n by 1 and the rest by 0 there; tests/engine/test_dense_reuse.cpp).
   virtual void dense(double t, Eigen::VectorXd& y_out) = 0;
 
   /// Keep dense()'s right-hand-side evaluations while `on`. ARKODE's Hermite interpolant of

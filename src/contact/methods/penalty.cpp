@@ -247,7 +247,7 @@ class PenaltyMethod final : public ContactRun {
       trace_step(
           t_ - h, t_, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
           [this](double tau, const Eigen::VectorXd& y, const CamMotion&, Eigen::VectorXd& F) { forces(tau, y, F); },
-          active_list(), /*energy_alike=*/true);
+          active_list(), /*energy_alike=*/true, &y_, &F_);
       eng_->keep_dense_rhs(false);
       const CamMotion cm = cam_at(t_);
       for (int j = 0; j < m_; ++j) {
