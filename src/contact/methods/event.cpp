@@ -271,10 +271,16 @@ void EventMethod::run_method() {
     // the cam's work and the dissipated energy over the step: 3-point Gauss–Legendre on
     // the engine's own dense output (issue 25: each step's own quadrature)
     const StepEnergy dE = advance_energy(t_ - h, t_);
+    // at the step's end without a root the interpolant is the engine's state y1 bit for bit
+    // (OdeEngine::dense): taken from there
+    const bool end_is_y1 = !hit;
     trace_step(
         t_ - h, t_,
-        [this](double tau, Eigen::VectorXd& y) {
-          eng_->dense(tau, y);
+        [this, end_is_y1, &y1](double tau, Eigen::VectorXd& y) {
+          if (end_is_y1 && tau == t_)
+            y = y1;
+          else
+            eng_->dense(tau, y);
           if (!set_.empty()) {
             rc_.resize(ny_);
             project(tau, y.data(), rc_.data());
