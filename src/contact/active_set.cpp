@@ -21,30 +21,53 @@ struct Candidate {
   bool valid = false;
 };
 
-// The minimal-norm F supported on `P` (mask over 0..k−1) and its validity.
-Candidate try_support(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, const std::vector<int>& P) {
+// try_support's workspace, one per thread: solve_contact_lcp runs inside every right-hand
+// side of the event method, and allocating these on each call was a fifth of its run.
+// Reusing them changes no arithmetic (the decomposition is computed anew from Wp).
+struct SupportWork {
+  Eigen::MatrixXd Wp;
+  Eigen::VectorXd bp, z;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+  std::vector<char> in;
+  std::vector<int> all;
+  Candidate whole;  // solve_contact_lcp's first candidate: the whole set held
+};
+SupportWork& support_work() {
+  thread_local SupportWork w;
+  return w;
+}
+
+// The minimal-norm F supported on `P` (mask over 0..k−1) and its validity, into c.
+void try_support(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, const std::vector<int>& P, Candidate& c) {
   const int k = int(b.size()), p = int(P.size());
-  Candidate c;
-  c.F = Eigen::VectorXd::Zero(k);
+  SupportWork& ws = support_work();
+  c.F.setZero(k);
   if (p > 0) {
-    Eigen::MatrixXd Wp(p, p);
-    Eigen::VectorXd bp(p);
+    Eigen::MatrixXd& Wp = ws.Wp;
+    Eigen::VectorXd& bp = ws.bp;
+    Wp.resize(p, p);
+    bp.resize(p);
     for (int i = 0; i < p; ++i) {
       bp[i] = b[P[i]];
       for (int l = 0; l < p; ++l) Wp(i, l) = W(P[i], P[l]);
     }
-    const Eigen::VectorXd z = p == 1 ? Eigen::VectorXd::Constant(1, -bp[0] / Wp(0, 0))
-                                     : Eigen::VectorXd(Wp.completeOrthogonalDecomposition().solve(-bp));
-    for (int i = 0; i < p; ++i) c.F[P[i]] = z[i];
+    if (p == 1) {
+      c.F[P[0]] = -bp[0] / Wp(0, 0);
+    } else {
+      ws.cod.compute(Wp);
+      ws.z = ws.cod.solve(-bp);
+      for (int i = 0; i < p; ++i) c.F[P[i]] = ws.z[i];
+    }
   }
   c.w = W * c.F + b;
   const double Fmax = c.F.cwiseAbs().maxCoeff();
   const double sw = b.cwiseAbs().maxCoeff() + W.cwiseAbs().maxCoeff() * Fmax + 1e-300;
-  std::vector<char> in(k, 0);
-  for (int j : P) in[j] = 1;
+  std::vector<char>& in = ws.in;
+  in.assign(std::size_t(k), 0);
+  for (int j : P) in[std::size_t(j)] = 1;
   c.valid = c.F.allFinite();
   for (int j = 0; j < k && c.valid; ++j) {
-    if (in[j])
+    if (in[std::size_t(j)])
       c.valid = c.F[j] >= -kRel * Fmax && std::abs(c.w[j]) <= kRel * sw;
     else
       c.valid = c.w[j] >= -kRel * sw;
@@ -52,8 +75,12 @@ Candidate try_support(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, const 
   if (c.valid) {
     c.F = c.F.cwiseMax(0.0);
     for (int j = 0; j < k; ++j)
-      if (in[j]) c.w[j] = 0.0;  // held: exactly, up to the round-off just allowed
+      if (in[std::size_t(j)]) c.w[j] = 0.0;  // held: exactly, up to the round-off just allowed
   }
+}
+Candidate try_support(const Eigen::MatrixXd& W, const Eigen::VectorXd& b, const std::vector<int>& P) {
+  Candidate c;
+  try_support(W, b, P, c);
   return c;
 }
 }  // namespace
@@ -91,16 +118,19 @@ ContactLcpResult solve_contact_lcp(const Eigen::MatrixXd& W, const Eigen::Vector
     r.ok = solve_contact_lcp1(W(0, 0), b[0], r.F[0], r.w[0]);
     return r;
   }
-  std::vector<int> all(k);
-  for (int j = 0; j < k; ++j) all[j] = j;
+  SupportWork& ws = support_work();
+  std::vector<int>& all = ws.all;
+  all.resize(std::size_t(k));
+  for (int j = 0; j < k; ++j) all[std::size_t(j)] = j;
   // the whole set held (the usual case: every contact carries force)
-  Candidate best = try_support(W, b, all);
-  if (best.valid) {
-    r.F = best.F;
-    r.w = best.w;
+  try_support(W, b, all, ws.whole);
+  if (ws.whole.valid) {
+    r.F = ws.whole.F;
+    r.w = ws.whole.w;
     r.ok = true;
     return r;
   }
+  Candidate best = ws.whole;  // not valid: the enumeration below replaces it
   // W block-diagonal after a permutation (contacts that share no unknown: a camshaft's cams on
   // different stations of a lumped shaft, separate trains): one LCP per connected block of W's
   // non-zeros. The smallest ‖F‖ is the blocks' smallest ones together.

@@ -242,8 +242,11 @@ void ContactRun::held_forces_into(double t, const Eigen::VectorXd& y, const CamM
     if (margin) (*margin)[j] = F[j] - w / W;
     return;
   }
-  Eigen::MatrixXd Wss(k, k);
-  Eigen::VectorXd b(k);  // the gap accelerations without contact forces
+  // per thread, not per call (this runs inside every right-hand side of the event method)
+  thread_local Eigen::MatrixXd Wss;
+  thread_local Eigen::VectorXd b;  // the gap accelerations without contact forces
+  Wss.resize(k, k);
+  b.resize(k);
   for (int i = 0; i < k; ++i) {
     b[i] = Ta[set[i]] - cam_acc(set[i], y, cm);
     for (int l = 0; l < k; ++l) Wss(i, l) = R.W(set[i], set[l]);

@@ -251,11 +251,15 @@ class ContactRun {
   /// load, DesignerStats::step_inside, RunAnalysis::step_inside. Once a method traces its
   /// steps, the rows add no extreme (the output grid changes no result). `energy_alike`:
   /// step_energy was just called on [t0, t1] with the same state and forces functions, so
-  /// its middle Gauss point is the middle sample.
+  /// its middle Gauss point is the middle sample. `y_end`, `F_end` (optional, both or none):
+  /// the state and forces at t1 that state(t1) and forces there give bit for bit (the
+  /// engine's step end, which its interpolant returns at t1: OdeEngine::dense), so the end
+  /// sample takes them instead of evaluating them again.
   using StateFn = std::function<void(double, Eigen::VectorXd&)>;
   using ForcesFn = std::function<void(double, const Eigen::VectorXd&, const CamMotion&, Eigen::VectorXd&)>;
   void trace_step(double t0, double t1, const StateFn& state, const ForcesFn& forces, const std::vector<int>& set,
-                  bool energy_alike = false);
+                  bool energy_alike = false, const Eigen::VectorXd* y_end = nullptr,
+                  const Eigen::VectorXd* F_end = nullptr);
   bool traced_ = false;
   Eigen::VectorXd trace_y_, trace_F_;
   std::vector<char> trace_in_;

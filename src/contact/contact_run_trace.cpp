@@ -10,7 +10,8 @@ namespace camdyn {
 namespace detail {
 
 void ContactRun::trace_step(double t0, double t1, const StateFn& state, const ForcesFn& forces,
-                            const std::vector<int>& set, bool energy_alike) {
+                            const std::vector<int>& set, bool energy_alike, const Eigen::VectorXd* y_end,
+                            const Eigen::VectorXd* F_end) {
   const double h = t1 - t0;
   if (!(h > 0)) return;
   traced_ = true;
@@ -85,6 +86,10 @@ void ContactRun::trace_step(double t0, double t1, const StateFn& state, const Fo
       trace_y_ = se_mid_y_;
       trace_F_ = se_mid_F_;
       fill(x, t0 + x * h, s[std::size_t(k)], true);
+    } else if (k == kStepSamples - 1 && y_end && F_end) {  // the end: the method's own
+      trace_y_ = *y_end;
+      trace_F_ = *F_end;
+      fill(1.0, t1, s[std::size_t(k)], true);
     } else {
       probe(x, s[std::size_t(k)]);
     }

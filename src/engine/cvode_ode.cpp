@@ -103,6 +103,7 @@ class CvodeOde final : public EngineBase {
     proj_ = std::move(fn);
   }
   void dense(double t, Eigen::VectorXd& y_out) override {
+    const InDense scope(*this);
     check(CVodeGetDky(mem_.get(), t, 0, tmp_.get()), "CVodeGetDky");
     y_out = map(tmp_.get());
   }

@@ -119,6 +119,7 @@ class ErkOde final : public EngineBase {
     return tret;
   }
   void dense(double t, Eigen::VectorXd& y_out) override {
+    const InDense scope(*this);
     check(ERKStepGetDky(mem_.get(), t, 0, tmp_.get()), "ERKStepGetDky");
     y_out = map(tmp_.get());
   }
@@ -284,6 +285,7 @@ class DirkOde final : public EngineBase {
     return tret;
   }
   void dense(double t, Eigen::VectorXd& y_out) override {
+    const InDense scope(*this);
     check(ARKStepGetDky(mem_.get(), t, 0, tmp_.get()), "ARKStepGetDky");
     y_out = map(tmp_.get());
   }

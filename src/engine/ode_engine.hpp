@@ -25,6 +25,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
+#include <limits>
 #include <vector>
 #include <utility>
 
@@ -140,8 +141,24 @@ class OdeEngine {
   /// the state there. After a root: hit_root() and root_info().
   virtual double advance(double tout, Eigen::VectorXd& y_out) = 0;
   /// Native mode: the solution at t inside the last internal step (SUNDIALS' own
-  /// interpolant, GetDky with k = 0). @pre t within the last step.
+  /// interpolant, GetDky with k = 0). @pre t within the last step. At the time advance()
+  /// returned it gives advance()'s state bit for bit (ARKODE's Hermite and CVODE's Nordsieck
+  /// interpolants weigh y_n by 1 and the rest by 0 there; tests/engine/test_dense_reuse.cpp).
   virtual void dense(double t, Eigen::VectorXd& y_out) = 0;
+
+  /// Keep dense()'s right-hand-side evaluations while `on`. ARKODE's Hermite interpolant of
+  /// degree 4 and 5 evaluates f at points inside the last step (h/3 and 2h/3 before its end)
+  /// on every GetDky call: the same t and the same interpolated y for every call inside one
+  /// step. While on, an evaluation that dense() asks for again at the same t and a bitwise
+  /// equal y is copied from the first one (the last two are kept): dense() returns the same
+  /// bits, and EngineStats::rhs_evals counts only the evaluations made. Switching clears
+  /// what was kept. CVODE's GetDky evaluates no f (no effect there).
+  /// @pre f (the caller's held set, cam window, …) does not change while on: switch it off
+  /// before changing them.
+  void keep_dense_rhs(bool on) {
+    keep_dense_rhs_ = on;
+    for (DenseRhs& d : dense_rhs_) d.t = std::numeric_limits<double>::quiet_NaN();
+  }
 
   /// Projection onto a manifold the method keeps (e.g. its closed contacts' displacement and
   /// velocity levels), applied to every accepted step's end state (native mode):
@@ -185,6 +202,15 @@ class OdeEngine {
   std::vector<int> root_info_;
   RootFn root_fn_;
   ProjFn proj_;
+  // keep_dense_rhs: the last two evaluations made inside dense() (t NaN: none)
+  struct DenseRhs {
+    double t = std::numeric_limits<double>::quiet_NaN();
+    Eigen::VectorXd y, f;
+  };
+  DenseRhs dense_rhs_[2];
+  int dense_rhs_next_ = 0;
+  bool keep_dense_rhs_ = false;
+  bool in_dense_ = false;  // inside dense(): its GetDky's right-hand sides
 };
 
 }  // namespace camdyn

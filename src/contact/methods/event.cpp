@@ -244,6 +244,8 @@ void EventMethod::run_method() {
     set_cam_window(on_break_ ? t_ : NAN, tout == t_brk ? tout : NAN);
     const double P_prev = dissipation_power(t_, y_);
     double t1 = eng_->advance(tout, y1);
+    // the step's interpolant is read with this step's held set until the events below
+    eng_->keep_dense_rhs(true);
     int scanned = -1;
     if (unilateral_ && !eng_->hit_root()) scan_switches(t_, t1, y1, scanned);
     const bool hit = eng_->hit_root() || scanned >= 0;
@@ -269,10 +271,16 @@ void EventMethod::run_method() {
     // the cam's work and the dissipated energy over the step: 3-point Gauss–Legendre on
     // the engine's own dense output (issue 25: each step's own quadrature)
     const StepEnergy dE = advance_energy(t_ - h, t_);
+    // at the step's end without a root the interpolant is the engine's state y1 bit for bit
+    // (OdeEngine::dense): taken from there
+    const bool end_is_y1 = !hit;
     trace_step(
         t_ - h, t_,
-        [this](double tau, Eigen::VectorXd& y) {
-          eng_->dense(tau, y);
+        [this, end_is_y1, &y1](double tau, Eigen::VectorXd& y) {
+          if (end_is_y1 && tau == t_)
+            y = y1;
+          else
+            eng_->dense(tau, y);
           if (!set_.empty()) {
             rc_.resize(ny_);
             project(tau, y.data(), rc_.data());
@@ -285,6 +293,7 @@ void EventMethod::run_method() {
         },
         set_);
     after_advance(t_ - h, P_prev);
+    eng_->keep_dense_rhs(false);
     const double P_end = dissipation_power(t_, y_);
     bool changed = false, released_only = false;
     if (hit && unilateral_) {

@@ -234,6 +234,7 @@ class PenaltyMethod final : public ContactRun {
       Fprev = F_;
       const double P_prev = dissipation_power(t_, y_);
       const double t1 = eng_->advance(tout, y1);
+      eng_->keep_dense_rhs(true);  // the step's interpolant, read by its energy and trace
       const double h = t1 - t_;
       t_ = t1;
       y_ = y1;
@@ -246,7 +247,8 @@ class PenaltyMethod final : public ContactRun {
       trace_step(
           t_ - h, t_, [this](double tau, Eigen::VectorXd& y) { eng_->dense(tau, y); },
           [this](double tau, const Eigen::VectorXd& y, const CamMotion&, Eigen::VectorXd& F) { forces(tau, y, F); },
-          active_list(), /*energy_alike=*/true);
+          active_list(), /*energy_alike=*/true, &y_, &F_);
+      eng_->keep_dense_rhs(false);
       const CamMotion cm = cam_at(t_);
       for (int j = 0; j < m_; ++j) {
         const bool now = F_[j] > 0.0 || (eng_->hit_root() && eng_->root_info()[j] < 0);
