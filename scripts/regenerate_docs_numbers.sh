@@ -29,13 +29,15 @@
 #   STAMP.md              commit, date, mode, the commands and the run time of each part
 #
 # usage: scripts/regenerate_docs_numbers.sh [--quick] [--build DIR] [--cases "A B2 ..."]
-#                                           [--quote | --quote-only]
+#                                           [--repeats N] [--quote | --quote-only]
 #   --quick   the bench's quick sweep, 1 timing repeat, the short tolerance sweep; the whole
 #             run takes under 10 minutes on an idle 2-core machine (the references are
 #             cached by camdyn bench: a second run is faster)
 #   --quote   also rewrite the quoted headlines in README.md and
 #             docs/background/performance.md from the new headlines.csv (otherwise the test
 #             tells which quotes are stale); --quote-only: only that, from the existing file
+#   --repeats N  timing repeats of every bench run (default 1; the full mode's runs over 1 s
+#             are timed once whatever N; 3 triples the full mode's CPU)
 #   --cases   only these work-precision cases (the headlines are gathered from every
 #             wp_<case>/ present, each stamped by the run that made it)
 #   --no-tol-sweep  leave tol_sweep/ as it is
@@ -57,11 +59,13 @@ QUOTE=0
 TOL=1
 PEERS=1
 ONLY=""
+REPEATS=""
 CHECK=""
 CASES=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) MODE=quick ;;
+    --repeats) REPEATS="$2"; shift ;;
     --build) BUILD="$(cd "$2" && pwd)"; shift ;;
     --cases) CASES="$2"; shift ;;
     --quote) QUOTE=1 ;;
@@ -71,7 +75,7 @@ while [ $# -gt 0 ]; do
     --only) ONLY="$2"; shift ;;
     --check-repeat) CHECK="$2"; shift ;;
     -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d'; exit 0 ;;
-    *) echo "regenerate_docs_numbers.sh: unknown argument '$1' (allowed: --quick, --build DIR, --cases LIST, --quote, --quote-only, --no-tol-sweep, --no-peers, --only PARTS, --check-repeat CASE)" >&2; exit 2 ;;
+    *) echo "regenerate_docs_numbers.sh: unknown argument '$1' (allowed: --quick, --repeats N, --build DIR, --cases LIST, --quote, --quote-only, --no-tol-sweep, --no-peers, --only PARTS, --check-repeat CASE)" >&2; exit 2 ;;
   esac
   shift
 done
@@ -172,9 +176,10 @@ run_part() {  # run_part NAME CMD...: time it (wall, and CPU of the part's proce
   fi
 }
 
-# full: 3 timing repeats (runs over 1 s timed once), a 10 s CPU budget per run (a run over it
-# is stopped and the same setting's tighter tolerances are skipped), elastic bars over 0.05 s
-if [ "$MODE" = quick ]; then BENCH_ARGS=(--quick --repeats 1); else BENCH_ARGS=(--repeats 3 --budget 10); fi
+# full: one timing per run unless --repeats N (3 on a quiet machine: runs under 0.1 s are then
+# repeated up to 0.2 s, which triples the sweep's CPU), a 10 s CPU budget per run (a run over
+# it is stopped and the same setting's tighter tolerances are skipped), elastic bars over 0.05 s
+if [ "$MODE" = quick ]; then BENCH_ARGS=(--quick --repeats "${REPEATS:-1}"); else BENCH_ARGS=(--repeats "${REPEATS:-1}" --budget 10); fi
 want wp || CASES=""
 for c in $CASES; do
   rm -rf "$OUT/wp_$c"
