@@ -40,3 +40,10 @@ def test_budget_stops_are_listed_not_failed(tmp_path):
                     "S,lee,arkode-erk,-,1e-08,,,20.1,9000,1e-6,stopped: over the 20 s CPU budget at t = 0.01\n",
                     "S,lee,arkode-erk,-,1e-08,,,19.0,12000,1e-7,\n")
     assert rc == 0 and "budget-dependent" in out
+
+
+def test_rows_skipped_after_a_budget_stop_are_listed_not_failed(tmp_path):
+    rc, out = check(tmp_path,
+                    "S,penalty,arkode-dirk,linear critical,1e-07,1e10,2e3,,0,,skipped: penalty arkode-dirk linear critical 1e+10 at rtol 1e-06 took over 10 s\n",
+                    "S,penalty,arkode-dirk,linear critical,1e-07,1e10,2e3,8.1,90000,1e-6,\n")
+    assert rc == 0 and "budget-dependent" in out

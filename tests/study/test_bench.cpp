@@ -426,3 +426,50 @@ TEST(Bench, QuickElasticReferenceIsExplicitAndAgreesWithTheImplicitOne) {
   EXPECT_TRUE(saw_check);
   fs::remove_all(dir);
 }
+
+// Issue 36's check "running the regeneration twice on the same build gives the same rows
+// (timings aside)": two quick runs of case B1 (2 ms), the second with its reference and check
+// from the reference cache, give rows equal in every column but the CPU time (and the note's
+// "from the cache"). Every row is also held to the reference rule: a finished row whose
+// err_F, err_F_pw or impulse_err is under 10× the check row's says so in its note.
+TEST(Bench, TwoQuickRunsGiveTheSameRowsTimingsAside) {
+  const fs::path dir = temp_dir("repeat");
+  camdyn::BenchOptions o = quick_options("B1", dir / "out", 1);
+  o.t_end = 0.002;
+  o.reference_cache_dir = (dir / "cache").string();
+  const camdyn::BenchResult a = camdyn::run_bench(o);
+  const camdyn::BenchResult b = camdyn::run_bench(o);
+  ASSERT_EQ(a.rows.size(), b.rows.size());
+  ASSERT_GE(a.rows.size(), 10u);
+  const camdyn::BenchRow* chk = nullptr;
+  for (size_t i = 0; i < a.rows.size(); ++i) {
+    const camdyn::BenchRow &x = a.rows[i], &y = b.rows[i];
+    SCOPED_TRACE(x.method + " " + x.engine + " " + x.variant);
+    EXPECT_EQ(x.method, y.method);
+    EXPECT_EQ(x.engine, y.engine);
+    EXPECT_EQ(x.variant, y.variant);
+    EXPECT_EQ(x.finished, y.finished);
+    EXPECT_EQ(x.steps, y.steps);
+    EXPECT_EQ(x.rhs_evals, y.rhs_evals);
+    EXPECT_EQ(x.nonlin_iters, y.nonlin_iters);
+    for (auto [p, q] : {std::pair{x.err_u, y.err_u}, {x.err_force, y.err_force},
+                        {x.err_force_pointwise, y.err_force_pointwise}, {x.impulse_err, y.impulse_err},
+                        {x.osc_index, y.osc_index}, {x.event_err, y.event_err}})
+      EXPECT_TRUE(p == q || (std::isnan(p) && std::isnan(q))) << p << " vs " << q;
+    if (x.method == "reference-check") {
+      EXPECT_EQ(y.note.find("from the cache") == std::string::npos, false) << y.note;
+      chk = &x;
+    } else {
+      EXPECT_EQ(x.note, y.note);
+    }
+  }
+  ASSERT_NE(chk, nullptr);
+  for (const auto& r : a.rows) {
+    if (r.method == "reference-check" || !r.finished) continue;
+    const bool close = r.err_force < 10 * chk->err_force ||
+                       r.err_force_pointwise < 10 * chk->err_force_pointwise ||
+                       r.impulse_err < 10 * chk->impulse_err;
+    EXPECT_EQ(close, r.note.find("within 10×") != std::string::npos) << r.method << " " << r.note;
+  }
+  fs::remove_all(dir);
+}
