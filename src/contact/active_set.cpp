@@ -22,8 +22,9 @@ struct Candidate {
 };
 
 // try_support's workspace, one per thread: solve_contact_lcp runs inside every right-hand
-// side of the event method, and allocating these on each call was a fifth of its run.
-// Reusing them changes no arithmetic (the decomposition is computed anew from Wp).
+// side of the event method, so it allocates nothing per call (docs/background/performance.md,
+// "The event and penalty methods' probes"). Reusing them changes no arithmetic (the
+// decomposition is computed anew from Wp).
 struct SupportWork {
   Eigen::MatrixXd Wp;
   Eigen::VectorXd bp, z;

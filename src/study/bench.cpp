@@ -322,9 +322,9 @@ class Bench {
       rtols = {1e-6, 1e-8};
     }
     std::map<std::string, std::string> pen_blown;  // engine/law/damping/k_p over the budget → why
-    // A rigid follower's penalty runs on cvode-bdf only: on case A the same setting on
-    // arkode-dirk took 1.1–330× (median 4.3×) the CPU of cvode-bdf, and its search was 94 %
-    // of the full sweep's CPU there (docs/bench/measured_tables.md, "The full mode").
+    // A rigid follower's penalty runs on cvode-bdf only: arkode-dirk was never its cheapest
+    // engine and cost most of the full sweep (measured in docs/bench/measured_tables.md,
+    // "The full mode").
     const std::vector<Integrator> pen_engines =
         o_.quick || si.rigid ? std::vector<Integrator>{Integrator::CvodeBdf}
                              : std::vector<Integrator>{Integrator::CvodeBdf, Integrator::ArkodeDirk};
