@@ -52,7 +52,9 @@ void Mechanism::build_follower(const Scene& scene) {
   ta_r0_ = MinvTt_.transpose() * r0_;  // contact_free_acceleration's linear forms
   ta_q_ = K_ * MinvTt_;
   if (damped()) ta_v_ = C_ * MinvTt_;
-  single_follower_ = true;
+  // No elements, no camshaft: the banded kernel when M is diagonal (rigid, lumped bar) or
+  // tridiagonal (consistent bar).
+  if (mass_pattern_ != MassPattern::General) acceleration_kernel_ = AccelerationKernel::BandedInPlace;
   traits_.named_contacts = false;
   traits_.cam_lift_absolute = true;
   traits_.one_body = true;

@@ -496,8 +496,8 @@ void Mechanism::state_rate(double t, const double* q, const double* v, const dou
 void Mechanism::acceleration(double t, const double* q, const double* v, const Eigen::VectorXd& F, double* a,
                              bool homogeneous, const double* s) const {
   Eigen::Map<Eigen::VectorXd> A(a, n_);
-  if (!single_follower_) {
-    // Networks: f₀ − Kq − Cv and the sparse LDLᵀ, in this order (a penalty run at rtol 1e-4
+  if (acceleration_kernel_ == AccelerationKernel::Assembled) {
+    // f₀ − Kq − Cv and the sparse LDLᵀ, in this order (a penalty run at rtol 1e-4
     // is sensitive to the round-off of its forces: the two-mass train's energy residual
     // moved from 5.4e-4 to 1.2e-3 of the work with the one-pass form below).
     Eigen::Map<const Eigen::VectorXd> Q(q, n_), V(v, n_);
@@ -513,7 +513,7 @@ void Mechanism::acceleration(double t, const double* q, const double* v, const E
     if (F.size()) A.noalias() += MinvTt_ * F;
     return;
   }
-  // A single follower: one pass over K's columns (no temporaries), a = r₀ − K(q − q(0)) − Cv
+  // Banded in place: one pass over K's columns (no temporaries), a = r₀ − K(q − q(0)) − Cv
   // (round-off scaling with the motion since t = 0), then M⁻¹ in place (diagonal or tridiagonal).
   const long* outer = K_.outerIndexPtr();
   const long* inner = K_.innerIndexPtr();
@@ -542,7 +542,7 @@ void Mechanism::acceleration(double t, const double* q, const double* v, const E
 
 void Mechanism::contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta,
                                           const double* s) const {
-  if (!single_follower_) {
+  if (!traits_.linear_contact_acceleration) {
     MechanicalSystem::contact_free_acceleration(t, q, v, Ta, s);
     return;
   }

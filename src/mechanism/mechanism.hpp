@@ -191,7 +191,6 @@ class MechanicalSystem {
   std::vector<std::string> node_names_;
   ModelDescription desc_;
   double force_scale_ = 0.0;
-  bool single_follower_ = false;  // built by follower_builder.cpp (its own assembly paths)
   MechanismTraits traits_;
   std::shared_ptr<const CamShaft> camshaft_;
 };
@@ -219,8 +218,8 @@ class Mechanism final : public MechanicalSystem {
   void state_rate(double t, const double* q, const double* v, const double* s, double* sdot) const override;
   bool acceleration_jacobian(double t, const double* q, const double* v, Eigen::MatrixXd& dadq,
                              Eigen::MatrixXd& dadv) const override;
-  /// A single follower: z_jᵀr₀ − (K z_j)ᵀ(q − q(0)) − (C z_j)ᵀv with z_j = M⁻¹T_jᵀ, O(n)
-  /// without a mass solve; networks: the default.
+  /// traits().linear_contact_acceleration: z_jᵀr₀ − (K z_j)ᵀ(q − q(0)) − (C z_j)ᵀv with
+  /// z_j = M⁻¹T_jᵀ, O(n) without a mass solve; otherwise the default.
   void contact_free_acceleration(double t, const double* q, const double* v, Eigen::VectorXd& Ta,
                                  const double* s = nullptr) const override;
   double kinetic_energy(const double* v) const override;
@@ -275,8 +274,14 @@ class Mechanism final : public MechanicalSystem {
   void attach_camshaft(const Scene& scene, const NetworkSpec& net, const std::vector<int>& red,
                        const std::map<std::string, int>& index);
   enum class MassPattern { Diagonal, Tridiagonal, General } mass_pattern_ = MassPattern::General;
+  /// acceleration()'s kernel, chosen by the builder. Assembled: r = f₀ − Kq − Cq̇ (+ the
+  /// elements' and the camshaft's forces), then the sparse LDLᵀ. BandedInPlace: r₀ −
+  /// K(q − q(0)) − Cq̇ in one pass over K's and C's columns, then M⁻¹ in place by
+  /// solve_mass; for a diagonal or tridiagonal M, without elements and camshaft (it adds
+  /// neither's forces).
+  enum class AccelerationKernel { Assembled, BandedInPlace } acceleration_kernel_ = AccelerationKernel::Assembled;
   Eigen::VectorXd mass_dinv_, mass_l_;  // 1/D, and L's subdiagonal (tridiagonal)
-  // contact_free_acceleration's linear forms (single follower): z_jᵀr₀, K z_j, C z_j
+  // contact_free_acceleration's linear forms (traits_.linear_contact_acceleration): z_jᵀr₀, K z_j, C z_j
   Eigen::VectorXd ta_r0_;
   Eigen::MatrixXd ta_q_, ta_v_;
 };

@@ -29,8 +29,11 @@ void judge_criteria(const Scene& sc, Summary& s) {
   s.criteria.clear();
   s.criteria_pass = true;
   const CriteriaSpec& k = sc.criteria;
-  const bool network = sc.follower.kind == FollowerKind::Network;
-  const char* no_seat = network ? "no seat impact in the run" : "no seat: a single follower has no stop contact";
+  // The scene's contacts are named when it lists them ([[contacts]]); otherwise its own
+  // follower has one unnamed cam contact and no stop contact (a user follower's contacts are
+  // named in s.contacts).
+  const bool named = !sc.network.contacts.empty();
+  const char* no_seat = named ? "no seat impact in the run" : "no seat: a single follower has no stop contact";
   if (k.max_seating_velocity > 0) {
     double v = NAN, th = NAN;
     for (const SeatLanding& L : s.landings)
@@ -51,7 +54,7 @@ void judge_criteria(const Scene& sc, Summary& s) {
   }
   if (k.min_force_margin > 0) {
     for (const ContactResult& c : s.contacts)
-      add(s, s.contacts.size() == 1 && !network ? std::string("force_margin") : "force_margin_" + c.name,
+      add(s, s.contacts.size() == 1 && !named ? std::string("force_margin") : "force_margin_" + c.name,
           "criteria.min_force_margin", false, k.min_force_margin, c.min_force, c.min_force_theta_deg,
           "never closed outside the lash take-up window");
   }
@@ -84,11 +87,8 @@ std::vector<std::string> criterion_names(const Scene& sc) {
   if (k.max_bounce_height > 0) n.push_back("bounce_height");
   if (k.max_bounce_count >= 0) n.push_back("bounce_count");
   if (k.min_force_margin > 0) {
-    if (sc.follower.kind == FollowerKind::Network) {
-      for (const ContactPointSpec& c : sc.network.contacts) n.push_back("force_margin_" + c.name);
-    } else {
-      n.push_back("force_margin");
-    }
+    for (const ContactPointSpec& c : sc.network.contacts) n.push_back("force_margin_" + c.name);
+    if (sc.network.contacts.empty()) n.push_back("force_margin");  // the one unnamed cam contact
   }
   if (k.max_hertz_stress > 0) n.push_back("hertz_stress");
   if (k.min_film_thickness > 0) n.push_back("film_thickness");

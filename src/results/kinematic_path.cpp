@@ -9,8 +9,7 @@ namespace camdyn {
 namespace detail {
 
 KinematicPath::KinematicPath(const Scene& scene) {
-  if (scene.follower.kind != FollowerKind::Network) return;
-  const NetworkSpec& net = scene.network;
+  const NetworkSpec& net = scene.network;  // empty without [[nodes]]/[[contacts]]: no path
   for (const NodeSpec& n : net.nodes) names_.push_back(n.name);
   nodes_.assign(names_.size(), KinematicNode{});
   auto index = [&](const std::string& s) -> int {

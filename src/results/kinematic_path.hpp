@@ -32,7 +32,8 @@ struct KinematicNode {
 
 class KinematicPath {
  public:
-  /// The network of `scene` (empty for the other follower kinds: nothing is reached).
+  /// The network of `scene` (its [[nodes]], [[elements]], [[contacts]]; without them nothing
+  /// is reached).
   explicit KinematicPath(const Scene& scene);
   /// The node named `name` (reached = false if no path from a cam contact leads to it).
   KinematicNode node(const std::string& name) const;

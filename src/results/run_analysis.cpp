@@ -62,18 +62,18 @@ RunAnalysis::RunAnalysis(const Scene& sc, const std::vector<std::string>& contac
     valve_path_ = path_.node(sc.run.valve_node);
   }
   const double top = path_.take_up_levels().empty() ? 0.0 : path_.take_up_levels().back();
-  if (sc.follower.kind == FollowerKind::Network)
-    for (const ContactPointSpec& cp : sc.network.contacts) {
-      if (cp.kind != ContactPointKind::Stop || cp.side != StopSide::Below || cp.nodes.empty()) continue;
-      Seat s;
-      s.name = cp.name;
-      for (std::size_t j = 0; j < contacts.size(); ++j)
-        if (contacts[j] == cp.name) s.contact = int(j);
-      if (s.contact < 0) continue;
-      const KinematicNode k = path_.node(cp.nodes[0]);
-      s.opened_at = (k.reached ? k.take_up : top) + band_;
-      seats_.push_back(std::move(s));
-    }
+  // The seats: the network's stop contacts below their node (none without [[contacts]]).
+  for (const ContactPointSpec& cp : sc.network.contacts) {
+    if (cp.kind != ContactPointKind::Stop || cp.side != StopSide::Below || cp.nodes.empty()) continue;
+    Seat s;
+    s.name = cp.name;
+    for (std::size_t j = 0; j < contacts.size(); ++j)
+      if (contacts[j] == cp.name) s.contact = int(j);
+    if (s.contact < 0) continue;
+    const KinematicNode k = path_.node(cp.nodes[0]);
+    s.opened_at = (k.reached ? k.take_up : top) + band_;
+    seats_.push_back(std::move(s));
+  }
   bool levels = false;
   for (double x : path_.take_up_levels()) levels = levels || x > 0;
   per_row_ = film_ || valve_ >= 0 || !seats_.empty() || levels || timing_.active();

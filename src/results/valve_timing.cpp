@@ -89,7 +89,7 @@ double wrap_deg(double rad) {  // to (−180°, 180°]
 
 ValveTiming::ValveTiming(const Scene& sc, const KinematicPath& path, const std::vector<std::string>& nodes) {
   const CamshaftSpec& cs = sc.camshaft;
-  if (!cs.present() || sc.follower.kind != FollowerKind::Network) return;
+  if (!cs.present()) return;  // a camshaft drives a network's cam contacts (validate_camshaft.cpp)
   order_ = cs.crank_orders;
   for (double a : cs.crank_amplitudes_deg) amp_.push_back(a * kDeg);
   for (double p : cs.crank_phases_deg) phase_.push_back(p * kDeg);

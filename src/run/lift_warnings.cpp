@@ -87,7 +87,9 @@ std::vector<std::string> scene_warnings(const Scene& scene, const FollowerSystem
                                         const PlausibleRanges& r) {
   const auto num = scene_detail::warning_number;
   std::vector<std::string> w;
-  const bool network = scene.follower.kind == FollowerKind::Network && !follower;
+  // The valve-train scenes (SI units): a network ([[contacts]], @pre valid: only on
+  // follower.kind = "network"), or a user follower's contacts.
+  const bool network = !follower && !scene.network.contacts.empty();
   if (!network && !follower) return w;
 
   // ---- the cam: its lift (lengths in mm?) and its speed

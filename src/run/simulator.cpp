@@ -62,8 +62,8 @@ const char* to_string(Termination v) {
 
 namespace {
 
-// Largest cam radius of a single-follower scene: the scale of X_C, whose round-off the
-// contact's displacement tolerance must stay above.
+// Largest cam radius: the scale of X_C, whose round-off the displacement tolerance of a
+// gap that sees X_C itself must stay above (check_gap_round_off).
 double cam_scale(const CamSpec& c) {
   double r = 1.0;
   switch (c.profile) {
@@ -96,11 +96,9 @@ double cam_scale(const CamSpec& c) {
   return r;
 }
 
-// A tolerance below what double precision holds for the scene is refused at the
-// start (not a step size underflow somewhere in the run). Lee's displacement level holds
-// the gap X_C − u₀, a difference of two numbers of the cam's size: below 1000 ulps of the
-// largest cam radius it is round-off.
-void check_tolerances(const Scene& sc) {
+// Run sizes the scene cannot hold, refused at the start (not a hang or an allocation
+// failure somewhere in the run).
+void check_run_size(const Scene& sc) {
   {
     // One Poincaré sample (and one designer record) per revolution: a cam speed of 1e22
     // rev/s would ask for 1e19 of them in the first step (std::bad_alloc).
@@ -125,9 +123,17 @@ void check_tolerances(const Scene& sc) {
                   sc.run.t_end / sc.run.output_dt);
     throw SceneError(sc.source, 0, "run.output_dt", v, b);
   }
-  // The floor holds for every method: Lee's displacement level and the event method's gap
-  // roots (docs/tolerances.md) both measure the gap against tol_u.
-  if (sc.follower.kind == FollowerKind::Network) return;
+}
+
+// A displacement tolerance below what double precision holds is refused at the start (not
+// a step size underflow somewhere in the run). A mechanism whose cam contact sees the cam's
+// X_C itself (MechanismTraits::cam_lift_absolute) holds the gap q₀ − X_C, a difference of
+// two numbers of the cam's size: below 1000 ulps of the largest cam radius it is round-off
+// (the other mechanisms' gaps see the lift above the base circle). The floor holds for
+// every method: Lee's displacement level and the event method's gap roots
+// (docs/tolerances.md) both measure the gap against tol_u.
+void check_gap_round_off(const Scene& sc, const MechanicalSystem& mech) {
+  if (!mech.traits().cam_lift_absolute) return;
   const double floor = 1000.0 * std::numeric_limits<double>::epsilon() * cam_scale(sc.cam);
   if (sc.contact.tol_u < floor) {
     char b[256];
@@ -170,11 +176,12 @@ void retired_keys(const Scene& sc, std::vector<std::string>& warnings) {
 Simulator::Simulator(Scene scene) : Simulator(validated(std::move(scene))) {}
 
 Simulator::Simulator(ValidatedScene scene) : scene_(std::move(scene).scene()) {
-  check_tolerances(scene_);
+  check_run_size(scene_);
   detail::check_tolerance_scale(scene_);
   warnings_ = scene_warnings(scene_);
   retired_keys(scene_, warnings_);
   mech_ = std::make_shared<const Mechanism>(scene_);
+  check_gap_round_off(scene_, *mech_);
   extra_columns_ = detail::ContactRun::extra_columns(*mech_, scene_.run.element_forces);
   detail::check_start(scene_, *mech_, detail::StartKeys::Scene);
   add_designer_columns();
@@ -202,11 +209,12 @@ Simulator::Simulator(ValidatedScene scene, std::shared_ptr<const FollowerSystem>
     throw SceneError(scene_.source, 0, "solver.integrator", "ida",
                      "a user-defined follower runs on arkode-erk, arkode-dirk or cvode-bdf (ida needs a "
                      "linear mechanism: rigid, elastic_bar or network)");
-  check_tolerances(scene_);
+  check_run_size(scene_);
   detail::check_tolerance_scale(scene_);
   warnings_ = scene_warnings(scene_, follower.get());
   retired_keys(scene_, warnings_);
   mech_ = make_user_system(scene_, std::move(follower));
+  check_gap_round_off(scene_, *mech_);
   extra_columns_ = detail::ContactRun::extra_columns(*mech_);
   detail::check_start(scene_, *mech_, detail::StartKeys::User);
   add_designer_columns();

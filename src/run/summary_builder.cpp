@@ -67,7 +67,7 @@ Summary build_summary(const Scene& sc, const MechanicalSystem& mech, const std::
   parts.flights.finish(s);   // contract.flights, contract.flight_threshold
   parts.surge.finish(s);     // surge
   // 6. What the tolerances mean.
-  describe_tolerance(sc, s);
+  describe_tolerance(sc, mech, s);
   // 7. The contract: on the final statistics, energy numbers and flights.
   check_contract(sc, s);
   // 8. The warnings: the scene's, then the run's.
@@ -82,9 +82,9 @@ Summary build_summary(const Scene& sc, const MechanicalSystem& mech, const std::
   return s;
 }
 
-void describe_tolerance(const Scene& sc, Summary& sum) {
+void describe_tolerance(const Scene& sc, const MechanicalSystem& mech, Summary& sum) {
   const bool lee = sc.contact.model == ContactModel::Lee;
-  const bool elastic = sc.follower.kind != FollowerKind::Rigid;
+  const bool elastic = mech.n() > 1;  // modes of its own: a bar, a train, a user follower of several masses
   std::string m;
   char b[96];
   std::snprintf(b, sizeof b, "rtol %.3g, atol %.3g", sc.solver.rtol, sc.solver.atol);

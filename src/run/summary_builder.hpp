@@ -38,8 +38,9 @@ Summary build_summary(const Scene& scene, const MechanicalSystem& mech,
                       const RunParts& parts);
 
 /// Summary::tolerance_meaning and tolerance_warning: what solver.rtol and contact.tol_u
-/// bound on the scene's engine and method, in words (docs/tolerances.md).
-void describe_tolerance(const Scene& scene, Summary& summary);
+/// bound on the scene's engine and method, in words (docs/tolerances.md); `mech` (the
+/// mechanism that ran) says whether the follower has modes of its own (more than one unknown).
+void describe_tolerance(const Scene& scene, const MechanicalSystem& mech, Summary& summary);
 
 }  // namespace detail
 }  // namespace camdyn

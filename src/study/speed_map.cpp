@@ -77,16 +77,14 @@ Trial trial(const Scene& scene, double v, const std::shared_ptr<const FollowerSy
   return out;
 }
 
-// The verdict's view of the follower: the mechanism (its contacts' names, roles and
-// clearances), or null for a single follower.
+// The verdict's view of the follower: the mechanism when its contacts are named (their
+// names, roles and clearances), else null (summary_builder.cpp passes the same).
 std::shared_ptr<const MechanicalSystem> verdict_system(const Scene& scene,
                                                        const std::shared_ptr<const FollowerSystem>& follower) {
-  if (follower) {
-    auto m = make_user_system(scene, follower);
-    return m->traits().named_contacts ? m : nullptr;
-  }
-  if (scene.follower.kind == FollowerKind::Network) return std::make_shared<const Mechanism>(scene);
-  return nullptr;
+  std::shared_ptr<const MechanicalSystem> m;
+  if (follower) m = make_user_system(scene, follower);
+  else m = std::make_shared<const Mechanism>(scene);
+  return m->traits().named_contacts ? m : nullptr;
 }
 
 }  // namespace
