@@ -485,6 +485,7 @@ const RunRecord& ContactRun::run() {
     rec_.nonlin_conv_fails += e->stats().nonlin_conv_fails;
     rec_.err_test_fails += e->stats().err_test_fails;
     rec_.engine_restarts += e->stats().reinits;
+    rec_.max_bdf_order_used = std::max(rec_.max_bdf_order_used, e->stats().max_order_used);
   }
   rec_.cpu_seconds = clock.cpu();
   rec_.wall_seconds = clock.wall();

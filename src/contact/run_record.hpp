@@ -34,6 +34,7 @@ struct RunRecord {
   long lin_setups = 0, lin_analyses = 0;
   long nonlin_iters = 0, nonlin_conv_fails = 0, err_test_fails = 0;
   long engine_restarts = 0;
+  int max_bdf_order_used = 0;  ///< cvode-bdf: the largest BDF order a step used (0: none)
   // ---- the contact method's own statistics
   long contact_iterations = 0;
   LevelStats level_u, level_v, level_a;

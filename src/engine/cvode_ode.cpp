@@ -4,6 +4,7 @@
 #include <cvode/cvode.h>
 #include <cvode/cvode_proj.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "engine/ode_engine_base.hpp"
@@ -124,6 +125,9 @@ class CvodeOde final : public EngineBase {
     check(CVodeGetNumNonlinSolvConvFails(mem_.get(), &ncf), "CVodeGetNumNonlinSolvConvFails");
     check(CVodeGetNumErrTestFails(mem_.get(), &netf), "CVodeGetNumErrTestFails");
     count_newton(nni, ncf, netf);
+    int q = 0;
+    check(CVodeGetLastOrder(mem_.get(), &q), "CVodeGetLastOrder");
+    stats_.max_order_used = std::max(stats_.max_order_used, q);
   }
   static int project_cb(double t, N_Vector ycur, N_Vector corr, double, N_Vector, void* ud) {
     return guarded(ud, [&](EngineBase* self) {

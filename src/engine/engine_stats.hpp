@@ -15,6 +15,9 @@ struct EngineStats {
   long nonlin_iters = 0;       ///< Newton iterations of the implicit engines
   long nonlin_conv_fails = 0;  ///< steps retried smaller because Newton did not converge
   long err_test_fails = 0;     ///< steps retried smaller because the error test failed
+  /// cvode-bdf: the largest BDF order CVODE used for a step (CVodeGetLastOrder after each
+  /// call; 0 for the other engines and before a step).
+  int max_order_used = 0;
 };
 
 

@@ -1,7 +1,10 @@
 // camdyn — the acceptance criteria of a run (criteria.hpp).
 #include "results/criteria.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "results/run_analysis.hpp"  // is_seat
 
 namespace camdyn {
 namespace detail {
@@ -25,15 +28,24 @@ void add(Summary& s, const std::string& name, const char* key, bool is_max, doub
 
 }  // namespace
 
-void judge_criteria(const Scene& sc, Summary& s) {
+void judge_criteria(const Scene& sc, const MechanicalSystem& mech, Summary& s) {
   s.criteria.clear();
   s.criteria_pass = true;
   const CriteriaSpec& k = sc.criteria;
   // The scene's contacts are named when it lists them ([[contacts]]); otherwise its own
-  // follower has one unnamed cam contact and no stop contact (a user follower's contacts are
-  // named in s.contacts).
+  // follower has one unnamed cam contact (a user follower's contacts are named in s.contacts).
   const bool named = !sc.network.contacts.empty();
-  const char* no_seat = named ? "no seat impact in the run" : "no seat: a single follower has no stop contact";
+  // Seat landings are measured on the scene's seats (is_seat); why a seat criterion has
+  // nothing to judge: no impact on a seat, no stop contact at all, or stop contacts that
+  // are no seat (a user follower's, a stop above its node).
+  const bool seats = std::any_of(sc.network.contacts.begin(), sc.network.contacts.end(), is_seat);
+  const int stops = mech.m() - mech.cam_contacts();
+  std::string no_seat = "no seat impact in the run";
+  if (!seats && stops == 0) no_seat = "no seat: the follower has no stop contact";
+  if (!seats && stops > 0)
+    no_seat = std::string("no seat: seat landings are measured on the scene's [[contacts]] stops below a node, and ") +
+              (stops == 1 ? "the follower's stop contact is not one"
+                          : "none of the follower's " + std::to_string(stops) + " stop contacts is one");
   if (k.max_seating_velocity > 0) {
     double v = NAN, th = NAN;
     for (const SeatLanding& L : s.landings)

@@ -7,13 +7,16 @@
 
 #include "camdyn/scene.hpp"
 #include "camdyn/summary.hpp"
+#include "mechanism/mechanism.hpp"
 
 namespace camdyn {
 namespace detail {
 
 /// Fills s.criteria and s.criteria_pass from the results already in `s` (landings, contacts,
 /// Hertz stress, film, ramp velocity, lift deviation), in the key table's order.
-void judge_criteria(const Scene& scene, Summary& s);
+/// `mech` (the mechanism that ran): its stop contacts, for the words of a seat criterion
+/// with nothing to judge (CriterionResult::note).
+void judge_criteria(const Scene& scene, const MechanicalSystem& mech, Summary& s);
 
 /// The names judge_criteria gives the criteria `scene` sets, in its order, known before a run
 /// (a sweep's columns): the force margins per contact of a network, "force_margin" for a

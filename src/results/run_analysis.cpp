@@ -64,7 +64,7 @@ RunAnalysis::RunAnalysis(const Scene& sc, const std::vector<std::string>& contac
   const double top = path_.take_up_levels().empty() ? 0.0 : path_.take_up_levels().back();
   // The seats: the network's stop contacts below their node (none without [[contacts]]).
   for (const ContactPointSpec& cp : sc.network.contacts) {
-    if (cp.kind != ContactPointKind::Stop || cp.side != StopSide::Below || cp.nodes.empty()) continue;
+    if (!is_seat(cp)) continue;
     Seat s;
     s.name = cp.name;
     for (std::size_t j = 0; j < contacts.size(); ++j)

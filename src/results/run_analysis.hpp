@@ -35,6 +35,12 @@
 namespace camdyn {
 namespace detail {
 
+/// A seat: a stop contact below its node in the scene's [[contacts]]; its impacts are the
+/// seat landings and bounces (RunAnalysis, Summary::landings).
+inline bool is_seat(const ContactPointSpec& cp) {
+  return cp.kind == ContactPointKind::Stop && cp.side == StopSide::Below && !cp.nodes.empty();
+}
+
 class OscillatingGeometry;
 class DesignerColumns;
 

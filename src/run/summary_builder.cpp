@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "contact/flight_log.hpp"
+#include "contact/methods/bdf_order.hpp"
 #include "results/coil_clash.hpp"
 #include "results/criteria.hpp"
 #include "results/designer_stats.hpp"
@@ -78,13 +79,14 @@ Summary build_summary(const Scene& sc, const MechanicalSystem& mech, const std::
   s.verdict_text = verdict_one_line(s.verdict);
   collect_coil_clash(s);
   // 10. The criteria, on everything above.
-  judge_criteria(sc, s);
+  judge_criteria(sc, mech, s);
   return s;
 }
 
 void describe_tolerance(const Scene& sc, const MechanicalSystem& mech, Summary& sum) {
   const bool lee = sc.contact.model == ContactModel::Lee;
-  const bool elastic = mech.n() > 1;  // modes of its own: a bar, a train, a user follower of several masses
+  const BdfOrderLimit bdf = cvode_bdf_order(sc, mech);  // the limits the methods give CVODE
+  const bool bdf_damps = bdf.max_order <= 2;            // A-stable orders only
   std::string m;
   char b[96];
   std::snprintf(b, sizeof b, "rtol %.3g, atol %.3g", sc.solver.rtol, sc.solver.atol);
@@ -97,8 +99,12 @@ void describe_tolerance(const Scene& sc, const MechanicalSystem& mech, Summary& 
       m += " bound each step's local error (SDIRK 5-stage 4(3), embedded 3rd-order estimate, weighted RMS over the state)";
       break;
     case Integrator::CvodeBdf:
-      m += elastic ? " bound each step's local error of BDF orders 1-2 (A-stable; they damp the follower's resolved modes, so the global error grows faster than on the one-step engines)"
-                   : " bound each step's local error of BDF orders 1-5";
+      std::snprintf(b, sizeof b, " bound each step's local error of BDF orders 1-%d", bdf.max_order);
+      m += b;
+      if (bdf_damps)
+        m += " (A-stable; they damp the follower's resolved modes, so the global error grows faster than on the one-step engines)";
+      else if (bdf.stability_limit_detection)
+        m += " (CVODE's stability-limit detection lowers the order where orders 3-5 go unstable on the follower's stiff modes)";
       break;
     case Integrator::Ida:
       m += " bound each step's local error of IDA's BDF (the held contact as an index-2 DAE)";
@@ -112,7 +118,7 @@ void describe_tolerance(const Scene& sc, const MechanicalSystem& mech, Summary& 
   sum.tolerance_meaning = m;
   sum.tolerance_warning.clear();
   // The numbers in the warning: docs/tolerances.md (case B1 over 1 s at rtol 1e-6).
-  if (sc.solver.integrator == Integrator::CvodeBdf && elastic && sc.solver.rtol > 1e-9)
+  if (sc.solver.integrator == Integrator::CvodeBdf && bdf_damps)
     sum.tolerance_warning =
         "cvode-bdf on an elastic follower: BDF orders 1-2 damp the modes the step resolves, so this "
         "rtol buys less accuracy than on arkode-erk/arkode-dirk (case B1, rtol 1e-6: 1 ms impulse errors "

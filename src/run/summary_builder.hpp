@@ -38,8 +38,10 @@ Summary build_summary(const Scene& scene, const MechanicalSystem& mech,
                       const RunParts& parts);
 
 /// Summary::tolerance_meaning and tolerance_warning: what solver.rtol and contact.tol_u
-/// bound on the scene's engine and method, in words (docs/tolerances.md); `mech` (the
-/// mechanism that ran) says whether the follower has modes of its own (more than one unknown).
+/// bound on the scene's engine and method, in words (docs/tolerances.md). On cvode-bdf the
+/// words state the BDF order limits the method gives CVODE on `mech` (the mechanism that
+/// ran): cvode_bdf_order (src/contact/methods/bdf_order.hpp); the warning is given where
+/// those limits are the A-stable orders 1-2.
 void describe_tolerance(const Scene& scene, const MechanicalSystem& mech, Summary& summary);
 
 }  // namespace detail

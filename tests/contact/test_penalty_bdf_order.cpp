@@ -4,7 +4,7 @@
 // modes' stability limit (examples/stiff_bar.toml with penalty k_p 1e7, c_p 632 over 5 ms:
 // 50 008 steps at rtol 1e-3 and 72 610 at 1e-6, error-test failures 76 and 34, no Newton
 // failure — more steps at the looser tolerance). With the elastic bar's order policy
-// (BDF ≤ 2, EventMethod::bdf_order) the step follows the error test of BDF2: h ∝ rtol^(1/3),
+// (BDF ≤ 2, cvode_bdf_order) the step follows the error test of BDF2: h ∝ rtol^(1/3),
 // so 1000× tighter means ≈ 10× more steps (measured 2 839 → 28 262; over 0.05 s 29 998 at
 // rtol 1e-6, the first work–precision table's 30 061).
 #include <gtest/gtest.h>

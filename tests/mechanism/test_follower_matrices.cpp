@@ -62,8 +62,8 @@ FreeFollower free_follower(const Scene& s, bool trial) {
   sn->T = m->T();
   sys.newton = sn;
   sys.linear = true;
-  // cvode-bdf: the methods' order limits on an elastic follower (EventMethod::bdf_order,
-  // src/contact/methods/event.cpp): BDF ≤ 2, up to 5 with stability-limit detection at
+  // cvode-bdf: the methods' order limits on an elastic follower (cvode_bdf_order,
+  // src/contact/methods/bdf_order.hpp): BDF ≤ 2, up to 5 with stability-limit detection at
   // rtol ≤ 1e-8.
   if (n > 1) {
     const bool tight = s.solver.rtol <= 1e-8;

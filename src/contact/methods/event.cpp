@@ -22,12 +22,13 @@
 #include <cmath>
 
 #include "cam/joints.hpp"  // one_sided_motion
+#include "contact/methods/bdf_order.hpp"
 
 namespace camdyn {
 namespace detail {
 
 EventMethod::EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
-                           const std::atomic<bool>* stop, int max_order)
+                           const std::atomic<bool>* stop)
     : ContactRun(sc, std::move(mech), obs, stop) {
   stick_gap_tol_ = gap_tol_;  // an impact's sticking speed from the gap tolerance the roots use
   OdeSystem sys = contact_system([this](double t, const Eigen::VectorXd& y, Eigen::VectorXd& F) {
@@ -48,25 +49,16 @@ EventMethod::EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem
   } else {
     sys.jacobian = dense_jacobian(&set_);
   }
-  bdf_order(sc, *mech_, max_order, sys);
+  bdf_order(sc, *mech_, sys);
   engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
   eng_ = engines_.back().get();
   eng_->set_projection([this](double t, const double* y, double* corr) { project(t, y, corr); });
 }
 
-// On a single follower run as a one-contact Mechanism: an elastic bar is undamped and
-// stiff, its fast modes sit on the imaginary axis where BDF orders 3–5 are not A-stable,
-// so CVODE stays at BDF ≤ 2 at rtol > 1e-8; at rtol ≤ 1e-8 its steps resolve those modes
-// anyway and higher orders pay, up to 5 with CVODE's stability-limit detection (measured:
-// docs/background/method_notes.md, "BDF orders on a single elastic follower"). A rigid
-// follower has no stiff mode: `network_order`.
-void EventMethod::bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys) {
-  sys.max_order = network_order;
-  sys.stability_limit_detection = false;
-  if (!mech.traits().stiff_internal_modes) return;
-  const bool tight = sc.solver.rtol <= 1e-8;
-  sys.max_order = tight ? 5 : 2;
-  sys.stability_limit_detection = tight;
+void EventMethod::bdf_order(const Scene& sc, const MechanicalSystem& mech, OdeSystem& sys) {
+  const BdfOrderLimit o = cvode_bdf_order(sc, mech);
+  sys.max_order = o.max_order;
+  sys.stability_limit_detection = o.stability_limit_detection;
 }
 
 void EventMethod::restart() {

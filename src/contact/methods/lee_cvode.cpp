@@ -42,14 +42,10 @@ namespace {
 
 class LeeInCvode final : public EventMethod {
  public:
-  // BDF up to order 4 (measured: at CVODE's default 5 the OHC train at 40 rev/s, rtol 1e-8,
-  // met its small re-impact after a 33 µs flight with an impulse 1.9e-4 off the event
-  // method's on ERK at rtol 1e-12 — the stiff stem turns the valve's position error at the
-  // rtol level into force —, at order 4 4e-5; one revolution of OHC / OHV takes 1.6× / 1.3×
-  // the steps of order 5, order 3 3.6× / 2.4×)
+  // BDF up to order 4 without stiff internal modes (cvode_bdf_order, methods/bdf_order.hpp)
   LeeInCvode(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                   const std::atomic<bool>* stop)
-      : EventMethod(sc, std::move(mech), obs, stop, /*max_order=*/4) {}
+      : EventMethod(sc, std::move(mech), obs, stop) {}
 
  private:
   struct Row {

@@ -83,9 +83,8 @@ class PenaltyMethod final : public ContactRun {
         J.bottomLeftCorner(n_, n_) = dadq;
         J.bottomRightCorner(n_, n_) = dadv;
       };
-    // cvode-bdf's order as for the event method: an elastic bar's undamped fast modes sit
-    // on the imaginary axis, where BDF orders 3–5 are not A-stable (methods/event.cpp).
-    EventMethod::bdf_order(sc, *mech_, 0, sys);
+    // cvode-bdf's order limits (cvode_bdf_order, methods/bdf_order.hpp)
+    EventMethod::bdf_order(sc, *mech_, sys);
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
     eng_ = engines_.back().get();
   }
