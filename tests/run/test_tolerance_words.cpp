@@ -61,6 +61,7 @@ TEST(ToleranceWords, CvodeBdfWordsStateTheOrderTheRunWasGiven) {
       {"case_A.toml", "lee", "1e-6", "0.005", r6 + "4" + kLee, false},
       {"case_A.toml", "event", "1e-6", "0.005", r6 + "5", false},
       {"case_A.toml", "penalty", "1e-6", "0.005", r6 + "5", false},
+      {"case_A.toml", "holonomic", "1e-6", "0.005", r6 + "4", false},  // runs Lee in CVODE
       // an elastic bar: ≤ 2 at rtol > 1e-8 for every method; ≤ 5 with stability-limit
       // detection at rtol ≤ 1e-8
       {"case_B1.toml", "lee", "1e-6", "0.001", r6 + "2" + kDamps + kLee, true},
