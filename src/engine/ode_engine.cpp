@@ -21,6 +21,7 @@
 
 #include <arkode/arkode_arkstep.h>
 #include <arkode/arkode_erkstep.h>
+#include <sunnonlinsol/sunnonlinsol_newton.h>
 
 #include <algorithm>
 #include <cmath>
@@ -180,6 +181,14 @@ class DirkOde final : public EngineBase {
         // 0.01 is divided by the table's largest c_i/c_1.
         check(ARKStepSetNonlinCRDown(mem, kRateFloor), "ARKStepSetNonlinCRDown");
         check(ARKStepSetNonlinConvCoef(mem, 0.01 / (stage_reach(mem) * scale)), "ARKStepSetNonlinConvCoef");
+        // The elements' force the only nonlinearity: the rate after a setup is predicted
+        // (conv_test) instead of measured by a second iteration of the first stage.
+        if (newton_ && newton_->predicts_next_correction()) {
+          nls_.reset(not_null(SUNNonlinSol_Newton(y_.get(), ctx_.ctx), "SUNNonlinSol_Newton"));
+          check(ARKStepSetNonlinearSolver(mem, nls_.get()), "ARKStepSetNonlinearSolver");
+          check(SUNNonlinSolSetConvTestFn(nls_.get(), &DirkOde::conv_test, this), "SUNNonlinSolSetConvTestFn");
+          next_ = make_nvec(n_, ctx_.ctx);
+        }
       }
     } else {
       set_tolerances(mem, ARKStepSVtolerances, "ARKStepSVtolerances", ARKStepSStolerances, "ARKStepSStolerances",
@@ -197,6 +206,62 @@ class DirkOde final : public EngineBase {
     }
   }
   ~DirkOde() override { mem_.reset(); }
+  // ARKODE's divergence ratio (ARKStepSetNonlinRDiv's default).
+  static constexpr double kDivergence = 2.3;
+  // The Newton convergence test of a trial engine whose only nonlinearity is the elements'
+  // force (SparseNewton::element_force): ARKODE's own test (arkStep_NlsConvTest: rate
+  // estimate c, c = max(kRateFloor·c, ‖δ_m‖/‖δ_{m−1}‖) from the second iteration on,
+  // converged when min(c, 1)‖δ_m‖ ≤ the Newton tolerance, diverging when ‖δ_m‖ >
+  // kDivergence‖δ_{m−1}‖), except that the first iteration after a linear-system setup,
+  // where ARKODE takes c = 1, predicts the next correction δ₂ (SparseNewtonSolver::
+  // next_correction) and takes c = ‖δ₂‖/‖δ₁‖, the rate a second iteration would measure.
+  // Weighted RMS norms with ARKODE's weights.
+  static int conv_test(SUNNonlinearSolver nls, N_Vector ycor, N_Vector del, sunrealtype tol, N_Vector ewt,
+                       void* ud) {
+    auto* self = static_cast<DirkOde*>(ud);
+    try {
+      return self->newton_test(nls, ycor, del, tol, ewt);
+    } catch (const std::exception& e) {
+      self->caught(e.what());
+    } catch (...) {
+      self->caught("unknown exception");
+    }
+    return -1;
+  }
+  int newton_test(SUNNonlinearSolver nls, N_Vector, N_Vector del, double tol, N_Vector ewt) {
+    int m = 0;
+    check(SUNNonlinSolGetCurIter(nls, &m), "SUNNonlinSolGetCurIter");
+    const double* w = N_VGetArrayPointer(ewt);
+    auto norm = [&](const double* x, long len) {
+      double s = 0.0;
+      for (long i = 0; i < len; ++i) s += (x[i] * w[i]) * (x[i] * w[i]);
+      return std::sqrt(s / double(n_));
+    };
+    const double* d = N_VGetArrayPointer(del);
+    const double dn = norm(d, n_);
+    if (m > 0) {
+      rate_ = std::max(kRateFloor * rate_, dn / delp_);
+    } else if (rate_unknown_) {
+      rate_ = 1.0;
+      double t = 0.0, gamma = 0.0;
+      N_Vector zpred = nullptr, z = nullptr, Fi = nullptr, sdata = nullptr;
+      void* user = nullptr;
+      check(ARKStepGetNonlinearSystemData(mem_.get(), &t, &zpred, &z, &Fi, &gamma, &sdata, &user),
+            "ARKStepGetNonlinearSystemData");
+      // the residual was evaluated at z; the setup's γ (a later stage with another γ: ARKODE's rate)
+      if (gamma == newton_->gamma() && dn > 0.0) {
+        double* x = N_VGetArrayPointer(next_.get());
+        newton_->next_correction(t, N_VGetArrayPointer(z), d, x);
+        const double next = norm(x, n_);
+        if (std::isfinite(next)) rate_ = next / dn;
+      }
+      rate_unknown_ = false;
+    }
+    if (std::min(rate_, 1.0) * dn <= tol) return SUN_NLS_SUCCESS;
+    if (m >= 1 && dn > kDivergence * delp_) return SUN_NLS_CONV_RECVR;
+    delp_ = dn;
+    return SUN_NLS_CONTINUE;
+  }
   // The smallest contraction-rate estimate ARKODE may keep (ARKStepSetNonlinCRDown: the
   // estimate after an iteration is max(kRateFloor · the previous one, the measured ratio)).
   static constexpr double kRateFloor = 1e-12;
@@ -301,6 +366,9 @@ class DirkOde final : public EngineBase {
  private:
   Mat A_;
   LS ls_;
+  NLS nls_;      // the Newton solver with conv_test (null: ARKODE's own)
+  NVec next_;    // conv_test's predicted next correction
+  double rate_ = 1.0, delp_ = 0.0;  // conv_test's rate estimate and last correction norm
   std::unique_ptr<void, ArkDel> mem_;
 };
 

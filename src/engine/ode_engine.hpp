@@ -63,6 +63,14 @@ struct SparseNewton {
   const SparseMatrix* Ke_pattern = nullptr;
   const SparseMatrix* Ce_pattern = nullptr;
   std::function<void(double t, const double* y, SparseMatrix& Ke, SparseMatrix& Ce)> element_tangent;
+  /// Optional, with element_tangent: the elements' generalised force r_e(t, y) (n entries,
+  /// added to r, which the caller zeroes), when it is the only part of f that the Newton
+  /// matrix does not hold exactly (f = [v; M⁻¹(f₀(t) − Kq − Cv + r_e + Tᵀ F)] with F a
+  /// function of t alone or held at the acceleration level; no contact_derivatives, rows or
+  /// states). An implicit trial engine then predicts a Newton iteration's next correction
+  /// from it (SparseNewtonSolver::next_correction) instead of taking that iteration to
+  /// measure the contraction rate.
+  std::function<void(double t, const double* y, double* r)> element_force;
   /// The elements' internal states (0: none): y = [q; v; s], ṡ = g(t, q, v, s), and r depends
   /// on s. J gains the blocks R_s = ∂r/∂s (in the velocity rows, through M⁻¹), G_q = ∂g/∂q,
   /// G_v = ∂g/∂q̇, G_s = ∂g/∂s; s is eliminated with H = (I − γG_s)⁻¹ (states × states):

@@ -27,6 +27,7 @@ namespace ode_impl {
 
 using detail::ContextHolder;
 using detail::LS;
+using detail::NLS;
 using detail::Mat;
 using detail::not_null;
 using detail::kTrialMaxSteps;
@@ -153,6 +154,7 @@ class EngineBase : public OdeEngine {
   static int linsys(double t, N_Vector y, sunbooleantype* jcur, double gamma, void* ud) {
     return guarded(ud, [&](EngineBase* self) {
       self->newton_->prepare(t, N_VGetArrayPointer(y), gamma);
+      self->rate_unknown_ = true;
       *jcur = SUNTRUE;
     });
   }
@@ -251,6 +253,7 @@ class EngineBase : public OdeEngine {
   Eigen::VectorXd corr_;
   std::unique_ptr<detail::SparseNewtonSolver> newton_;
   std::unique_ptr<detail::CustomLinearSolver> cls_;
+  bool rate_unknown_ = true;  // no Newton contraction rate measured since the last linear-system setup
   std::string callback_error_;
   std::string sundials_message_;  ///< the last message of SUNDIALS' error handler
   Counter steps_, setups_, nni_, ncf_, netf_;

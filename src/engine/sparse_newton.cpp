@@ -168,6 +168,56 @@ void SparseNewtonSolver::setup() {
   Z_.resize(0, 0);
 }
 
+void SparseNewtonSolver::border_held(const double* bv) {
+  const std::vector<int>* held = sys_.held;
+  if (!held || held->empty()) return;
+  const int k = int(held->size());
+  if (Z_.cols() != k || held_f_ != *held) {  // Z = S⁻¹T_Aᵀ, G = T_A Z
+    held_f_ = *held;
+    Z_.resize(n_, k);
+    Eigen::MatrixXd G(k, k);
+    for (int i = 0; i < k; ++i) {
+      Z_.col(i) = T_f_.row((*held)[std::size_t(i)]).transpose();
+      lu_.solve(Z_.col(i).data());
+    }
+    for (int i = 0; i < k; ++i) G.row(i) = T_f_.row((*held)[std::size_t(i)]) * Z_;
+    G_.compute(G);
+  }
+  Eigen::VectorXd& r = r_;
+  r.resize(k);
+  for (int i = 0; i < k; ++i) {
+    const auto t = T_f_.row((*held)[std::size_t(i)]);
+    r[i] = (bv ? t.dot(Eigen::Map<const Eigen::VectorXd>(bv, n_)) : 0.0) - t.dot(rhs_);
+  }
+  if (k == 1)  // G⁻¹r = r/G (what the 1 × 1 LU gives), without its temporaries
+    rhs_.noalias() += Z_.col(0) * (r[0] / G_.matrixLU()(0, 0));
+  else
+    rhs_.noalias() += Z_ * G_.solve(r);
+}
+
+bool SparseNewtonSolver::predicts_next_correction() const {
+  return sys_.element_force && sys_.element_tangent && !sys_.contact_derivatives && !sys_.rows && ns_ == 0;
+}
+
+void SparseNewtonSolver::next_correction(double t, const double* z0, const double* dz, double* x) {
+  const double g = gamma_f_;
+  z1_ = Eigen::Map<const Eigen::VectorXd>(z0, 2 * n_) + Eigen::Map<const Eigen::VectorXd>(dz, 2 * n_);
+  Eigen::Map<const Eigen::VectorXd> dq(dz, n_), dv(dz + n_, n_);
+  re_.setZero(n_);
+  sys_.element_force(t, z1_.data(), re_.data());
+  rhs_.setZero(n_);
+  sys_.element_force(t, z0, rhs_.data());
+  re_ -= rhs_;
+  re_.noalias() += Ke_f_ * dq;
+  if (Ce_f_.nonZeros()) re_.noalias() += Ce_f_ * dv;
+  // S x_v = γ m + T_Aᵀμ with T_A x_v = 0 (the velocity rows of [0; γ P M⁻¹ m]), x_u = γ x_v
+  rhs_ = g * re_;
+  lu_.solve(rhs_.data());
+  border_held(nullptr);
+  Eigen::Map<Eigen::VectorXd>(x + n_, n_) = rhs_;
+  Eigen::Map<Eigen::VectorXd>(x, n_) = g * rhs_;
+}
+
 void SparseNewtonSolver::solve(double* b) {
   const double g = gamma_f_;
   Eigen::Map<Eigen::VectorXd> U(b, n_), V(b + n_, n_);
@@ -185,31 +235,7 @@ void SparseNewtonSolver::solve(double* b) {
     for (int j = 0; j < m_; ++j)
       if (dFdg_f_[j] != 0.0) rhs_.noalias() += (g * dFdg_f_[j] * T_f_.row(j).dot(U)) * T_f_.row(j).transpose();
   lu_.solve(rhs_.data());
-  const std::vector<int>* held = sys_.held;
-  if (held && !held->empty()) {
-    const int k = int(held->size());
-    if (Z_.cols() != k || held_f_ != *held) {  // Z = S⁻¹T_Aᵀ, G = T_A Z
-      held_f_ = *held;
-      Z_.resize(n_, k);
-      Eigen::MatrixXd G(k, k);
-      for (int i = 0; i < k; ++i) {
-        Z_.col(i) = T_f_.row((*held)[std::size_t(i)]).transpose();
-        lu_.solve(Z_.col(i).data());
-      }
-      for (int i = 0; i < k; ++i) G.row(i) = T_f_.row((*held)[std::size_t(i)]) * Z_;
-      G_.compute(G);
-    }
-    Eigen::VectorXd& r = r_;
-    r.resize(k);
-    for (int i = 0; i < k; ++i) {
-      const auto t = T_f_.row((*held)[std::size_t(i)]);
-      r[i] = t.dot(V) - t.dot(rhs_);
-    }
-    if (k == 1)  // G⁻¹r = r/G (what the 1 × 1 LU gives), without its temporaries
-      rhs_.noalias() += Z_.col(0) * (r[0] / G_.matrixLU()(0, 0));
-    else
-      rhs_.noalias() += Z_ * G_.solve(r);
-  }
+  border_held(b + n_);
   V = rhs_;
   U += g * V;
   if (ns_) {  // x_s = H (b_s + γ(G_q x_u + G_v x_v))

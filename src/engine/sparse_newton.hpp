@@ -27,6 +27,21 @@ class SparseNewtonSolver {
   void setup();
   /// x = (I − γJ)⁻¹ b in place (length 2n + states).
   void solve(double* b);
+  /// True if next_correction() applies: SparseNewton::element_force is set and f has no
+  /// other dependence on y beyond the factored matrix (no contact derivatives, state-dependent
+  /// rows or internal states).
+  bool predicts_next_correction() const;
+  /// γ of the factored matrix.
+  double gamma() const { return gamma_f_; }
+  /// The Newton correction that follows the correction dz from the iterate z0 (the residual
+  /// evaluated at z0, 2n entries each) of a stage equation z − γf(t, z) = data, with the
+  /// factored matrix's γ and J: x = (I − γJ)⁻¹ γ [0; P M⁻¹ m] (x: 2n entries), where
+  /// m = r_e(z0 + dz) − r_e(z0) + K_e dz_q + C_e dz_v is the elements' force change that J
+  /// (its tangent K_e, C_e) does not carry and P the projection of the held contacts. This is
+  /// the next Newton iteration's correction up to rounding, at two element-force evaluations
+  /// and one solve instead of a right-hand side, a solve and the iteration's vector updates.
+  /// @pre predicts_next_correction(), setup() called.
+  void next_correction(double t, const double* z0, const double* dz, double* x);
 
  private:
   const SparseNewton& sys_;
@@ -57,6 +72,9 @@ class SparseNewtonSolver {
   double gamma_ = 0, gamma_f_ = -1;
   bool factored_ = false;
   Eigen::VectorXd rhs_, r_;
+  Eigen::VectorXd z1_, re_;  // next_correction's iterate and force change
+  // rhs_ = S⁻¹(…) bordered so that T_A x_v = T_A b_v (bv: b's velocity part; null: zero)
+  void border_held(const double* bv);
   // bordering for the held set
   std::vector<int> held_f_;
   Eigen::MatrixXd Z_;

@@ -12,6 +12,7 @@
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
+#include <sundials/sundials_nonlinearsolver.h>
 
 #include <algorithm>
 #include <cfloat>
@@ -68,6 +69,10 @@ struct LSDel {
 using NVec = std::unique_ptr<_generic_N_Vector, NVecDel>;
 using Mat = std::unique_ptr<_generic_SUNMatrix, MatDel>;
 using LS = std::unique_ptr<_generic_SUNLinearSolver, LSDel>;
+struct NLSDel {
+  void operator()(_generic_SUNNonlinearSolver* s) const { SUNNonlinSolFree(s); }
+};
+using NLS = std::unique_ptr<_generic_SUNNonlinearSolver, NLSDel>;
 
 /// Owners of the integrators' memory blocks (std::unique_ptr<void, …>).
 struct ArkDel {

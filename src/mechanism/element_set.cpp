@@ -37,6 +37,13 @@ void ElementSet::add(std::unique_ptr<const Element> element, std::vector<Row> ro
   ns_ += element->states();
   p.element = std::move(element);
   p.rows = std::move(rows);
+  bool direct = true;
+  for (const Row& r : p.rows) direct = direct && r.size() <= 1;
+  if (direct)
+    for (const Row& r : p.rows) {
+      p.unknown.push_back(r.empty() ? -1 : r[0].first);
+      p.coefficient.push_back(r.empty() ? 0.0 : r[0].second);
+    }
   placed_.push_back(std::move(p));
 }
 
@@ -127,6 +134,27 @@ ElementState state_into(const ElementSet::Placed& p, double t, const double* q, 
 // Elements of up to this many nodes keep x, ẋ and f on the stack in the calls made at every
 // right-hand side (add_force, dissipated_power); larger ones use the per-thread scratch.
 constexpr int kStackNodes = 8;
+// state_into for an element whose nodes are each on at most one unknown (Placed::unknown).
+inline ElementState direct_state(const ElementSet::Placed& p, double t, const double* q, const double* v,
+                                 const double* st, double* x, double* xd) {
+  const int k = p.element->nodes();
+  const int* u = p.unknown.data();
+  const double* c = p.coefficient.data();
+  for (int i = 0; i < k; ++i) {
+    const bool on = u[i] >= 0;
+    x[i] = on ? c[i] * q[u[i]] : 0.0;
+    xd[i] = on && v ? c[i] * v[u[i]] : 0.0;
+  }
+  ElementState e;
+  e.t = t;
+  e.x = x;
+  e.xd = xd;
+  if (p.element->states() > 0) {
+    if (!st) throw std::logic_error("ElementSet: element '" + p.element->name() + "' needs its internal states");
+    e.s = st + p.state_offset;
+  }
+  return e;
+}
 }  // namespace
 
 ElementState ElementSet::gather(const Placed& p, double t, const double* q, const double* v,
@@ -139,6 +167,12 @@ void ElementSet::add_force(double t, const double* q, const double* v, double* r
   double x[kStackNodes], xd[kStackNodes], fl[kStackNodes];
   for (const Placed& p : placed_) {
     const int k = p.element->nodes();
+    if (!p.unknown.empty() && k <= kStackNodes) {
+      p.element->force(direct_state(p, t, q, v, st, x, xd), fl);
+      for (int i = 0; i < k; ++i)
+        if (p.unknown[std::size_t(i)] >= 0) r[p.unknown[std::size_t(i)]] += p.coefficient[std::size_t(i)] * fl[i];
+      continue;
+    }
     double* f = fl;
     ElementState e;
     if (k <= kStackNodes) {
@@ -234,9 +268,12 @@ double ElementSet::stored_energy(const double* q, const double* st) const {
 double ElementSet::dissipated_power(double t, const double* q, const double* v, const double* st) const {
   double P = 0.0;
   double x[kStackNodes], xd[kStackNodes];
-  for (const Placed& p : placed_)  // also without ẋ: an external force's work
-    P += p.element->dissipated_power(p.element->nodes() <= kStackNodes ? state_into(p, t, q, v, st, x, xd)
-                                                                        : gather(p, t, q, v, st));
+  for (const Placed& p : placed_) {  // also without ẋ: an external force's work
+    const bool stack = p.element->nodes() <= kStackNodes;
+    P += p.element->dissipated_power(stack && !p.unknown.empty() ? direct_state(p, t, q, v, st, x, xd)
+                                     : stack                     ? state_into(p, t, q, v, st, x, xd)
+                                                                 : gather(p, t, q, v, st));
+  }
   return P;
 }
 

@@ -33,6 +33,10 @@ class ElementSet {
     std::vector<long> pos_k;  ///< per (j, i, entry of row j, entry of row i) in tangent(): K_e position
     std::vector<long> pos_c;  ///< the same in C_e (empty if the element does not damp)
     int state_offset = 0;     ///< its first internal state in s
+    /// Every node on at most one unknown: x_i = coefficient[i] · q[unknown[i]] (unknown −1:
+    /// ground, x_i = 0), the right-hand sides' path; empty otherwise.
+    std::vector<int> unknown;
+    std::vector<double> coefficient;
   };
 
   /// @pre rows has element->nodes() entries.

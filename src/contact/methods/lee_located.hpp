@@ -66,17 +66,22 @@ class LeeLocated final : public ContactRun {
       });
     }
     if (!newton) sys.jacobian = dense_jacobian(nullptr);
+    // A network with nonlinear elements but no internal states and no camshaft: its held
+    // steps correct the force shape by the responses of its linear part (solve_step),
+    // integrated on an engine of their own that knows the part is linear (DIRK: one
+    // Newton iteration per stage on its exact matrix). The force shape is a function of t:
+    // the elements' force is the trial system's only nonlinearity.
+    linear_part_ = newton && !mk_.linear() && ns_ == 0 && !mk_.camshaft();
+    if (linear_part_) {
+      newton->element_force = [el = &dynamic_cast<const Mechanism&>(mk_).elements(), n = n_](
+                                  double t, const double* y, double* r) { el->add_force(t, y, y + n, r); };
+    }
     sys.newton = newton;
     sys.linear = mk_.linear() && (sys.jacobian || sys.newton);
     if (sc.solver.integrator == Integrator::CvodeBdf)
       throw std::logic_error("network Lee on cvode-bdf runs in methods/lee_cvode.cpp");
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, true));
     eng_ = resp_eng_ = engines_.back().get();
-    // A network with nonlinear elements but no internal states and no camshaft: its held
-    // steps correct the force shape by the responses of its linear part (solve_step),
-    // integrated on an engine of their own that knows the part is linear (DIRK: one
-    // Newton iteration per stage on its exact matrix).
-    linear_part_ = newton && !mk_.linear() && ns_ == 0 && !mk_.camshaft();
     if (linear_part_) {
       const auto& mech = dynamic_cast<const Mechanism&>(mk_);
       part_M_.compute(mech.M());
@@ -84,6 +89,7 @@ class LeeLocated final : public ContactRun {
       if (mech.elements().damps()) part_Ce_ = mech.elements().damping_pattern();
       OdeSystem lin = sys;
       auto part = std::make_shared<SparseNewton>(*newton);
+      part->element_force = nullptr;
       part->element_tangent = [this](double, const double*, SparseMatrix& Ke, SparseMatrix& Ce) {
         std::copy(part_Ke_.valuePtr(), part_Ke_.valuePtr() + part_Ke_.nonZeros(), Ke.valuePtr());
         if (Ce.size()) std::copy(part_Ce_.valuePtr(), part_Ce_.valuePtr() + part_Ce_.nonZeros(), Ce.valuePtr());

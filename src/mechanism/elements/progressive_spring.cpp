@@ -48,6 +48,10 @@ MonotoneCurve::MonotoneCurve(std::vector<double> x, std::vector<double> y) : x_(
     c[2] = (3 * d[k] - 2 * m_[k] - m_[k + 1]) / h[k];
     c[3] = (m_[k] + m_[k + 1] - 2 * d[k]) / (h[k] * h[k]);
   }
+  const double spacing = (x_[n - 1] - x_[0]) / double(n - 1);
+  uniform_ = true;
+  for (std::size_t k = 0; k + 1 < n; ++k) uniform_ = uniform_ && std::abs(h[k] - spacing) <= 1e-9 * spacing;
+  inv_spacing_ = 1.0 / spacing;
   // ∫ of the Hermite cubic over a whole segment: h(y0 + y1)/2 + h²(m0 − m1)/12
   area_.assign(n, 0.0);
   for (std::size_t k = 0; k + 1 < n; ++k)
@@ -56,8 +60,14 @@ MonotoneCurve::MonotoneCurve(std::vector<double> x, std::vector<double> y) : x_(
 
 std::size_t MonotoneCurve::segment(double x) const {
   std::size_t lo = 0, hi = x_.size() - 1;  // x_lo ≤ x < x_hi
-  if (x <= x_[1]) return 0;
+  if (!(x > x_[1])) return 0;  // also a NaN
   if (x >= x_[hi - 1]) return hi - 1;
+  if (uniform_) {  // x_1 < x < x_{n−2}: the guess is off by round-off at most
+    std::size_t k = std::size_t((x - x_[0]) * inv_spacing_);
+    while (x < x_[k]) --k;
+    while (x >= x_[k + 1]) ++k;
+    return k;
+  }
   while (hi - lo > 1) {
     const std::size_t mid = (lo + hi) / 2;
     (x < x_[mid] ? hi : lo) = mid;

@@ -33,6 +33,10 @@ class MonotoneCurve {
   std::vector<double> x_, y_, m_, area_;  // knots, values, slopes, ∫ from x_0 to x_k
   // per segment k, the cubic in u = x − x_k: y = c₀ + c₁u + c₂u² + c₃u³ (4k … 4k + 3)
   std::vector<double> poly_;
+  // equally spaced knots (to round-off): segment() guesses k = ⌊(x − x_0)/spacing⌋ and
+  // corrects it by the knots, without a bisection
+  bool uniform_ = false;
+  double inv_spacing_ = 0.0;
 };
 
 class ProgressiveSpring final : public Element {
