@@ -52,6 +52,10 @@ struct BenchOptions {
   double quick_elastic_t_end = 0.01;
   /// Full mode: t_end of elastic scenes when t_end is not given (at most the scene's own).
   double full_elastic_t_end = 0.05;
+  /// Full mode: t_end of an elastic bar on a fine mesh (element crossing time h_e/c under
+  /// 2 µs: the stiff bar, B1 on 1000 elements), whose every run costs 10–40× a B1 run per
+  /// simulated second (at most the scene's own; docs/bench/measured_tables.md "The full mode").
+  double full_fine_bar_t_end = 0.02;
   /// rtol (= atol) of an elastic bar's reference, the event method on arkode-erk; its check
   /// row runs at 10× both. In (0, 1e-8].
   double elastic_reference_rtol = 1e-10;

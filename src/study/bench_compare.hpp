@@ -67,6 +67,9 @@ class GridObserver : public Observer {
   std::clock_t c0_ = std::clock();
 };
 
+/// The headlines' equal accuracy: err_force ≤ this (bench_tables.cpp).
+constexpr double kHeadlineTarget = 1e-3;
+
 struct Run {
   Summary sum;
   std::vector<HistoryRow> rows;

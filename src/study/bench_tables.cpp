@@ -15,8 +15,6 @@ namespace bench_detail {
 
 namespace {
 
-constexpr double kHeadlineTarget = 1e-3;
-
 /// Cheapest finished run of `method` in `scene` (on `engine`, if not empty) with
 /// err_force ≤ target; null if none.
 const BenchRow* cheapest(const std::vector<BenchRow>& rows, const std::string& scene,
