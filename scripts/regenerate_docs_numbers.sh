@@ -119,7 +119,7 @@ mkdir -p "$OUT"
 cd "$ROOT"
 if [ -n "$CHECK" ]; then
   [ -f "$OUT/wp_$CHECK/work_precision.md" ] || { echo "regenerate_docs_numbers.sh: --check-repeat: no $OUT/wp_$CHECK/ to compare with" >&2; exit 2; }
-  if grep -q "Mode: quick" "$OUT/wp_$CHECK/work_precision.md"; then ARGS=(--quick --repeats 1); else ARGS=(--repeats 3); fi
+  if grep -q "Mode: quick" "$OUT/wp_$CHECK/work_precision.md"; then ARGS=(--quick --repeats 1); else ARGS=(--repeats 1 --budget 10); fi
   TMP="$(mktemp -d)"
   trap 'rm -rf "$TMP"' EXIT
   echo "== check: $CAMDYN bench $CHECK ${ARGS[*]} against $OUT/wp_$CHECK (made at: $(head -1 "$OUT/wp_$CHECK/work_precision.md"))" >&2

@@ -26,7 +26,8 @@ struct BenchOptions {
   /// Quick mode: Lee at two tolerances (a rigid follower on arkode-erk, others on
   /// arkode-dirk and cvode-bdf), penalty critically damped, both laws, at three k_p and one
   /// rtol (1e-8 rigid, 1e-6 otherwise) on cvode-bdf, event at two rtol (1e-4 and 1e-6;
-  /// elastic bars 1e-5) on the scene's engine; elastic-bar scenes cut to
+  /// elastic bars 1e-5) on the scene's engine, holonomic at the scene's rtol (elastic bars:
+  /// at least 1e-4); elastic-bar scenes cut to
   /// quick_elastic_t_end (unless t_end is given). In both modes the reference of an elastic
   /// bar is the event method on arkode-erk (elastic_reference_rtol), and the full sweep
   /// cuts elastic bars to full_elastic_t_end.
