@@ -23,17 +23,6 @@ namespace {
 
 using namespace bench_detail;
 
-/// An elastic bar whose element crossing time h_e / c (c = √(E/ρ), ρ = m / (A L)) is below
-/// 2 µs: the stability bound of an explicit step (the reference's, arkode-erk's) and every
-/// engine's cost per simulated second scale with it (the stiff bar 0.63 µs, B1 on 1000
-/// elements 0.89 µs, B1 and B2 22 µs).
-bool fine_mesh_bar(const FollowerSpec& f) {
-  if (!(f.elements > 0 && f.mass > 0 && f.area > 0 && f.length > 0 && f.youngs_modulus > 0))
-    return false;
-  const double rho = f.mass / (f.area * f.length);
-  return (f.length / f.elements) / std::sqrt(f.youngs_modulus / rho) < 2e-6;
-}
-
 class Bench {
  public:
   explicit Bench(const BenchOptions& o) : o_(o) {}
@@ -117,32 +106,7 @@ class Bench {
     return !first.over_budget;
   }
 
-  /// The rule of the reference: its checked error (the reference-check row's distance to
-  /// it) at least 10× below a row's error. Each finished row of `label` whose err_force,
-  /// err_force_pointwise or impulse_err is not gets a note naming the column and the
-  /// factor (that error is not resolved by the reference). A check at round-off (≤ 1e-12)
-  /// resolves every error.
-  void flag_unresolved(const std::string& label) {
-    const BenchRow* chk = nullptr;
-    for (const auto& r : rows_)
-      if (r.scene == label && r.method == "reference-check" && r.finished) chk = &r;
-    if (!chk) return;
-    const BenchRow c = *chk;
-    for (auto& r : rows_) {
-      if (r.scene != label || r.method == "reference-check" || !r.finished) continue;
-      std::string cols;
-      auto test = [&](const char* name, double e, double ce) {
-        if (std::isfinite(e) && std::isfinite(ce) && ce > 1e-12 && e < 10 * ce)
-          cols += std::string(cols.empty() ? "" : ", ") + name + " " + g3(e / ce) + "×";
-      };
-      test("err_F", r.err_force, c.err_force);
-      test("err_F_pw", r.err_force_pointwise, c.err_force_pointwise);
-      test("impulse_err", r.impulse_err, c.impulse_err);
-      if (!cols.empty())
-        r.note += (r.note.empty() ? "" : "; ") +
-                  std::string("within 10× of the reference's checked error: ") + cols;
-    }
-  }
+  void flag_unresolved(const std::string& label) { bench_detail::flag_unresolved(rows_, label); }
 
   void skip(BenchRow row, const std::string& why) {
     row.finished = false;
