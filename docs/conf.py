@@ -26,7 +26,8 @@ myst_heading_anchors = 3
 
 # Data directories with Markdown that are outputs of tools, not pages.
 # Generated fragments (scripts/docs.sh) are included by their pages, not pages themselves.
-exclude_patterns = ["_build", "bench/tol_sweep/*/*.md", "**/README.md", "_generated", "reference/generated"]
+exclude_patterns = ["_build", "bench/tol_sweep/*/*.md", "**/README.md", "_generated", "reference/generated",
+                    "bench/generated_full/**"]
 
 breathe_projects = {"camdyn": os.environ.get("CAMDYN_DOXYGEN_XML", os.path.join(BUILD, "docs", "doxygen", "xml"))}
 breathe_default_project = "camdyn"

@@ -45,6 +45,10 @@
 #   --only PARTS    only these parts (comma-separated: wp, tol, scale, cam, factors, one, valve,
 #             newton, peers;
 #             wp with --cases); their rows are appended to STAMP.md under "partial run"
+#   --jobs N  run up to N parts at once (default 1; the work-precision cases, the tolerance
+#             sweeps, scale, cam, valve trains, Newton statistics and peers are independent;
+#             the costliest cases start first). Each part's CPU column is its own processes'
+#             whatever N; its wall column then includes waiting for the other parts
 #   --check-repeat CASE   only check: rerun `camdyn bench CASE` with the mode of the committed
 #             wp_CASE/ into a temporary directory and compare the rows with
 #             scripts/bench_rows_equal.py (timings aside); exit 1 when a row differs
@@ -62,6 +66,7 @@ ONLY=""
 REPEATS=""
 CHECK=""
 CASES=""
+JOBS=1
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) MODE=quick ;;
@@ -73,9 +78,10 @@ while [ $# -gt 0 ]; do
     --no-tol-sweep) TOL=0 ;;
     --no-peers) PEERS=0 ;;
     --only) ONLY="$2"; shift ;;
+    --jobs) JOBS="$2"; shift ;;
     --check-repeat) CHECK="$2"; shift ;;
     -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d'; exit 0 ;;
-    *) echo "regenerate_docs_numbers.sh: unknown argument '$1' (allowed: --quick, --repeats N, --build DIR, --cases LIST, --quote, --quote-only, --no-tol-sweep, --no-peers, --only PARTS, --check-repeat CASE)" >&2; exit 2 ;;
+    *) echo "regenerate_docs_numbers.sh: unknown argument '$1' (allowed: --quick, --repeats N, --build DIR, --cases LIST, --quote, --quote-only, --no-tol-sweep, --no-peers, --only PARTS, --jobs N, --check-repeat CASE)" >&2; exit 2 ;;
   esac
   shift
 done
@@ -98,19 +104,22 @@ for part in ${ONLY//,/ }; do
     *) echo "regenerate_docs_numbers.sh: --only: unknown part '$part' (allowed: wp, tol, scale, cam, factors, one, valve, newton, peers)" >&2; exit 2 ;;
   esac
 done
+[[ "$JOBS" =~ ^[1-9][0-9]*$ ]] || { echo "regenerate_docs_numbers.sh: --jobs: '$JOBS' is not a whole number ≥ 1" >&2; exit 2; }
 if [ "$QUOTE" = 2 ]; then quote; exit 0; fi
 CAMDYN="$BUILD/camdyn"
 [ -x "$CAMDYN" ] || { echo "regenerate_docs_numbers.sh: $CAMDYN not found (build camdyn_cli first)" >&2; exit 2; }
 if [ -z "$CASES" ]; then
   CASES="A A7 B1 B2 stiff ohc ohv"
   [ "$MODE" = full ] && CASES="$CASES B1_1000"
+  # with --jobs, the costliest cases first (they overlap the rest)
+  [ "$JOBS" -gt 1 ] && CASES="$(for c in B1_1000 stiff $CASES; do echo "$c"; done | awk '!seen[$0]++' | grep -xF -f <(tr ' ' '\n' <<< "$CASES") | tr '\n' ' ')"
 fi
 OUT="$ROOT/docs/bench/generated"
 mkdir -p "$OUT"
 cd "$ROOT"
 if [ -n "$CHECK" ]; then
   [ -f "$OUT/wp_$CHECK/work_precision.md" ] || { echo "regenerate_docs_numbers.sh: --check-repeat: no $OUT/wp_$CHECK/ to compare with" >&2; exit 2; }
-  if grep -q "Mode: quick" "$OUT/wp_$CHECK/work_precision.md"; then ARGS=(--quick --repeats 1); else ARGS=(--repeats 3); fi
+  if grep -q "Mode: quick" "$OUT/wp_$CHECK/work_precision.md"; then ARGS=(--quick --repeats 1); else ARGS=(--repeats 1 --budget 10); fi
   TMP="$(mktemp -d)"
   trap 'rm -rf "$TMP"' EXIT
   echo "== check: $CAMDYN bench $CHECK ${ARGS[*]} against $OUT/wp_$CHECK (made at: $(head -1 "$OUT/wp_$CHECK/work_precision.md"))" >&2
@@ -134,6 +143,16 @@ LOAD0="$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo '?')"
   echo "| part | command | wall s | CPU s |"
   echo "|---|---|---|---|"
 } > "$LOG.tmp"
+PARTS="$LOG.parts"  # one file per part (its STAMP rows; .cpu: its CPU seconds), gathered in order
+rm -rf "$PARTS"
+mkdir -p "$PARTS"
+SEQ=0
+FRAG="$PARTS/000"
+PIDS=()
+# the load average every 30 s while the script runs (its range goes to STAMP.md)
+( while :; do cut -d' ' -f1 /proc/loadavg 2>/dev/null >> "$PARTS/load"; sleep 30; done ) &
+LOAD_PID=$!
+trap 'kill "$LOAD_PID" 2>/dev/null || true' EXIT
 
 # The figures need matplotlib (Debian's python3-matplotlib): the first python3 that has it.
 PLOT_PY=python3
@@ -156,6 +175,39 @@ stamp_md() {  # prepend the stamp to a Markdown file (after its front matter, if
   mv "$f.tmp" "$f"
 }
 
+logline() {  # logline TEXT: a STAMP row of the current part
+  echo "$1" >> "$FRAG"
+}
+
+spawn() {  # spawn FN ARGS...: run a part (its rows in its own file), in the background with --jobs
+  SEQ=$(( SEQ + 1 ))
+  FRAG="$PARTS/$(printf %03d "$SEQ")"
+  if [ "$JOBS" -gt 1 ]; then
+    while [ "$(running)" -ge "$JOBS" ]; do sleep 2; done
+    ( "$@" ) &
+    PIDS+=($!)
+  else
+    "$@"
+  fi
+}
+
+running() {  # how many spawned parts still run
+  local n=0 p
+  for p in "${PIDS[@]}"; do kill -0 "$p" 2>/dev/null && n=$(( n + 1 )); done
+  echo "$n"
+}
+
+gather() {  # wait for every part, then append their rows in order and add up their CPU
+  local f p
+  for p in "${PIDS[@]}"; do wait "$p" || true; done
+  PIDS=()
+  for f in "$PARTS"/[0-9][0-9][0-9]; do
+    [ -f "$f" ] && cat "$f" >> "$LOG.tmp"
+    [ -f "$f.cpu" ] && CPU_TOTAL=$(( CPU_TOTAL + $(awk '{s += $1} END {print s + 0}' "$f.cpu") ))
+  done
+  rm -f "$PARTS"/[0-9][0-9][0-9] "$PARTS"/[0-9][0-9][0-9].cpu
+}
+
 run_part() {  # run_part NAME CMD...: time it (wall, and CPU of the part's processes), log it
   local name="$1"; shift
   local t=$(date +%s) tf rc=0 cpu="–"
@@ -164,15 +216,15 @@ run_part() {  # run_part NAME CMD...: time it (wall, and CPU of the part's proce
   if [ -x /usr/bin/time ]; then
     /usr/bin/time -f "%U %S" -o "$tf" "$@" || rc=$?
     cpu="$(awk 'END{printf "%.0f", $1 + $2}' "$tf" 2>/dev/null || echo –)"
-    [[ "$cpu" =~ ^[0-9]+$ ]] && CPU_TOTAL=$(( CPU_TOTAL + cpu ))
+    [[ "$cpu" =~ ^[0-9]+$ ]] && echo "$cpu" >> "$FRAG.cpu" 
   else
     "$@" || rc=$?
   fi
   rm -f "$tf"
   if [ "$rc" = 0 ]; then
-    echo "| $name | \`$*\` | $(( $(date +%s) - t )) | $cpu |" >> "$LOG.tmp"
+    logline "| $name | \`$*\` | $(( $(date +%s) - t )) | $cpu |"
   else
-    echo "| $name | \`$*\` | FAILED (exit $rc) after $(( $(date +%s) - t )) s | $cpu |" >> "$LOG.tmp"
+    logline "| $name | \`$*\` | FAILED (exit $rc) after $(( $(date +%s) - t )) s | $cpu |"
   fi
 }
 
@@ -181,11 +233,12 @@ run_part() {  # run_part NAME CMD...: time it (wall, and CPU of the part's proce
 # it is stopped and the same setting's tighter tolerances are skipped), elastic bars over 0.05 s
 if [ "$MODE" = quick ]; then BENCH_ARGS=(--quick --repeats "${REPEATS:-1}"); else BENCH_ARGS=(--repeats "${REPEATS:-1}" --budget 10); fi
 want wp || CASES=""
-for c in $CASES; do
-  rm -rf "$OUT/wp_$c"
-  run_part "work-precision $c" nice -n 5 "$CAMDYN" bench "$c" "${BENCH_ARGS[@]}" --quiet --out "$OUT/wp_$c"
-  stamp_md "$OUT/wp_$c/work_precision.md"
-done
+wp_case() {
+  rm -rf "$OUT/wp_$1"
+  run_part "work-precision $1" nice -n 5 "$CAMDYN" bench "$1" "${BENCH_ARGS[@]}" --quiet --out "$OUT/wp_$1"
+  stamp_md "$OUT/wp_$1/work_precision.md"
+}
+for c in $CASES; do spawn wp_case "$c"; done
 
 if [ "$MODE" = quick ]; then
   # every scene but the stiff bar over 0.02 s; the stiff bar (its cvode-bdf references at
@@ -204,65 +257,69 @@ else
                   --budget 2 --t-end 0.01 stiff)
 fi
 want tol || TOL=2
+tol_part() {
+  rm -rf "$OUT/$1"
+  run_part "$2" nice -n 5 "$CAMDYN" bench --tolerance-sweep "${@:3}" --quiet --out "$OUT/$1"
+  stamp_md "$OUT/$1/tol_sweep.md"
+}
 if [ "$TOL" = 1 ]; then
-  rm -rf "$OUT/tol_sweep" "$OUT/tol_sweep_stiff"
-  run_part "tolerance sweep" nice -n 5 "$CAMDYN" bench --tolerance-sweep "${TOL_ARGS[@]}" --quiet --out "$OUT/tol_sweep"
-  stamp_md "$OUT/tol_sweep/tol_sweep.md"
-  if [ "${#TOL_STIFF_ARGS[@]}" -gt 0 ]; then
-    run_part "tolerance sweep, stiff bar" nice -n 5 "$CAMDYN" bench --tolerance-sweep "${TOL_STIFF_ARGS[@]}" --quiet --out "$OUT/tol_sweep_stiff"
-    stamp_md "$OUT/tol_sweep_stiff/tol_sweep.md"
-  fi
+  spawn tol_part tol_sweep "tolerance sweep" "${TOL_ARGS[@]}"
+  spawn tol_part tol_sweep_stiff "tolerance sweep, stiff bar" "${TOL_STIFF_ARGS[@]}"
 elif [ "$TOL" = 0 ]; then
-  echo "| tolerance sweep | not rerun (--no-tol-sweep) | – | – |" >> "$LOG.tmp"
+  spawn logline "| tolerance sweep | not rerun (--no-tol-sweep) | – | – |"
 fi
 
-if ! want scale; then
-  :
-elif [ -x "$BUILD/bench/bench_scale" ]; then
+scale_part() {
   mkdir -p "$OUT/scale"
   if [ "$MODE" = quick ]; then SCALE=(sweep 10000 erk,dirk,cvode 60); else SCALE=(sweep 100000 erk,dirk,cvode 60); fi
   run_part "scale" bash -c "nice -n 5 '$BUILD/bench/bench_scale' ${SCALE[*]} > '$OUT/scale/bench_scale.csv'"
   run_part "scale figure" bash -c "{ printf '# Cost against mesh size (bench_scale ${SCALE[*]})\n\nWhole Lee runs of case B1 with the bar cut into N elements (bench/bench_scale.cpp); figure: bench_scale.png.\n\n![CPU per step, per rhs evaluation and memory per element against N](bench_scale.png)\n\n'; '$PLOT_PY' scripts/bench_scale_plot.py '$OUT/scale/bench_scale.csv' '$OUT/scale/bench_scale.png'; } > '$OUT/scale/bench_scale.md'"
   stamp_md "$OUT/scale/bench_scale.md"
+}
+if ! want scale; then
+  :
+elif [ -x "$BUILD/bench/bench_scale" ]; then
+  spawn scale_part
 else
-  echo "| scale | skipped: $BUILD/bench/bench_scale not built (cmake --build build --target bench_scale) | – | – |" >> "$LOG.tmp"
+  spawn logline "| scale | skipped: $BUILD/bench/bench_scale not built (cmake --build build --target bench_scale) | – | – |"
 fi
 
+table_part() {  # table_PART NAME OUTFILE CMD: a part that writes one Markdown file
+  run_part "$1" bash -c "$3"
+  stamp_md "$2"
+}
 if ! want cam; then
   :
 elif [ -x "$BUILD/bench/bench_cam" ]; then
-  run_part "cam evaluation" bash -c "nice -n 5 python3 bench/bench_cam_table.py --bin '$BUILD/bench/bench_cam' $([ "$MODE" = quick ] && echo '--reps 3 --min-time 0.05' || echo '--reps 5 --min-time 0.1') --out '$OUT/bench_cam.md'"
-  stamp_md "$OUT/bench_cam.md"
+  spawn table_part "cam evaluation" "$OUT/bench_cam.md" "nice -n 5 python3 bench/bench_cam_table.py --bin '$BUILD/bench/bench_cam' $([ "$MODE" = quick ] && echo '--reps 3 --min-time 0.05' || echo '--reps 5 --min-time 0.1') --out '$OUT/bench_cam.md'"
 else
-  echo "| cam evaluation | skipped: $BUILD/bench/bench_cam not built (cmake --build build --target bench_cam) | – | – |" >> "$LOG.tmp"
+  spawn logline "| cam evaluation | skipped: $BUILD/bench/bench_cam not built (cmake --build build --target bench_cam) | – | – |"
 fi
 
 if ! want one; then
   :
 elif [ -n "${CAMDYN_BEFORE_BIN:-}" ]; then
-  run_part "one mechanism" bash -c "nice -n 5 python3 bench/one_mechanism_table.py --bin '$CAMDYN' --before-bin '$CAMDYN_BEFORE_BIN' > '$OUT/one_mechanism.md'"
-  stamp_md "$OUT/one_mechanism.md"
+  spawn table_part "one mechanism" "$OUT/one_mechanism.md" "nice -n 5 python3 bench/one_mechanism_table.py --bin '$CAMDYN' --before-bin '$CAMDYN_BEFORE_BIN' > '$OUT/one_mechanism.md'"
 else
-  echo "| one mechanism | skipped: set CAMDYN_BEFORE_BIN to an older camdyn binary (bench/one_mechanism_table.py) | – | – |" >> "$LOG.tmp"
+  spawn logline "| one mechanism | skipped: set CAMDYN_BEFORE_BIN to an older camdyn binary (bench/one_mechanism_table.py) | – | – |"
 fi
 
 if want valve; then
-  run_part "valve-train examples" bash -c "nice -n 5 python3 bench/valve_train_table.py --bin '$CAMDYN' --out '$OUT/valve_trains.md'"
-  stamp_md "$OUT/valve_trains.md"
+  spawn table_part "valve-train examples" "$OUT/valve_trains.md" "nice -n 5 python3 bench/valve_train_table.py --bin '$CAMDYN' --out '$OUT/valve_trains.md'"
 fi
 if want newton; then
-  run_part "stiff bar Newton statistics" bash -c "nice -n 5 python3 bench/newton_stats_table.py --bin '$CAMDYN' --out '$OUT/newton_stiff.md'"
-  stamp_md "$OUT/newton_stiff.md"
+  spawn table_part "stiff bar Newton statistics" "$OUT/newton_stiff.md" "nice -n 5 python3 bench/newton_stats_table.py --bin '$CAMDYN' --out '$OUT/newton_stiff.md'"
 fi
 
 want peers || PEERS=2
 if [ "$PEERS" = 1 ]; then
   PEER_ARGS=(--camdyn "$CAMDYN" --build "$BUILD" --out "$OUT/peers")
   [ "$MODE" = quick ] && PEER_ARGS+=(--quick --repeats 1)
-  run_part "peers" nice -n 5 /usr/bin/python3 bench/peers/peers.py "${PEER_ARGS[@]}"
+  spawn run_part "peers" nice -n 5 /usr/bin/python3 bench/peers/peers.py "${PEER_ARGS[@]}"
 elif [ "$PEERS" = 0 ]; then
-  echo "| peers | not rerun (--no-peers) | – | – |" >> "$LOG.tmp"
+  spawn logline "| peers | not rerun (--no-peers) | – | – |"
 fi
+gather
 
 if want wp; then
 # every case's headlines in one file, with the text the docs quote
@@ -302,14 +359,17 @@ EOF
 fi
 
 if want factors; then
-  run_part "headline factors" bash -c "python3 bench/headline_factors.py --dir '$OUT' --out '$OUT/headline_factors.md'"
-  stamp_md "$OUT/headline_factors.md"
+  JOBS=1 spawn table_part "headline factors" "$OUT/headline_factors.md" "python3 bench/headline_factors.py --dir '$OUT' --out '$OUT/headline_factors.md'"
+  gather
 fi
 
 if [ "$QUOTE" = 1 ]; then quote; fi
 
-echo "| total | | $(( $(date +%s) - T0 )) | $CPU_TOTAL |" >> "$LOG.tmp"
-{ echo; echo "Load average (1, 5, 15 min) at the start: $LOAD0; at the end: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo '?') (the machine's $(nproc 2>/dev/null || echo '?') cores are shared: the CPU column is the parts' own processes)."; } >> "$LOG.tmp"
+kill "$LOAD_PID" 2>/dev/null || true
+LOAD_RANGE="$(sort -g "$PARTS/load" 2>/dev/null | sed -n '1p;$p' | paste -sd' ' | awk '{print $1 "–" ($2 == "" ? $1 : $2)}')"
+rm -rf "$PARTS"
+echo "| total$([ "$JOBS" -gt 1 ] && echo " ($JOBS parts at once)") | | $(( $(date +%s) - T0 )) | $CPU_TOTAL |" >> "$LOG.tmp"
+{ echo; echo "Load average (1, 5, 15 min) at the start: $LOAD0; at the end: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo '?'); the 1-minute load sampled every 30 s ranged ${LOAD_RANGE:-?} (the machine's $(nproc 2>/dev/null || echo '?') cores are shared: the CPU column is the parts' own processes)."; } >> "$LOG.tmp"
 if [ -n "$ONLY" ] && [ -f "$LOG" ]; then  # a partial run: the full run's record stays, this one is appended
   { echo; echo "## Partial run (--only $ONLY)"; echo; tail -n +3 "$LOG.tmp"; } >> "$LOG"
   rm -f "$LOG.tmp"

@@ -26,7 +26,8 @@ struct BenchOptions {
   /// Quick mode: Lee at two tolerances (a rigid follower on arkode-erk, others on
   /// arkode-dirk and cvode-bdf), penalty critically damped, both laws, at three k_p and one
   /// rtol (1e-8 rigid, 1e-6 otherwise) on cvode-bdf, event at two rtol (1e-4 and 1e-6;
-  /// elastic bars 1e-5) on the scene's engine; elastic-bar scenes cut to
+  /// elastic bars 1e-5) on the scene's engine, holonomic at the scene's rtol (elastic bars:
+  /// at least 1e-4); elastic-bar scenes cut to
   /// quick_elastic_t_end (unless t_end is given). In both modes the reference of an elastic
   /// bar is the event method on arkode-erk (elastic_reference_rtol), and the full sweep
   /// cuts elastic bars to full_elastic_t_end.
@@ -52,6 +53,10 @@ struct BenchOptions {
   double quick_elastic_t_end = 0.01;
   /// Full mode: t_end of elastic scenes when t_end is not given (at most the scene's own).
   double full_elastic_t_end = 0.05;
+  /// Full mode: t_end of an elastic bar on a fine mesh (element crossing time h_e/c under
+  /// 2 µs: the stiff bar, B1 on 1000 elements), whose every run costs 10–40× a B1 run per
+  /// simulated second (at most the scene's own; docs/bench/measured_tables.md "The full mode").
+  double full_fine_bar_t_end = 0.02;
   /// rtol (= atol) of an elastic bar's reference, the event method on arkode-erk; its check
   /// row runs at 10× both. In (0, 1e-8].
   double elastic_reference_rtol = 1e-10;

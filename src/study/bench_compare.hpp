@@ -15,6 +15,7 @@
 
 #include "camdyn/output.hpp"
 #include "camdyn/simulator.hpp"
+#include "study/bench.hpp"
 
 namespace camdyn {
 namespace bench_detail {
@@ -66,6 +67,9 @@ class GridObserver : public Observer {
   bool keep_;
   std::clock_t c0_ = std::clock();
 };
+
+/// The headlines' equal accuracy: err_force ≤ this (bench_tables.cpp).
+constexpr double kHeadlineTarget = 1e-3;
 
 struct Run {
   Summary sum;
@@ -331,6 +335,15 @@ inline double median(std::vector<double> v) {
 /// keeps what the comparison reads: rows (t, u_c, v_c, F, in_contact), events, finished,
 /// separations, cpu_seconds, steps, rhs_evals and message. `cached` (if given) says which it was.
 Run reference_run(const Scene& ref, const std::string& dir, bool* cached = nullptr);
+
+/// An elastic bar whose element crossing time h_e / c (c = √(E/ρ), ρ = m / (A L)) is below
+/// 2 µs (bench_compare.cpp): the full sweep's fine-mesh bars.
+bool fine_mesh_bar(const FollowerSpec& f);
+
+/// The rule of the reference (bench_tables.cpp): each finished row of `label` whose
+/// err_force, err_force_pointwise or impulse_err is not 10× above the reference-check row's
+/// gets a note naming the column and the factor.
+void flag_unresolved(std::vector<BenchRow>& rows, const std::string& label);
 
 /// Fill `si` (grid, reference series, events, the rigid follower's constants) from the
 /// scene `base` (defaults resolved, run.t_end set) and its reference run `rr`, on the

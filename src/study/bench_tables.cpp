@@ -15,8 +15,6 @@ namespace bench_detail {
 
 namespace {
 
-constexpr double kHeadlineTarget = 1e-3;
-
 /// Cheapest finished run of `method` in `scene` (on `engine`, if not empty) with
 /// err_force ≤ target; null if none.
 const BenchRow* cheapest(const std::vector<BenchRow>& rows, const std::string& scene,
@@ -85,6 +83,34 @@ BenchHeadline headline(const std::vector<BenchRow>& rows, const std::string& sce
            (std::isnan(h.goal) ? std::string() : " (goal ≥ " + g3(h.goal) + ": " + h.verdict + ")") +
            "; cheapest Lee: " + h.lee + "; cheapest " + versus + ": " + h.other;
   return h;
+}
+
+
+/// The rule of the reference: its checked error (the reference-check row's distance to
+/// it) at least 10× below a row's error. Each finished row of `label` whose err_force,
+/// err_force_pointwise or impulse_err is not gets a note naming the column and the
+/// factor (that error is not resolved by the reference). A check at round-off (≤ 1e-12)
+/// resolves every error.
+void flag_unresolved(std::vector<BenchRow>& rows, const std::string& label) {
+  const BenchRow* chk = nullptr;
+  for (const auto& r : rows)
+    if (r.scene == label && r.method == "reference-check" && r.finished) chk = &r;
+  if (!chk) return;
+  const BenchRow c = *chk;
+  for (auto& r : rows) {
+    if (r.scene != label || r.method == "reference-check" || !r.finished) continue;
+    std::string cols;
+    auto test = [&](const char* name, double e, double ce) {
+      if (std::isfinite(e) && std::isfinite(ce) && ce > 1e-12 && e < 10 * ce)
+        cols += std::string(cols.empty() ? "" : ", ") + name + " " + g3(e / ce) + "×";
+    };
+    test("err_F", r.err_force, c.err_force);
+    test("err_F_pw", r.err_force_pointwise, c.err_force_pointwise);
+    test("impulse_err", r.impulse_err, c.impulse_err);
+    if (!cols.empty())
+      r.note += (r.note.empty() ? "" : "; ") +
+                std::string("within 10× of the reference's checked error: ") + cols;
+  }
 }
 
 
