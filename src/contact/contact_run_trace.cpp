@@ -11,7 +11,7 @@ namespace detail {
 
 void ContactRun::trace_step(double t0, double t1, const StateFn& state, const ForcesFn& forces,
                             const std::vector<int>& set, bool energy_alike, const Eigen::VectorXd* y_end,
-                            const Eigen::VectorXd* F_end) {
+                            const Eigen::VectorXd* F_end, const Eigen::VectorXd* y_start) {
   const double h = t1 - t0;
   if (!(h > 0)) return;
   traced_ = true;
@@ -68,14 +68,21 @@ void ContactRun::trace_step(double t0, double t1, const StateFn& state, const Fo
   // The start: the previous step's end probe when this step starts where that one ended,
   // from the same state (bitwise: no impact, projection or restart between them) and with
   // the same held set; only the one-sided cam angle is this step's own (a cam joint at t0).
-  state(t0, trace_y_);
-  if (trace_prev_valid_ && trace_prev_end_.t == t0 && trace_prev_end_.in_set == trace_in_ &&
-      trace_prev_y_.size() == trace_y_.size() && trace_prev_y_ == trace_y_) {
+  // The state compared: the one the method started the step from (y_start), else the
+  // step's own state at t0.
+  const bool continues = trace_prev_valid_ && trace_prev_end_.t == t0 && trace_prev_end_.in_set == trace_in_;
+  const Eigen::VectorXd* y0 = y_start;
+  if (!(continues && y0)) {
+    state(t0, trace_y_);
+    y0 = &trace_y_;
+  }
+  if (continues && trace_prev_y_.size() == y0->size() && trace_prev_y_ == *y0) {
     std::swap(s[0], trace_prev_end_);
     s[0].x = 0.0;
     s[0].theta = one_sided_theta(t0);
     s[0].cam_valid = false;
   } else {
+    if (y0 != &trace_y_) state(t0, trace_y_);
     fill(0.0, t0, s[0]);
   }
   for (int k = 1; k < kStepSamples; ++k) {
