@@ -220,8 +220,8 @@ class ContactRun {
   /// Inside the lash take-up window at t (summary.hpp ContactResult).
   bool in_take_up(double t) const;
   /// The side loads |F_j tan φ| of the closed cam contacts at an accepted step end
-  /// (ContactResult::max_side_load).
-  void sample_side_loads(double theta);
+  /// (ContactResult::max_side_load); `cp`: the cam at theta when known (else evaluated).
+  void sample_side_loads(double theta, const CamPoint* cp = nullptr);
   /// A force sample of closed contact j for its ContactResult::min_force.
   void sample_contact(int j, double F, double theta_deg);
   /// The held force F of contact j at t as a sample of its least force (outside the lash
@@ -269,6 +269,12 @@ class ContactRun {
   void trace_step(double t0, double t1, const StateFn& state, const ForcesFn& forces, const std::vector<int>& set,
                   bool energy_alike = false, const Eigen::VectorXd* y_end = nullptr,
                   const Eigen::VectorXd* F_end = nullptr, const Eigen::VectorXd* y_start = nullptr);
+  /// θ within 1e-9 rad of one of the cam's breakpoints (Cam::breakpoints(), modulo 2π):
+  /// a step end there sees the cam one-sided in the trace.
+  bool near_cam_breakpoint(double theta) const;
+  /// The cam at the last traced step's end sample when it is at time t and angle theta
+  /// (the same point of the cam), else nullptr: after_step's samples there read it.
+  const CamPoint* traced_end_cam(double t, double theta) const;
   bool traced_ = false;
   Eigen::VectorXd trace_y_, trace_F_;
   std::vector<char> trace_in_;
