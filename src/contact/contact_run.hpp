@@ -275,6 +275,9 @@ class ContactRun {
   /// The cam at the last traced step's end sample when it is at time t and angle theta
   /// (the same point of the cam), else nullptr: after_step's samples there read it.
   const CamPoint* traced_end_cam(double t, double theta) const;
+  /// The trace's samples read the state beyond the contact forces (the seats' gaps, the
+  /// named nodes' displacements).
+  bool trace_reads_state() const { return analysis_.wants_gaps() || analysis_.wants_nodes(); }
   bool traced_ = false;
   Eigen::VectorXd trace_y_, trace_F_;
   std::vector<char> trace_in_;

@@ -281,6 +281,9 @@ void EventMethod::run_method() {
     trace_step(
         t_ - h, t_,
         [this](double tau, Eigen::VectorXd& y) {
+          // no held contact: the forces are zero, and the samples read no state unless the
+          // results ask for gaps or node displacements (trace_reads_state)
+          if (set_.empty() && !trace_reads_state()) return;
           if (tau == mid_t_)
             y = se_mid_y_;
           else
