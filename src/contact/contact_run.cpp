@@ -369,8 +369,10 @@ void ContactRun::after_step(double h, double dW, double P_prev, double P_end, do
   const MechanismContact& c = mk_.contacts()[p];
   const double th = drive_.theta(t_);
   designer_.step(t_, th, c.t.dot(y_.head(n_)) + c.g0, c.t.dot(y_.segment(n_, n_)), contact_acceleration(p), gap(p, y_, cm));
-  sample_side_loads(th);
-  if (active_[p]) designer_.sample_force(t_, th, F_[p]);
+  // the cam at the step end: the trace's end sample's when it is at this angle
+  const CamPoint* cp = traced_end_cam(t_, th);
+  sample_side_loads(th, cp);
+  if (active_[p]) designer_.sample_force(t_, th, F_[p], cp);
   if (out_dt() <= 0.0) {
     emit_row();
   } else {

@@ -220,8 +220,8 @@ class ContactRun {
   /// Inside the lash take-up window at t (summary.hpp ContactResult).
   bool in_take_up(double t) const;
   /// The side loads |F_j tan φ| of the closed cam contacts at an accepted step end
-  /// (ContactResult::max_side_load).
-  void sample_side_loads(double theta);
+  /// (ContactResult::max_side_load); `cp`: the cam at theta when known (else evaluated).
+  void sample_side_loads(double theta, const CamPoint* cp = nullptr);
   /// A force sample of closed contact j for its ContactResult::min_force.
   void sample_contact(int j, double F, double theta_deg);
   /// The held force F of contact j at t as a sample of its least force (outside the lash
@@ -252,14 +252,32 @@ class ContactRun {
   /// steps, the rows add no extreme (the output grid changes no result). `energy_alike`:
   /// step_energy was just called on [t0, t1] with the same state and forces functions, so
   /// its middle Gauss point is the middle sample. `y_end`, `F_end` (optional, both or none):
-  /// the state and forces at t1 that state(t1) and forces there give bit for bit (the
-  /// engine's step end, which its interpolant returns at t1: OdeEngine::dense), so the end
-  /// sample takes them instead of evaluating them again.
+  /// the method's own state and forces at t1, the step's end: the engine's step end, which
+  /// its interpolant returns at t1 bit for bit (OdeEngine::dense) and which the engine's
+  /// projection has put on the held set's manifold already (state(t1) projects it again:
+  /// the same state to round-off); the end sample takes them instead of evaluating them
+  /// again. `y_start` (optional): the method's state at t0 that the step started from.
+  /// When it is bitwise the state of the previous traced step's end sample, at the same
+  /// time and with the same held set (no impact, projection or restart between the two
+  /// steps), that sample is the start sample without evaluating state(t0): the step's
+  /// interpolant passes through the state it started from (Hermite: its end values;
+  /// CVODE's Nordsieck history: the BDF correction polynomial vanishes at t_{n−1}), so the
+  /// two agree to round-off. Without it the start sample is taken from the previous end
+  /// only when state(t0) gives that state bit for bit.
   using StateFn = std::function<void(double, Eigen::VectorXd&)>;
   using ForcesFn = std::function<void(double, const Eigen::VectorXd&, const CamMotion&, Eigen::VectorXd&)>;
   void trace_step(double t0, double t1, const StateFn& state, const ForcesFn& forces, const std::vector<int>& set,
                   bool energy_alike = false, const Eigen::VectorXd* y_end = nullptr,
-                  const Eigen::VectorXd* F_end = nullptr);
+                  const Eigen::VectorXd* F_end = nullptr, const Eigen::VectorXd* y_start = nullptr);
+  /// θ within 1e-9 rad of one of the cam's breakpoints (Cam::breakpoints(), modulo 2π):
+  /// a step end there sees the cam one-sided in the trace.
+  bool near_cam_breakpoint(double theta) const;
+  /// The cam at the last traced step's end sample when it is at time t and angle theta
+  /// (the same point of the cam), else nullptr: after_step's samples there read it.
+  const CamPoint* traced_end_cam(double t, double theta) const;
+  /// The trace's samples read the state beyond the contact forces (the seats' gaps, the
+  /// named nodes' displacements).
+  bool trace_reads_state() const { return analysis_.wants_gaps() || analysis_.wants_nodes(); }
   bool traced_ = false;
   Eigen::VectorXd trace_y_, trace_F_;
   std::vector<char> trace_in_;

@@ -167,11 +167,11 @@ void ContactRun::record_event(EventKind type, int contact, double v, double impu
   if (obs_) obs_->on_event(e);
 }
 
-void ContactRun::sample_side_loads(double theta) {
+void ContactRun::sample_side_loads(double theta, const CamPoint* cp) {
   bool any = false;
   for (int j = 0; j < m_ && !any; ++j) any = mk_.contacts()[j].cam && active_[j];
   if (!any) return;
-  const double tan_phi = std::tan(cam_.evaluate(theta).pressure_angle);
+  const double tan_phi = std::tan((cp ? *cp : cam_.evaluate(theta)).pressure_angle);
   for (int j = 0; j < m_; ++j) {
     if (!mk_.contacts()[j].cam || !active_[j]) continue;
     ContactResult& cr = rec_.contacts[j];

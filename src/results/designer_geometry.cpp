@@ -3,6 +3,7 @@
 // stress, cam torque T = F·dX_C/dθ (power balance: T ω = F Ẋ_C) and power.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "results/designer_stats.hpp"
 #include "results/step_extremes.hpp"
@@ -57,15 +58,16 @@ void DesignerStats::keep_extremes(double theta, const Design& d) {
   }
 }
 
-void DesignerStats::geometry_sample(double t, double theta, double F) {
+void DesignerStats::geometry_sample(double t, double theta, double F, const CamPoint* cp) {
   const double omega = drive_.omega(t);
-  const Design d = design_at(theta, F, omega);
+  const CamPoint at = cp ? *cp : cam_->evaluate(theta);
+  const Design d = design_at(at, F, omega);
   keep_extremes(theta, d);
   if (t == pend_t1_) {  // the current step end: its value for the time averages
     pend_T1_ = d.torque;
     pend_P1_ = d.power;
     if (cols_->friction()) {
-      const CamFriction f = cols_->friction_at(cam_->evaluate(theta), F > 0 ? F : 0.0, omega);
+      const CamFriction f = cols_->friction_at(at, F > 0 ? F : 0.0, omega);
       pend_Tf1_ = f.torque;
       pend_Pf1_ = f.power;
     }
@@ -80,10 +82,11 @@ void DesignerStats::step_inside(const std::vector<StepSample>& s, const StepProb
   StepSample tmp;
   // the least held force (the force margin), located inside the step
   for (int k = 0; k < n; ++k) x[k] = s[k].x, q[k] = std::max(s[k].F, 0.0);
-  const LocatedExtreme lf = locate_extreme(x, q, n, -1, min_F_, [&](double xx) {
+  auto force_at = [&](double xx) {
     probe(xx, tmp);
     return std::max(tmp.F, 0.0);
-  });
+  };
+  const LocatedExtreme lf = locate_extreme(x, q, n, -1, min_F_, std::cref(force_at));
   if (lf.found && (std::isnan(min_F_) || lf.value < min_F_)) {
     min_F_ = lf.value;
     min_F_theta_ = angle_deg_mod360(drive_.theta(t0 + lf.x * h));
@@ -94,11 +97,12 @@ void DesignerStats::step_inside(const std::vector<StepSample>& s, const StepProb
   // each quantity: its samples, its record, and where it is located
   auto locate = [&](double Design::*m, int sign, double record, bool absolute) {
     for (int k = 0; k < n; ++k) q[k] = absolute ? std::fabs(d[k].*m) : d[k].*m;
-    const LocatedExtreme e = locate_extreme(x, q, n, sign, absolute ? std::fabs(record) : record, [&](double xx) {
+    auto value_at = [&](double xx) {
       probe(xx, tmp);
       const double v = design_at(tmp.cam_point(*cam_), tmp.F, tmp.omega).*m;
       return absolute ? std::fabs(v) : v;
-    });
+    };
+    const LocatedExtreme e = locate_extreme(x, q, n, sign, absolute ? std::fabs(record) : record, std::cref(value_at));
     if (!e.found) return;
     for (int k = 0; k < n; ++k)
       if (e.x == x[k]) return;  // a sample: kept already

@@ -39,8 +39,8 @@ DesignerStats::DesignerStats(const Scene& scene, std::shared_ptr<const Cam> cam)
   geometry_init(scene, std::move(cam));
 }
 
-void DesignerStats::sample_force(double t, double theta, double F) {
-  if (cam_) geometry_sample(t, theta, F);
+void DesignerStats::sample_force(double t, double theta, double F, const CamPoint* cp) {
+  if (cam_) geometry_sample(t, theta, F, cp);
   if (!(F >= 0.0)) F = 0.0;  // NaN or a bilateral pull: the margin is gone
   if (std::isnan(min_F_) || F < min_F_) {
     min_F_ = F;

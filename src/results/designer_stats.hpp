@@ -35,8 +35,9 @@ class DesignerStats {
   /// The same on a shared cam (no copy). @pre cam is not null.
   DesignerStats(const Scene& scene, std::shared_ptr<const Cam> cam);
 
-  /// A contact force sample F ≥ 0 at time t, cam angle θ, while in contact.
-  void sample_force(double t, double theta, double F);
+  /// A contact force sample F ≥ 0 at time t, cam angle θ, while in contact; `cp`: the cam
+  /// at θ (Cam::evaluate(θ)) when the caller has it, else evaluated here.
+  void sample_force(double t, double theta, double F, const CamPoint* cp = nullptr);
   /// An impact or separation event (type Impact/Separation; others ignored).
   void event(const ContactEvent& e);
   /// An accepted step end (state of the contact face). The first call is the start.
@@ -83,7 +84,7 @@ class DesignerStats {
   double Tf_int_ = 0, Pf_int_ = 0, pend_Tf0_ = 0, pend_Pf0_ = 0, pend_Tf1_ = 0, pend_Pf1_ = 0;
   double Ff_max_ = NAN, Pf_peak_ = NAN;
   void geometry_init(const Scene& scene, std::shared_ptr<const Cam> cam);
-  void geometry_sample(double t, double theta, double F);
+  void geometry_sample(double t, double theta, double F, const CamPoint* cp);
   void geometry_step(double t);
   void geometry_finish(Summary& s) const;
   // the force-dependent extremes at one (θ, F, ω): the record keeping of sample_force and

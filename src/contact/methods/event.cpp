@@ -196,6 +196,9 @@ ContactRun::StepEnergy EventMethod::advance_energy(double t0, double t1) {
     sum.work += e.work;
     sum.dissipated += e.dissipated;
   }
+  // one panel: step_energy's middle Gauss point (se_mid_y_) is the interpolant at the
+  // step's middle, which the trace's middle sample reads (run_method)
+  if (P == 1 && se_mid_t0_ == t0 && se_mid_t1_ == t1) mid_t_ = t0 + 0.5 * (t1 - t0);
   return sum;
 }
 
@@ -246,7 +249,7 @@ void EventMethod::run_method() {
     on_break_ = t1 == t_brk;
     stiff_metric(h);  // for the next steps' projections
     t_ = t1;
-    y_ = y1;
+    y_.swap(y1);  // y1: the state the step started from (the trace's start), until the next advance
     // A root's state (interpolated inside the step) on the held contacts' g = 0, ġ = 0, as
     // every step end is: a contact released there leaves the cam from exactly where it was
     // held. ERK's interpolant of the held step is off that manifold by its interpolation
@@ -263,14 +266,18 @@ void EventMethod::run_method() {
     // the cam's work and the dissipated energy over the step: 3-point Gauss–Legendre on
     // the engine's own dense output (issue 25: each step's own quadrature)
     const StepEnergy dE = advance_energy(t_ - h, t_);
-    // at the step's end without a root the interpolant is the engine's state y1 bit for bit
-    // (OdeEngine::dense): taken from there
-    const bool end_is_y1 = !hit;
+    // The trace's end sample is the step's end (y_, F_): the engine's state, which its
+    // projection has put on the held set's manifold (a root's state just above); its start
+    // the previous end when the step started from that state (y1, swapped above); its
+    // middle sample the interpolant advance_energy evaluated at the step's middle.
     trace_step(
         t_ - h, t_,
-        [this, end_is_y1, &y1](double tau, Eigen::VectorXd& y) {
-          if (end_is_y1 && tau == t_)
-            y = y1;
+        [this](double tau, Eigen::VectorXd& y) {
+          // no held contact: the forces are zero, and the samples read no state unless the
+          // results ask for gaps or node displacements (trace_reads_state)
+          if (set_.empty() && !trace_reads_state()) return;
+          if (tau == mid_t_)
+            y = se_mid_y_;
           else
             eng_->dense(tau, y);
           if (!set_.empty()) {
@@ -283,7 +290,8 @@ void EventMethod::run_method() {
           if (set_.empty()) F.setZero(m_);
           else held_forces_into(tau, y, c, set_, F);
         },
-        set_);
+        set_, false, &y_, &F_, &y1);
+    mid_t_ = NAN;
     after_advance(t_ - h, P_prev);
     eng_->keep_dense_rhs(false);
     const double P_end = dissipation_power(t_, y_);

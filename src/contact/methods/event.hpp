@@ -61,6 +61,9 @@ class EventMethod : public ContactRun {
 
   OdeEngine* eng_;
   std::vector<int> set_;  // the active set the right-hand side uses
+  // The last step's middle where advance_energy left the engine's interpolant there in
+  // se_mid_y_ (its middle Gauss point): the trace's middle sample reads it (NaN: none).
+  double mid_t_ = NAN;
 
  private:
   void restart();
