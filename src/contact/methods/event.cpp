@@ -59,9 +59,9 @@ EventMethod::EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem
 // so CVODE stays at BDF ≤ 2 at rtol > 1e-8; at rtol ≤ 1e-8 its steps resolve those modes
 // anyway and higher orders pay, up to 5 with CVODE's stability-limit detection (measured:
 // docs/background/method_notes.md, "BDF orders on a single elastic follower"). A rigid
-// follower has no stiff mode: `network_order`.
-void EventMethod::bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys) {
-  sys.max_order = network_order;
+// follower has no stiff mode: `max_order`.
+void EventMethod::bdf_order(const Scene& sc, const MechanicalSystem& mech, int max_order, OdeSystem& sys) {
+  sys.max_order = max_order;
   sys.stability_limit_detection = false;
   if (!mech.traits().stiff_internal_modes) return;
   const bool tight = sc.solver.rtol <= 1e-8;

@@ -33,17 +33,17 @@ inline double event_gap_tolerance(double tol_u, double rtol, double X) {
 
 class EventMethod : public ContactRun {
  public:
-  /// max_order: cvode-bdf's largest BDF order on a network (0: CVODE's default 5). An
-  /// elastic body with stiff internal modes (MechanismTraits::stiff_internal_modes) has its
+  /// max_order: cvode-bdf's largest BDF order on a mechanism without stiff internal modes
+  /// (0: CVODE's default 5). An elastic body with stiff internal modes (MechanismTraits::stiff_internal_modes) has its
   /// own order policy instead (methods/event.cpp: EventMethod::bdf_order).
   EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                const std::atomic<bool>* stop, int max_order = 0);
 
-  /// cvode-bdf's order limits for `sys`: `network_order` on a network; on a single
-  /// elastic follower BDF ≤ 2 (≤ 5 with stability-limit detection at rtol ≤ 1e-8): its
+  /// cvode-bdf's order limits for `sys`: `max_order` on a mechanism without stiff internal
+  /// modes; on an elastic body with them (a single elastic follower) BDF ≤ 2 (≤ 5 with stability-limit detection at rtol ≤ 1e-8): its
   /// undamped fast modes sit on the imaginary axis, where BDF orders 3–5 are not
   /// A-stable. Every method on cvode-bdf uses it (event, Lee in CVODE, penalty).
-  static void bdf_order(const Scene& sc, const MechanicalSystem& mech, int network_order, OdeSystem& sys);
+  static void bdf_order(const Scene& sc, const MechanicalSystem& mech, int max_order, OdeSystem& sys);
 
  protected:
   void run_method() override;
