@@ -13,7 +13,7 @@ ALLOWED = {
     "scene/": "the scene: it parses, validates, writes and describes its own follower keys",
     "mechanism/mechanism.cpp": "Mechanism::Mechanism selects the builder of the scene's follower",
     "mechanism/follower_matrices.cpp": "the rigid / elastic_bar builder: the rigid mass's 1 x 1 or the bar's matrices",
-    "output/output_json.cpp": "the scene written into summary.json (the network tables of a network scene)",
+    "output/scene_json.cpp": "the scene written into summary.json (the network tables of a network scene)",
     "study/jump.cpp": "the jump speed's closed form is the rigid follower's, and an elastic_bar's "
                       "speed range starts at its rigid-body estimate",
     "study/bench.cpp": "the paper's benchmark: each case's reference (engine, rtol), run length, "

@@ -21,8 +21,9 @@
 #include <string>
 #include <vector>
 
+#include "camdyn/cam_spec.hpp"
 #include "camdyn/motion_law.hpp"
-#include "camdyn/scene.hpp"
+#include "camdyn/scene_error.hpp"
 
 namespace camdyn {
 

@@ -3,7 +3,8 @@
 //   #include <camdyn/camdyn.hpp>
 //
 //   scene.hpp            Scene (the TOML file as a struct), load_scene_file, parse_scene,
-//                        validate, to_toml, SceneError; network.hpp (valve-train networks)
+//                        validate, to_toml; network.hpp (valve-train networks),
+//                        cam_spec.hpp (CamSpec, the [cam] table), scene_error.hpp (SceneError)
 //   simulator.hpp        Simulator, simulate() (includes the three below)
 //   history.hpp          HistoryRow, ContactEvent, EventKind, history_columns()
 //   observer.hpp         Observer (on_output, on_event, on_step, on_progress), StepInfo
@@ -22,6 +23,7 @@
 
 #include "camdyn/batch.hpp"
 #include "camdyn/cam.hpp"
+#include "camdyn/cam_spec.hpp"
 #include "camdyn/campbell.hpp"
 #include "camdyn/designer.hpp"
 #include "camdyn/follower_system.hpp"
@@ -35,6 +37,7 @@
 #include "camdyn/observer.hpp"
 #include "camdyn/output.hpp"
 #include "camdyn/scene.hpp"
+#include "camdyn/scene_error.hpp"
 #include "camdyn/scene_keys.hpp"
 #include "camdyn/scene_warnings.hpp"
 #include "camdyn/simulator.hpp"

@@ -72,7 +72,8 @@ std::string json_string(std::string_view s);
 std::string history_csv(const std::vector<HistoryRow>& rows,
                         const std::vector<std::string>& extra_columns = {});
 /// events.csv text: header "t,kind,impact_velocity,theta,impulse" (with_contact: then
-/// ",contact", the contact's name — network scenes), one line per event. The kind column
+/// ",contact", the contact's name — network scenes and user followers, has_named_contacts),
+/// one line per event. The kind column
 /// is ContactEvent::kind when it is not empty, else to_string(ContactEvent::type).
 std::string events_csv(const std::vector<ContactEvent>& events, bool with_contact = false);
 
@@ -86,9 +87,8 @@ class HistoryWriter : public Observer {
   const std::vector<HistoryRow>& rows() const { return rows_; }
   const std::vector<ContactEvent>& events() const { return events_; }
   void clear();
-  /// The extra history columns (Simulator::extra_columns()); network columns among them
-  /// (any but the designer columns of run.designer_columns) also add the `contact` column
-  /// to events.csv.
+  /// The extra history columns (Simulator::extra_columns()); when they begin with named
+  /// contacts' columns (has_named_contacts) events.csv also gets the `contact` column.
   void set_extra_columns(std::vector<std::string> names) { extra_ = std::move(names); }
 
   /// Write DIR/history.csv and DIR/events.csv atomically. @throws std::runtime_error on an error.
@@ -104,8 +104,8 @@ class HistoryWriter : public Observer {
 /// at most about `chunk_bytes` of text per file in memory (O(1) in the number of rows).
 /// The files are byte-identical to HistoryWriter::write(DIR) for the same run and the same
 /// extra columns (header from history_columns() then `extra_columns`; events.csv gets the
-/// `contact` column when `extra_columns` holds a network's columns (not only the designer
-/// columns of run.designer_columns), as events_csv(…, true)).
+/// `contact` column when `extra_columns` begin with named contacts' columns,
+/// has_named_contacts, as events_csv(…, true)).
 ///
 ///   camdyn::Simulator sim(scene);
 ///   camdyn::StreamingHistoryWriter w("out", sim.extra_columns());

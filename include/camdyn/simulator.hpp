@@ -58,9 +58,9 @@ class Simulator {
   const Scene& scene() const { return scene_; }
   /// The model description (any follower kind).
   const ModelDescription& description() const;
-  /// Names of HistoryRow::extra, in order: network scenes F_<c>, gap_<c>, in_<c> per
-  /// contact c, then u_<n>, v_<n> per named node n (none for the other follower kinds);
-  /// then the designer columns when run.designer_columns is true.
+  /// Names of HistoryRow::extra, in order: network scenes and user followers F_<c>, gap_<c>,
+  /// in_<c> per contact c, then u_<n>, v_<n> per named node n (none for a rigid or
+  /// elastic_bar follower); then the designer columns when run.designer_columns is true.
   const std::vector<std::string>& extra_columns() const { return extra_columns_; }
   /// The scene's plausibility warnings (scene_warnings(), camdyn/scene_warnings.hpp), known
   /// before the run; run() copies them into Summary::warnings.

@@ -6,9 +6,10 @@
 #include <string>
 
 #include "camdyn/cam.hpp"
+#include "camdyn/cam_spec.hpp"
 #include "camdyn/lift_table.hpp"
 #include "camdyn/motion_law.hpp"
-#include "camdyn/scene.hpp"
+#include "camdyn/scene_error.hpp"
 
 namespace camdyn {
 

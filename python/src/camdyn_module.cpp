@@ -168,8 +168,8 @@ void row_values(const HistoryRow& r, double* v) {
 constexpr std::size_t kColumns = 12;
 
 /// Keeps every row; calls the Python observer (GIL taken) for each one; polls signals.
-/// The observer's dict has the history_columns(), then (network scenes) the `extra`
-/// columns (Simulator::extra_columns()).
+/// The observer's dict has the history_columns(), then (network scenes, user followers) the
+/// `extra` columns (Simulator::extra_columns()).
 class PyObserver : public Observer {
  public:
   PyObserver(py::object callback, std::atomic<bool>* stop, const std::vector<std::string>& extra)
@@ -236,9 +236,10 @@ class PyObserver : public Observer {
   std::unique_ptr<py::error_already_set> pending_;
 };
 
-/// run(): (summary JSON text, {column: float64 array}, [event dicts]). Network scenes:
-/// the history has the extra columns (F_<contact>, gap_<contact>, in_<contact>, u_<node>,
-/// v_<node>) after the standard ones, and each event dict has "contact".
+/// run(): (summary JSON text, {column: float64 array}, [event dicts]). Network scenes and
+/// user followers: the history has the extra columns (F_<contact>, gap_<contact>,
+/// in_<contact>, u_<node>, v_<node>) after the standard ones, and each event dict has
+/// "contact".
 /// With a user's follower (`follower`: a FollowerSystem made in C++, or the spec dict of a
 /// Python follower, camdyn._follower_spec()), the scene's follower is replaced by it.
 py::tuple run_scene(const std::string& kind, const std::string& text, const std::string& source,
@@ -333,8 +334,7 @@ py::tuple run_scene(const std::string& kind, const std::string& text, const std:
     history[py::str(extra[c])] = col;
   }
 
-  // network columns: any extra besides the designer columns (run.designer_columns, last)
-  const bool network_cols = extra.size() > (sim->scene().run.designer_columns ? 6u : 0u);
+  const bool named_contacts = has_named_contacts(extra);
   py::list events;
   for (const auto& e : summary.events) {
     py::dict d;
@@ -343,7 +343,7 @@ py::tuple run_scene(const std::string& kind, const std::string& text, const std:
     d["impact_velocity"] = e.impact_velocity;
     d["theta"] = e.theta;
     d["impulse"] = e.impulse;
-    if (network_cols) d["contact"] = e.contact;  // network scenes (as events.csv)
+    if (named_contacts) d["contact"] = e.contact;  // networks and user followers (as events.csv)
     events.append(d);
   }
   return py::make_tuple(summary_json(summary, sc), history, events);

@@ -27,7 +27,8 @@
 #include <vector>
 
 #include "camdyn/motion_law.hpp"
-#include "camdyn/scene.hpp"
+#include "camdyn/cam_spec.hpp"
+#include "camdyn/scene_error.hpp"
 
 namespace camdyn {
 namespace detail {

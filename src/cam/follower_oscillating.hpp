@@ -47,7 +47,8 @@
 
 #include "camdyn/cam.hpp"
 #include "camdyn/motion_law.hpp"
-#include "camdyn/scene.hpp"
+#include "camdyn/cam_spec.hpp"
+#include "camdyn/scene_error.hpp"
 #include "cam/follower_geometry.hpp"
 
 namespace camdyn {

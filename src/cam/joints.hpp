@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "camdyn/cam.hpp"
-#include "camdyn/scene.hpp"
+#include "camdyn/cam_spec.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -50,8 +50,8 @@ inline bool one_sided_motion(const Cam& cam, const CamDrive& drive, const std::v
 
 class CamJoints {
  public:
-  CamJoints(const Scene& sc, const Cam& cam) : drive_(sc.cam) {
-    if (sc.cam.land_on_breaks)
+  CamJoints(const CamSpec& spec, const Cam& cam) : drive_(spec) {
+    if (spec.land_on_breaks)
       for (const Breakpoint& b : cam.joints())
         if (b.order == 0) angles_.push_back(b.theta);
   }

@@ -14,7 +14,8 @@
 #include <vector>
 
 #include "camdyn/motion_law.hpp"
-#include "camdyn/scene.hpp"
+#include "camdyn/cam_spec.hpp"
+#include "camdyn/scene_error.hpp"
 #include "cam/format.hpp"
 #include "cam/spline.hpp"
 

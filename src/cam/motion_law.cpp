@@ -10,7 +10,8 @@
 #include <cmath>
 #include <string>
 
-#include "camdyn/scene.hpp"
+#include "camdyn/cam_spec.hpp"
+#include "camdyn/scene_error.hpp"
 #include "cam/format.hpp"
 
 namespace camdyn {

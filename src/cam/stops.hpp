@@ -9,15 +9,16 @@
 #include <vector>
 
 #include "camdyn/cam.hpp"
-#include "camdyn/scene.hpp"
+#include "camdyn/cam_spec.hpp"
 
 namespace camdyn {
 namespace detail {
 
 class CamStops {
  public:
-  CamStops(const Scene& sc, const Cam& cam) : drive_(sc.cam), horizon_(sc.run.t_end) {
-    if (sc.cam.land_on_breaks) angles_ = cam.breakpoints();
+  /// `horizon`: the run's end time (no breakpoint time is looked for beyond it).
+  CamStops(const CamSpec& spec, double horizon, const Cam& cam) : drive_(spec), horizon_(horizon) {
+    if (spec.land_on_breaks) angles_ = cam.breakpoints();
   }
   bool empty() const { return angles_.empty(); }
   /// min(t_next, first breakpoint time after t).

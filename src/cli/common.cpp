@@ -18,7 +18,7 @@
 #include "camdyn/cam.hpp"
 #include "camdyn/scene.hpp"
 #include "camdyn/simulator.hpp"
-#include "cam/shared_cam.hpp"
+#include "scene/shared_cam.hpp"
 
 namespace camdyn_cli {
 

@@ -15,7 +15,7 @@
 #include "contact/run_clock.hpp"
 #include "contact/run_failure.hpp"
 #include "contact/step_control.hpp"
-#include "cam/shared_cam.hpp"
+#include "scene/shared_cam.hpp"
 
 namespace camdyn {
 namespace detail {

@@ -42,7 +42,7 @@
 #include "contact/run_failure.hpp"
 #include "contact/run_record.hpp"
 #include "contact/step_control.hpp"
-#include "cam/shared_cam.hpp"
+#include "scene/shared_cam.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -307,11 +307,11 @@ class ContactRun {
   std::shared_ptr<const MechanicalSystem> mech_;
   const MechanicalSystem& mk_;
   std::string atol_note_;  // absolute_tolerances(): the warning when the floor was used
-  std::shared_ptr<const Cam> cam_owner_;  // the run's cam, shared (cam/shared_cam.hpp)
+  std::shared_ptr<const Cam> cam_owner_;  // the run's cam, shared (scene/shared_cam.hpp)
   const Cam& cam_;
   CamDrive drive_;
-  CamStops stops_{sc_, cam_};
-  CamJoints joints_{sc_, cam_};
+  CamStops stops_{sc_.cam, sc_.run.t_end, cam_};
+  CamJoints joints_{sc_.cam, cam_};
   double joint_t_ = -INFINITY;  // the last C0 joint passed: cam_at(joint_t_) is after it
   Observer* obs_;
   const std::atomic<bool>* stop_;

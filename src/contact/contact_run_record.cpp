@@ -1,5 +1,5 @@
 // camdyn — the recorder of a contact run (contact_run.hpp): the history columns, the rows
-// (state, forces, energies, the network's per-contact and per-node columns, designer and
+// (state, forces, energies, the named contacts' and nodes' columns, designer and
 // analysis columns), the events, and the per-contact statistics they feed.
 #include <algorithm>
 #include <cmath>

@@ -54,7 +54,7 @@
 //   (solver.linear_solver = "auto"), dense LU otherwise; the pattern (union of ∂F/∂y and
 //   ∂F/∂ẏ) is fixed, so KLU's symbolic analysis is done once. A single elastic bar runs
 //   BDF orders ≤ 2 (A-stable: its undamped mesh modes sit on the imaginary axis), a rigid
-//   follower orders ≤ 5, a network ≤ 4 (as network Lee on cvode-bdf).
+//   follower orders ≤ 5, a network ≤ 4 (as Lee on cvode-bdf).
 //   Output: IDA_NORMAL with IDASetStopTime at every output time, so that rows are IDA's
 //   step values (λ, an index-2 unknown, is not accurate through the interpolant).
 //   Rootfinding on λ_j (decreasing) reports the first time a held force turns tensile (a

@@ -1,5 +1,5 @@
-// camdyn — the generic OdeEngine (ode_engine.hpp) on SUNDIALS 6.4: y' = f(t, y), for the
-// network (several-contact) methods. Linear algebra of the implicit engines: a mechanism's
+// camdyn — the generic OdeEngine (ode_engine.hpp) on SUNDIALS 6.4: y' = f(t, y), for every
+// contact method (src/contact/methods/). Linear algebra of the implicit engines: a mechanism's
 // sparse Schur complement with KLU (OdeSystem::newton, sparse_newton.hpp), else dense.
 //
 //   arkode-erk   ERKStep, Dormand–Prince 5(4)

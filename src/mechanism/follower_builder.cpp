@@ -4,13 +4,13 @@
 //   preloaded initial shape q(0)) with one contact, the cam on node 0:
 //     T = e₀ᵀ,   g = q₀ − X_C(θ)   (X_C absolute: u_c = q₀).
 //   rigid: M = [m], K = [k], C = [c] (only if c > 0); elastic_bar: the bar's sparse
-//   M, K, C = αM + βK. The network methods and engines run it as they run a network.
+//   M, K, C = αM + βK. Every method and engine runs it as any other mechanism.
 #include <cmath>
 
 #include "camdyn/cam.hpp"
 #include "mechanism/follower_matrices.hpp"
 #include "mechanism/mechanism.hpp"
-#include "cam/shared_cam.hpp"
+#include "scene/shared_cam.hpp"
 
 namespace camdyn {
 

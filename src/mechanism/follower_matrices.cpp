@@ -15,7 +15,7 @@
 
 #include "camdyn/cam.hpp"
 #include "scene/linear_solver.hpp"  // resolve_linear_solver
-#include "cam/shared_cam.hpp"
+#include "scene/shared_cam.hpp"
 
 namespace camdyn {
 

@@ -1,5 +1,6 @@
-// camdyn (private) — a mechanism with several contacts, assembled from a network scene
-// (include/camdyn/network.hpp, docs/interface.md "Networks").
+// camdyn (private) — the mechanism every follower runs as: M, C, K, f₀ and one contact row
+// per contact; assembled here from a network scene (include/camdyn/network.hpp,
+// docs/interface.md "Networks"), from a rigid or elastic_bar follower by follower_builder.cpp.
 //
 //   M q̈ + C q̇ + K q = f₀ + Tᵀ F,     F ≥ 0 (one entry per contact)
 //   gap of contact j:  g_j = T_j q + g₀_j − X_C(t)·[j touches the cam]
@@ -54,7 +55,7 @@ struct MechanismContact {
   std::string coil_spring;
 };
 
-/// What the network methods integrate: M q̈ = r(t, q, q̇) + TᵀF with constant M and contact
+/// What the contact methods integrate: M q̈ = r(t, q, q̇) + TᵀF with constant M and contact
 /// rows T. Two kinds: the linear Mechanism assembled from a network scene, and a user's
 /// FollowerSystem (include/camdyn/follower_system.hpp) through an adapter.
 /// What a mechanism is, for the parts that run and record it: set once by the builder that
@@ -195,7 +196,7 @@ class MechanicalSystem {
   std::shared_ptr<const CamShaft> camshaft_;
 };
 
-/// The linear mechanism of a network scene: r = f₀ − Kq − Cq̇.
+/// The linear mechanism of a scene (a network, or a rigid / elastic_bar follower): r = f₀ − Kq − Cq̇.
 class Mechanism final : public MechanicalSystem {
  public:
   /// The mechanism of a scene: its network, or a rigid / elastic_bar follower as a
@@ -289,7 +290,7 @@ class Mechanism final : public MechanicalSystem {
 /// An element's name in reports and history columns: its scene name, or "<kind>_<index>".
 std::string element_report_name(const ElementSpec& e, std::size_t index);
 
-/// A user's follower as the system the network methods integrate (src/mechanism/user_mechanism.cpp).
+/// A user's follower as the system the contact methods integrate (src/mechanism/user_mechanism.cpp).
 /// @throws SceneError (file "<follower>") naming the offending contact field.
 std::shared_ptr<const MechanicalSystem> make_user_system(const Scene& scene,
                                                          std::shared_ptr<const FollowerSystem> follower);

@@ -1,8 +1,6 @@
 // camdyn — output files (see output.hpp).
 #include "camdyn/output.hpp"
 
-#include "results/designer_columns.hpp"
-
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -251,7 +249,7 @@ void HistoryWriter::clear() {
 
 void HistoryWriter::write(const std::string& dir) const {
   write_history_file(join_path(dir, "history.csv"), rows_, extra_);
-  write_file_atomic(join_path(dir, "events.csv"), events_csv(events_, detail::DesignerColumns::has_network_columns(extra_)));
+  write_file_atomic(join_path(dir, "events.csv"), events_csv(events_, has_named_contacts(extra_)));
 }
 
 // ---- streaming writer -----------------------------------------------------------------
@@ -266,7 +264,7 @@ constexpr long kClockEvery = 64;       // rows/events between two reads of the c
 
 StreamingHistoryWriter::StreamingHistoryWriter(std::string dir, std::vector<std::string> extra,
                                                std::size_t chunk_bytes, Placement placement)
-    : with_contact_(detail::DesignerColumns::has_network_columns(extra)), chunk_(chunk_bytes) {
+    : with_contact_(has_named_contacts(extra)), chunk_(chunk_bytes) {
   const std::string pid = std::to_string(static_cast<long>(::getpid()));
   hist_.path = join_path(dir, "history.csv");
   ev_.path = join_path(dir, "events.csv");

@@ -1,7 +1,6 @@
 // camdyn — the designer quantities of one contact state (designer_columns.hpp).
 #include "results/designer_columns.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include "cam/follower_oscillating.hpp"
@@ -24,14 +23,6 @@ const std::vector<std::string>& DesignerColumns::friction_names() {
   static const std::vector<std::string> n{"sliding_speed", "cam_friction_force", "cam_friction_torque",
                                           "cam_friction_power"};
   return n;
-}
-
-bool DesignerColumns::has_network_columns(const std::vector<std::string>& extra) {
-  const std::vector<std::string>& d = names();
-  const std::vector<std::string>& f = friction_names();
-  return std::any_of(extra.begin(), extra.end(), [&](const std::string& c) {
-    return std::find(d.begin(), d.end(), c) == d.end() && std::find(f.begin(), f.end(), c) == f.end();
-  });
 }
 
 double DesignerColumns::friction_coefficient(double v) const {

@@ -96,9 +96,6 @@ class DesignerColumns {
   /// The history columns, in order: pressure_angle_deg, radius_of_curvature,
   /// contact_stress, side_load, cam_torque, cam_power.
   static const std::vector<std::string>& names();
-  /// true when `extra` (history columns after the standard ones) holds any column that is
-  /// not a designer column: a network's (events.csv then gets its `contact` column).
-  static bool has_network_columns(const std::vector<std::string>& extra);
 
   /// Reads cam.width, the moduli and the follower face (Hertz stress when cam.width > 0
   /// and the face is flat or a roller).

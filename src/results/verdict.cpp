@@ -9,7 +9,7 @@
 #include "cam/lift_base.hpp"
 #include "results/designer_stats.hpp"  // angle_deg_mod360
 #include "mechanism/mechanism.hpp"
-#include "cam/shared_cam.hpp"
+#include "scene/shared_cam.hpp"
 
 namespace camdyn {
 namespace detail {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "camdyn/cam.hpp"
-#include "cam/shared_cam.hpp"
+#include "scene/shared_cam.hpp"
 
 namespace camdyn {
 namespace detail {

@@ -13,7 +13,7 @@
 #include "run/initial_check.hpp"
 #include "mechanism/mechanism.hpp"
 #include "cam/format.hpp"  // detail::fmt
-#include "cam/shared_cam.hpp"
+#include "scene/shared_cam.hpp"
 
 namespace camdyn {
 

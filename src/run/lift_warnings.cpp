@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "cam/shared_cam.hpp"
+#include "scene/shared_cam.hpp"
 #include "scene/warnings.hpp"
 
 namespace camdyn {

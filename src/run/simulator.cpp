@@ -34,6 +34,13 @@ const std::vector<std::string>& history_columns() {
   return cols;
 }
 
+bool has_named_contacts(const std::vector<std::string>& extra) {
+  // ContactRun::extra_columns: named contacts come first, three columns each
+  if (extra.size() < 3 || extra[0].rfind("F_", 0) != 0) return false;
+  const std::string name = extra[0].substr(2);
+  return extra[1] == "gap_" + name && extra[2] == "in_" + name;
+}
+
 const char* to_string(EventKind k) {
   switch (k) {
     case EventKind::Impact: return "impact";

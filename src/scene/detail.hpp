@@ -14,26 +14,21 @@
 #include <toml++/toml.h>
 
 #include "camdyn/scene.hpp"
+#include "cam/enum_names.hpp"
 
 namespace camdyn::scene_detail {
 
 // ---------------------------------------------------------------- enum <-> string
 
-template <class E>
-struct EnumName {
-  E value;
-  const char* name;
-};
+// EnumName, its lookups and the cam's tables (kProfileNames, kFaceNames, kMotionNames) live with
+// the cam's enumerations (cam/enum_names.hpp).
+using detail::EnumName;
+using detail::enum_parse;
+using detail::enum_to_string;
+using detail::kFaceNames;
+using detail::kMotionNames;
+using detail::kProfileNames;
 
-inline constexpr EnumName<CamProfileKind> kProfileNames[] = {
-    {CamProfileKind::Points, "points"}, {CamProfileKind::Lift, "lift"}, {CamProfileKind::Circle, "circle"},
-    {CamProfileKind::Law, "law"}, {CamProfileKind::Arc, "arc"}, {CamProfileKind::Arcs, "arcs"}, {CamProfileKind::Table, "table"}};
-inline constexpr EnumName<FollowerFace> kFaceNames[] = {{FollowerFace::Flat, "flat"},
-                                                        {FollowerFace::KnifeEdge, "knife_edge"},
-                                                        {FollowerFace::Roller, "roller"},
-                                                        {FollowerFace::Point, "point"}};
-inline constexpr EnumName<FollowerMotion> kMotionNames[] = {{FollowerMotion::Translating, "translating"},
-                                                            {FollowerMotion::Oscillating, "oscillating"}};
 inline constexpr EnumName<FollowerKind> kFollowerNames[] = {{FollowerKind::Rigid, "rigid"},
                                                      {FollowerKind::ElasticBar, "elastic_bar"},
                                                      {FollowerKind::Network, "network"}};
@@ -62,22 +57,6 @@ inline constexpr EnumName<ContactPointKind> kContactPointNames[] = {
 inline constexpr EnumName<StopSide> kStopSideNames[] = {{StopSide::Below, "below"}, {StopSide::Above, "above"}};
 inline constexpr EnumName<BarMass> kBarMassNames[] = {{BarMass::Lumped, "lumped"}, {BarMass::Consistent, "consistent"}};
 
-template <class E, std::size_t N>
-const char* enum_to_string(const EnumName<E> (&names)[N], E v) {
-  for (const auto& n : names)
-    if (n.value == v) return n.name;
-  return "?";
-}
-
-template <class E, std::size_t N>
-bool enum_parse(const EnumName<E> (&names)[N], std::string_view s, E* out) {
-  for (const auto& n : names)
-    if (s == n.name) {
-      if (out) *out = n.value;
-      return true;
-    }
-  return false;
-}
 
 template <class E, std::size_t N>
 std::vector<std::string> enum_names(const EnumName<E> (&names)[N]) {

@@ -1,5 +1,5 @@
-// camdyn — scene enums as strings, SceneError, and the formatting helpers of error
-// messages (declared in scene_detail.hpp).
+// camdyn — the scene's enums as strings (the cam's: src/cam/cam_spec.cpp) and the formatting
+// helpers of error messages (declared in scene/detail.hpp).
 #include "camdyn/scene.hpp"
 
 #include <algorithm>
@@ -27,9 +27,6 @@ namespace camdyn {
 using namespace scene_detail;  // enum names, formatting helpers, network arrays (scene_detail.hpp)
 
 
-const char* to_string(CamProfileKind v) { return enum_to_string(kProfileNames, v); }
-const char* to_string(FollowerFace v) { return enum_to_string(kFaceNames, v); }
-const char* to_string(FollowerMotion v) { return enum_to_string(kMotionNames, v); }
 const char* to_string(FollowerKind v) { return enum_to_string(kFollowerNames, v); }
 const char* to_string(MassMatrixKind v) { return enum_to_string(kMassNames, v); }
 const char* to_string(ContactModel v) { return enum_to_string(kContactNames, v); }
@@ -45,9 +42,6 @@ const char* to_string(ContactPointKind v) { return enum_to_string(kContactPointN
 const char* to_string(StopSide v) { return enum_to_string(kStopSideNames, v); }
 const char* to_string(BarMass v) { return enum_to_string(kBarMassNames, v); }
 
-bool parse_enum(std::string_view s, CamProfileKind* out) { return enum_parse(kProfileNames, s, out); }
-bool parse_enum(std::string_view s, FollowerFace* out) { return enum_parse(kFaceNames, s, out); }
-bool parse_enum(std::string_view s, FollowerMotion* out) { return enum_parse(kMotionNames, s, out); }
 bool parse_enum(std::string_view s, FollowerKind* out) { return enum_parse(kFollowerNames, s, out); }
 bool parse_enum(std::string_view s, MassMatrixKind* out) { return enum_parse(kMassNames, s, out); }
 bool parse_enum(std::string_view s, ContactModel* out) { return enum_parse(kContactNames, s, out); }
@@ -69,30 +63,6 @@ bool parse_enum(std::string_view s, ElementKind* out) {
 bool parse_enum(std::string_view s, ContactPointKind* out) { return enum_parse(kContactPointNames, s, out); }
 bool parse_enum(std::string_view s, StopSide* out) { return enum_parse(kStopSideNames, s, out); }
 bool parse_enum(std::string_view s, BarMass* out) { return enum_parse(kBarMassNames, s, out); }
-
-// ---------------------------------------------------------------- SceneError
-
-namespace {
-
-std::string compose_message(const std::string& file, int line, const std::string& key,
-                            const std::string& value, const std::string& rule) {
-  std::string m = file;
-  if (line > 0) m += ":" + std::to_string(line);
-  m += ": ";
-  if (!key.empty()) m += "key '" + key + "' = " + value + ": ";
-  m += rule;
-  return m;
-}
-
-}  // namespace
-
-SceneError::SceneError(std::string file, int line, std::string key, std::string value, std::string rule)
-    : std::runtime_error(compose_message(file, line, key, value, rule)),
-      file_(std::move(file)),
-      key_(std::move(key)),
-      value_(std::move(value)),
-      rule_(std::move(rule)),
-      line_(line) {}
 
 // ---------------------------------------------------------------- formatting helpers
 

@@ -13,7 +13,7 @@
 #include "results/designer_stats.hpp"
 #include "results/verdict.hpp"
 #include "study/speed_map.hpp"
-#include "cam/shared_cam.hpp"
+#include "scene/shared_cam.hpp"
 
 namespace camdyn {
 

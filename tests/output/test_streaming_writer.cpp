@@ -212,3 +212,31 @@ TEST(EventKind, CaseA7ImpactsAndSeparationsTyped) {
   EXPECT_NE(json.find("\"impact\": " + std::to_string(impacts)), std::string::npos);
   EXPECT_NE(json.find("\"separation\": " + std::to_string(separations)), std::string::npos);
 }
+
+// events.csv's `contact` column: only where the contacts have names (networks, user
+// followers), whatever other extra columns a single follower's run writes.
+TEST(EventsCsv, ContactColumnOnlyWhereContactsHaveNames) {
+  EXPECT_TRUE(has_named_contacts({"F_cam", "gap_cam", "in_cam", "u_valve"}));
+  EXPECT_FALSE(has_named_contacts({}));
+  EXPECT_FALSE(has_named_contacts({"film_thickness", "lambda"}));
+  EXPECT_FALSE(has_named_contacts({"F_cam", "gap_seat", "in_cam"}));
+
+  // A rigid follower with designer, oil-film and friction columns: extra columns, no names.
+  Scene rigid = paper_case("A");
+  apply_overrides(rigid, {"run.t_end=0.02", "run.designer_columns=true", "cam.width=10",
+                          "lubricant.viscosity=1e-8", "cam.friction_coefficient=0.05"});
+  Simulator sim(rigid);
+  ASSERT_FALSE(sim.extra_columns().empty());
+  EXPECT_FALSE(has_named_contacts(sim.extra_columns()));
+  const fs::path dir = temp_dir("contact_column");
+  HistoryWriter w;
+  w.set_extra_columns(sim.extra_columns());
+  ASSERT_TRUE(sim.run(&w).finished);
+  w.write(dir.string());
+  const std::string events = slurp(dir / "events.csv");
+  EXPECT_EQ(events.substr(0, events.find('\n')), "t,kind,impact_velocity,theta,impulse");
+  fs::remove_all(dir);
+
+  const Simulator net(load_scene_file(example("ohc_bucket_tappet.toml")));
+  EXPECT_TRUE(has_named_contacts(net.extra_columns()));
+}

@@ -79,7 +79,7 @@ class LeeLocated final : public ContactRun {
     sys.newton = newton;
     sys.linear = mk_.linear() && (sys.jacobian || sys.newton);
     if (sc.solver.integrator == Integrator::CvodeBdf)
-      throw std::logic_error("network Lee on cvode-bdf runs in methods/lee_cvode.cpp");
+      throw std::logic_error("Lee on cvode-bdf runs in methods/lee_cvode.cpp");
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, true));
     eng_ = resp_eng_ = engines_.back().get();
     if (linear_part_) {

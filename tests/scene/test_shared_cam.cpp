@@ -1,4 +1,4 @@
-// One Cam per cam spec (src/cam/shared_cam.hpp): a run's parts share the cam its checks
+// One Cam per cam spec (src/scene/shared_cam.hpp): a run's parts share the cam its checks
 // built. The cache must never hand out a cam of another spec: specs equal key by key share
 // one object, any key that differs gives another (checked against a Cam built directly), a
 // lift-table file rewritten on disk is read again, and a spec that fails is not kept.
@@ -14,7 +14,7 @@
 #include <camdyn/lift_table.hpp>
 #include <camdyn/scene.hpp>
 
-#include "cam/shared_cam.hpp"
+#include "scene/shared_cam.hpp"
 
 namespace camdyn {
 namespace {

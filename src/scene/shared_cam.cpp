@@ -1,5 +1,5 @@
 // camdyn — one Cam per cam spec (shared_cam.hpp).
-#include "cam/shared_cam.hpp"
+#include "scene/shared_cam.hpp"
 
 #include <sys/stat.h>
 

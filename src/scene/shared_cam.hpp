@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "camdyn/cam.hpp"
+#include "camdyn/scene.hpp"  // operator==(CamSpec): the key table's [cam] keys
 
 namespace camdyn {
 namespace detail {
