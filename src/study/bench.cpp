@@ -2,7 +2,6 @@
 #include "study/bench.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
