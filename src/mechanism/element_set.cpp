@@ -108,6 +108,19 @@ void ElementSet::finish(int n) {
 }
 
 namespace {
+// Element p's state from its nodes' x, ẋ (already gathered) and its internal states in st.
+ElementState element_state(const ElementSet::Placed& p, double t, const double* st, double* x, double* xd) {
+  ElementState e;
+  e.t = t;
+  e.x = x;
+  e.xd = xd;
+  if (p.element->states() > 0) {
+    if (!st) throw std::logic_error("ElementSet: element '" + p.element->name() + "' needs its internal states");
+    e.s = st + p.state_offset;
+  }
+  return e;
+}
+
 // Element p's state at (t, q, v, s): its nodes' x and ẋ into x, xd (nodes() entries each).
 ElementState state_into(const ElementSet::Placed& p, double t, const double* q, const double* v, const double* st,
                         double* x, double* xd) {
@@ -121,15 +134,7 @@ ElementState state_into(const ElementSet::Placed& p, double t, const double* q, 
     x[i] = xi;
     xd[i] = xdi;
   }
-  ElementState e;
-  e.t = t;
-  e.x = x;
-  e.xd = xd;
-  if (p.element->states() > 0) {
-    if (!st) throw std::logic_error("ElementSet: element '" + p.element->name() + "' needs its internal states");
-    e.s = st + p.state_offset;
-  }
-  return e;
+  return element_state(p, t, st, x, xd);
 }
 // Elements of up to this many nodes keep x, ẋ and f on the stack in the calls made at every
 // right-hand side (add_force, dissipated_power); larger ones use the per-thread scratch.
@@ -145,15 +150,7 @@ inline ElementState direct_state(const ElementSet::Placed& p, double t, const do
     x[i] = on ? c[i] * q[u[i]] : 0.0;
     xd[i] = on && v ? c[i] * v[u[i]] : 0.0;
   }
-  ElementState e;
-  e.t = t;
-  e.x = x;
-  e.xd = xd;
-  if (p.element->states() > 0) {
-    if (!st) throw std::logic_error("ElementSet: element '" + p.element->name() + "' needs its internal states");
-    e.s = st + p.state_offset;
-  }
-  return e;
+  return element_state(p, t, st, x, xd);
 }
 }  // namespace
 
