@@ -5,6 +5,7 @@
 #pragma once
 
 #include "camdyn/scene.hpp"
+#include "engine/ode_engine.hpp"
 #include "mechanism/mechanism.hpp"
 
 namespace camdyn {
@@ -39,6 +40,15 @@ inline BdfOrderLimit cvode_bdf_order(const Scene& scene, const MechanicalSystem&
   const bool lee = scene.contact.model == ContactModel::Lee || scene.contact.model == ContactModel::Holonomic;
   o.max_order = lee ? 4 : 5;
   return o;
+}
+
+/// `sys`'s cvode-bdf order limits (OdeSystem::max_order, stability_limit_detection) from
+/// cvode_bdf_order: every method on cvode-bdf sets them through this (event, Lee in CVODE,
+/// penalty).
+inline void set_cvode_bdf_order(const Scene& scene, const MechanicalSystem& mech, OdeSystem& sys) {
+  const BdfOrderLimit o = cvode_bdf_order(scene, mech);
+  sys.max_order = o.max_order;
+  sys.stability_limit_detection = o.stability_limit_detection;
 }
 
 }  // namespace detail

@@ -49,16 +49,10 @@ EventMethod::EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem
   } else {
     sys.jacobian = dense_jacobian(&set_);
   }
-  bdf_order(sc, *mech_, sys);
+  set_cvode_bdf_order(sc, *mech_, sys);
   engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
   eng_ = engines_.back().get();
   eng_->set_projection([this](double t, const double* y, double* corr) { project(t, y, corr); });
-}
-
-void EventMethod::bdf_order(const Scene& sc, const MechanicalSystem& mech, OdeSystem& sys) {
-  const BdfOrderLimit o = cvode_bdf_order(sc, mech);
-  sys.max_order = o.max_order;
-  sys.stability_limit_detection = o.stability_limit_detection;
 }
 
 void EventMethod::restart() {

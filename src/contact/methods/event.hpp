@@ -38,10 +38,6 @@ class EventMethod : public ContactRun {
   EventMethod(const Scene& sc, std::shared_ptr<const MechanicalSystem> mech, Observer* obs,
                const std::atomic<bool>* stop);
 
-  /// `sys`'s cvode-bdf order limits: cvode_bdf_order (methods/bdf_order.hpp). Every method
-  /// on cvode-bdf sets them through this (event, Lee in CVODE, penalty).
-  static void bdf_order(const Scene& sc, const MechanicalSystem& mech, OdeSystem& sys);
-
  protected:
   void run_method() override;
   /// The time the next step may not pass apart from the cam's breakpoints (the event

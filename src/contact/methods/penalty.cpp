@@ -14,7 +14,7 @@
 
 #include "contact/contact_run.hpp"
 #include "contact/laws/contact_law.hpp"
-#include "contact/methods/event.hpp"
+#include "contact/methods/bdf_order.hpp"
 
 namespace camdyn {
 namespace detail {
@@ -84,7 +84,7 @@ class PenaltyMethod final : public ContactRun {
         J.bottomRightCorner(n_, n_) = dadv;
       };
     // cvode-bdf's order limits (cvode_bdf_order, methods/bdf_order.hpp)
-    EventMethod::bdf_order(sc, *mech_, sys);
+    set_cvode_bdf_order(sc, *mech_, sys);
     engines_.push_back(OdeEngine::make(sc.solver.integrator, sc.solver, sys, false));
     eng_ = engines_.back().get();
   }
