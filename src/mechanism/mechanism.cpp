@@ -1,4 +1,4 @@
-// camdyn — the mechanism builder for network scenes (src/mechanism/mechanism.hpp has the maths).
+// camdyn — the Mechanism of every scene: the network builder (here; a rigid or elastic-bar follower: follower_builder.cpp) and the run-time maths (src/mechanism/mechanism.hpp).
 #include "mechanism/mechanism.hpp"
 
 #include <Eigen/Eigenvalues>
